@@ -1,0 +1,327 @@
+//! `render`: the main job. Renders a scene (the built-in default scene unless a file is
+//! given) in every number format, writes a PNG and prints what each format costs in time
+//! and accuracy against the f64 reference.
+//!
+//! ```text
+//! cargo run --release --example render
+//! cargo run --release --example render -- [SCENE_FILE] [--format i16f16|i20f12|i32f32|f32|f64]
+//!                                         [--out FILE.png] [--compare FILE.png]
+//! ```
+//!
+//! Without `--format` every format is rendered and reported, and `--out` (default
+//! `render.png`) receives the I16F16 render. With `--format` only that format is rendered
+//! into `--out`, at the scene's pixeldim, scale 1, Rgb888. `--compare` writes one picture:
+//! the format | the f64 render | a heat map of the per-pixel channel error (black: equal;
+//! blue → red: 1 → 255 levels, log scale). A scene error prints `FILE:LINE:COL: message`
+//! and exits with status 1; bad arguments exit with status 2.
+
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+use embedded_graphics::prelude::*;
+use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
+use fixray::compare::{Comparison, compare};
+use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, SceneError, render_line};
+
+/// The built-in default scene, compiled in.
+const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
+const DEFAULT_SCENE_NAME: &str = "scenes/default.scene";
+
+const USAGE: &str = "usage: render [SCENE_FILE] [--format i16f16|i20f12|i32f32|f32|f64] \
+                     [--out FILE.png] [--compare FILE.png]";
+
+/// Every format, in the order of the report.
+const FORMATS: [&str; 5] = ["i16f16", "i20f12", "i32f32", "f32", "f64"];
+
+struct Args {
+    scene: Option<String>,
+    format: Option<String>,
+    out: String,
+    compare: Option<String>,
+}
+
+fn parse_args() -> Result<Args, String> {
+    let mut args = Args {
+        scene: None,
+        format: None,
+        out: "render.png".into(),
+        compare: None,
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(a) = it.next() {
+        let mut value = |flag: &str| it.next().ok_or(format!("{flag} needs a value"));
+        match a.as_str() {
+            "--format" => {
+                let f = value("--format")?;
+                if !FORMATS.contains(&f.as_str()) {
+                    return Err(format!("unknown format `{f}`"));
+                }
+                args.format = Some(f);
+            }
+            "--out" => args.out = value("--out")?,
+            "--compare" => args.compare = Some(value("--compare")?),
+            "-h" | "--help" => return Err(String::new()),
+            s if s.starts_with("--") => return Err(format!("unknown option `{s}`")),
+            s if args.scene.is_none() => args.scene = Some(s.into()),
+            s => return Err(format!("unexpected argument `{s}`")),
+        }
+    }
+    Ok(args)
+}
+
+/// An image in memory, row-major.
+struct Image {
+    width: u16,
+    height: u16,
+    pixels: Vec<Rgb888>,
+}
+
+impl Image {
+    fn save_png(&self, path: &str) -> Result<(), String> {
+        let size = Size::new(u32::from(self.width), u32::from(self.height));
+        let mut display = SimulatorDisplay::<Rgb888>::new(size);
+        self.draw_at(&mut display, 0);
+        save(&display, path)
+    }
+
+    fn draw_at(&self, display: &mut SimulatorDisplay<Rgb888>, x0: i32) {
+        let w = usize::from(self.width);
+        let pixels = self.pixels.iter().enumerate().map(|(i, c)| {
+            let (x, y) = (i % w, i / w);
+            Pixel(Point::new(x0 + x as i32, y as i32), *c)
+        });
+        // SimulatorDisplay's drawing is infallible.
+        let _ = display.draw_iter(pixels);
+    }
+}
+
+fn save(display: &SimulatorDisplay<Rgb888>, path: &str) -> Result<(), String> {
+    display
+        .to_rgb_output_image(&OutputSettings::default())
+        .save_png(path)
+        .map_err(|e| format!("cannot write {path}: {e}"))
+}
+
+/// What rendering one format produced.
+struct Run {
+    image: Image,
+    frame: Duration,
+    comparison: Comparison,
+    heat: Vec<Rgb888>,
+    delta: f64,
+}
+
+/// Renders one frame line by line with the library's `render_line`.
+fn render_image<S: Scalar>(scene: &Scene<S>) -> Image {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let mut pixels = vec![Rgb888::BLACK; usize::from(w) * usize::from(h)];
+    for (row, line) in (0..h).zip(pixels.chunks_mut(usize::from(w))) {
+        render_line(scene, row, line);
+    }
+    Image {
+        width: w,
+        height: h,
+        pixels,
+    }
+}
+
+/// Median frame time over enough frames to fill about 0.3 s (3 to 51 frames).
+fn time_frames<S: Scalar>(scene: &Scene<S>) -> (Image, Duration) {
+    let start = Instant::now();
+    let image = render_image(scene);
+    let first = start.elapsed();
+    let n = (Duration::from_millis(300).as_nanos() / first.as_nanos().max(1)).clamp(3, 51);
+    let mut times: Vec<Duration> = (0..n)
+        .map(|_| {
+            let t = Instant::now();
+            std::hint::black_box(render_image(std::hint::black_box(scene)));
+            t.elapsed()
+        })
+        .collect();
+    times.sort();
+    (image, times[times.len() / 2])
+}
+
+/// Blue → yellow → red for a channel error of 1 → 255 (log scale); black for none.
+fn heat_color(error: u8) -> Rgb888 {
+    if error == 0 {
+        return Rgb888::BLACK;
+    }
+    let t = f64::from(error).log2() / 8.0; // 0 for 1, ~1 for 255
+    let lerp = |a: f64, b: f64, s: f64| (a + (b - a) * s).round() as u8;
+    if t < 0.5 {
+        let s = t / 0.5;
+        Rgb888::new(lerp(40.0, 255.0, s), lerp(60.0, 230.0, s), lerp(255.0, 0.0, s))
+    } else {
+        let s = (t - 0.5) / 0.5;
+        Rgb888::new(255, lerp(230.0, 0.0, s), 0)
+    }
+}
+
+fn run<S: Scalar>(text: &str, reference: &Scene<f64>) -> Result<Run, SceneError> {
+    let scene = Scene::<S>::parse(text)?;
+    let (image, frame) = time_frames(&scene);
+    let mut heat = Vec::with_capacity(image.pixels.len());
+    let comparison = compare(&scene, reference, |_, _, px, ref_px| {
+        let e = px
+            .r()
+            .abs_diff(ref_px.r())
+            .max(px.g().abs_diff(ref_px.g()))
+            .max(px.b().abs_diff(ref_px.b()));
+        heat.push(heat_color(e));
+    });
+    Ok(Run {
+        image,
+        frame,
+        comparison,
+        heat,
+        delta: S::DELTA.to_f64(),
+    })
+}
+
+fn run_format(format: &str, text: &str, reference: &Scene<f64>) -> Result<Run, SceneError> {
+    match format {
+        "i16f16" => run::<I16F16>(text, reference),
+        "i20f12" => run::<I20F12>(text, reference),
+        "i32f32" => run::<I32F32>(text, reference),
+        "f32" => run::<f32>(text, reference),
+        _ => run::<f64>(text, reference),
+    }
+}
+
+fn write_compare(run: &Run, reference: &Image, path: &str) -> Result<(), String> {
+    let (w, h) = (u32::from(run.image.width), u32::from(run.image.height));
+    let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(3 * w, h));
+    run.image.draw_at(&mut display, 0);
+    reference.draw_at(&mut display, w as i32);
+    let heat = Image {
+        width: run.image.width,
+        height: run.image.height,
+        pixels: run.heat.clone(),
+    };
+    heat.draw_at(&mut display, 2 * w as i32);
+    save(&display, path)
+}
+
+fn print_header(scene_name: &str, reference: &Scene<f64>) {
+    let c = &reference.camera;
+    println!(
+        "{scene_name}: {}x{} pixels, {} objects, {} lights",
+        c.width,
+        c.height,
+        reference.objects.len(),
+        reference.lights.len()
+    );
+    println!(
+        "{:<7} {:>10} {:>8} {:>12} {:>10} {:>10} {:>9} {:>8}",
+        "format", "ms/frame", "x f64", "max|dt|", "DELTAs", "mean|dt|", "differ", "PSNR dB"
+    );
+}
+
+fn print_row(format: &str, run: &Run, f64_frame: Duration) {
+    let c = &run.comparison;
+    let ms = run.frame.as_secs_f64() * 1e3;
+    println!(
+        "{:<7} {:>10.3} {:>8.2} {:>12.3e} {:>10.1} {:>10.3e} {:>8.3}% {:>8.1}",
+        format,
+        ms,
+        run.frame.as_secs_f64() / f64_frame.as_secs_f64(),
+        c.max_dt,
+        c.max_dt / run.delta,
+        c.mean_dt(),
+        100.0 * c.differing_share(),
+        c.psnr(),
+    );
+}
+
+fn main() -> ExitCode {
+    let args = match parse_args() {
+        Ok(a) => a,
+        Err(e) => {
+            if !e.is_empty() {
+                eprintln!("render: {e}");
+            }
+            eprintln!("{USAGE}");
+            return ExitCode::from(2);
+        }
+    };
+    let (scene_name, text) = match &args.scene {
+        None => (DEFAULT_SCENE_NAME.to_string(), DEFAULT_SCENE.to_string()),
+        Some(path) => match std::fs::read_to_string(path) {
+            Ok(t) => (path.clone(), t),
+            Err(e) => {
+                eprintln!("render: cannot read {path}: {e}");
+                return ExitCode::from(1);
+            }
+        },
+    };
+    let scene_error = |e: SceneError| {
+        eprintln!("{scene_name}:{e}");
+        ExitCode::from(1)
+    };
+    let reference = match Scene::<f64>::parse(&text) {
+        Ok(s) => s,
+        Err(e) => return scene_error(e),
+    };
+    let reference_image = render_image(&reference);
+    let outcome = match &args.format {
+        Some(format) => {
+            let run = match run_format(format, &text, &reference) {
+                Ok(r) => r,
+                Err(e) => return scene_error(e),
+            };
+            print_header(&scene_name, &reference);
+            let f64_frame = if format == "f64" {
+                run.frame
+            } else {
+                time_frames(&reference).1
+            };
+            print_row(format, &run, f64_frame);
+            finish(format, &run, &reference_image, &args)
+        }
+        None => {
+            print_header(&scene_name, &reference);
+            let (_, f64_frame) = time_frames(&reference);
+            let mut shown = None;
+            for format in FORMATS {
+                match run_format(format, &text, &reference) {
+                    Ok(run) => {
+                        print_row(format, &run, f64_frame);
+                        if format == "i16f16" {
+                            shown = Some(run);
+                        }
+                    }
+                    // The scene may not fit a narrow format: say so, go on with the rest.
+                    Err(e) => println!("{format:<7} {scene_name}:{e}"),
+                }
+            }
+            match shown {
+                Some(run) => finish("i16f16", &run, &reference_image, &args),
+                None => {
+                    // I16F16 cannot hold this scene: show the reference instead.
+                    reference_image
+                        .save_png(&args.out)
+                        .map(|()| println!("wrote {} (f64)", args.out))
+                }
+            }
+        }
+    };
+    match outcome {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("render: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn finish(format: &str, run: &Run, reference: &Image, args: &Args) -> Result<(), String> {
+    run.image.save_png(&args.out)?;
+    println!("wrote {} ({format})", args.out);
+    if let Some(path) = &args.compare {
+        write_compare(run, reference, path)?;
+        println!("wrote {path} ({format} | f64 | channel error heat map)");
+    }
+    Ok(())
+}

@@ -1,0 +1,124 @@
+//! Accuracy of one number format against another (normally the `f64` reference), pixel by
+//! pixel, streaming: no image is stored, so this runs on a microcontroller too.
+//!
+//! ```
+//! use fixray::{compare::compare, Scene, I16F16};
+//!
+//! let text = "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }
+//!             material m { ambient 0.7 0.3 0.1 }
+//!             plane p { material m normal 0 1 0 point 0 1 0 }";
+//! let fixed = Scene::<I16F16>::parse(text).unwrap();
+//! let reference = Scene::<f64>::parse(text).unwrap();
+//! let c = compare(&fixed, &reference, |_, _, _, _| {});
+//! assert_eq!(c.pixels, 48);
+//! assert_eq!(c.differing_pixels, 0);
+//! assert!(c.max_dt < 1e-3);
+//! ```
+
+use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+
+use crate::render::{nearest_hit, shade, to_rgb888};
+use crate::{Scalar, Scene};
+
+/// How a render in one format differs from a reference render of the same scene.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Comparison {
+    /// Pixels compared (the smaller of the two cameras).
+    pub pixels: u32,
+    /// Pixels where any channel differs.
+    pub differing_pixels: u32,
+    /// Largest difference of one channel, 0..=255.
+    pub max_channel_error: u8,
+    /// Sum over pixels and channels of the squared channel difference.
+    pub squared_error: u64,
+    /// Pixels whose primary rays see different objects (or one hits and one misses).
+    pub object_disagreements: u32,
+    /// Largest |Δt| in world units over pixels where both see the same object.
+    pub max_dt: f64,
+    /// Sum of |Δt| over those pixels (for the mean).
+    pub sum_dt: f64,
+    /// Number of pixels where both see the same object.
+    pub same_object_pixels: u32,
+}
+
+impl Comparison {
+    /// Share of pixels that differ, 0.0 ..= 1.0.
+    pub fn differing_share(&self) -> f64 {
+        if self.pixels == 0 {
+            return 0.0;
+        }
+        f64::from(self.differing_pixels) / f64::from(self.pixels)
+    }
+
+    /// Peak signal-to-noise ratio in dB over all channels; infinite for identical images.
+    pub fn psnr(&self) -> f64 {
+        if self.squared_error == 0 || self.pixels == 0 {
+            return f64::INFINITY;
+        }
+        // u64 → f64 rounds above 2^53 squared-error units, far beyond any image here.
+        #[allow(clippy::cast_precision_loss)]
+        let mse = self.squared_error as f64 / (3.0 * f64::from(self.pixels));
+        10.0 * libm::log10(255.0 * 255.0 / mse)
+    }
+
+    /// Mean |Δt| in world units over pixels where both see the same object.
+    pub fn mean_dt(&self) -> f64 {
+        if self.same_object_pixels == 0 {
+            return 0.0;
+        }
+        self.sum_dt / f64::from(self.same_object_pixels)
+    }
+}
+
+/// Renders both scenes pixel by pixel and compares them; `on_pixel(column, row, pixel,
+/// reference_pixel)` sees every pair (for a heat map), row by row.
+pub fn compare<S: Scalar, R: Scalar>(
+    scene: &Scene<S>,
+    reference: &Scene<R>,
+    mut on_pixel: impl FnMut(u16, u16, Rgb888, Rgb888),
+) -> Comparison {
+    let mut c = Comparison::default();
+    let width = scene.camera.width.min(reference.camera.width);
+    let height = scene.camera.height.min(reference.camera.height);
+    for row in 0..height {
+        for column in 0..width {
+            let ray = scene.camera.primary_ray(column, row);
+            let ref_ray = reference.camera.primary_ray(column, row);
+            let hit = ray.and_then(|r| nearest_hit(scene, &r).map(|h| (r, h)));
+            let ref_hit = ref_ray.and_then(|r| nearest_hit(reference, &r).map(|h| (r, h)));
+            let px = to_rgb888(match hit {
+                Some((r, (i, h))) => shade(scene, &r, i, &h),
+                None => scene.background,
+            });
+            let ref_px = to_rgb888(match ref_hit {
+                Some((r, (i, h))) => shade(reference, &r, i, &h),
+                None => reference.background,
+            });
+            match (hit, ref_hit) {
+                (Some((_, (i, h))), Some((_, (j, g)))) if i == j => {
+                    let dt = libm::fabs(h.t.to_f64() - g.t.to_f64());
+                    c.max_dt = c.max_dt.max(dt);
+                    c.sum_dt += dt;
+                    c.same_object_pixels += 1;
+                }
+                (None, None) => {}
+                _ => c.object_disagreements += 1,
+            }
+            let diffs = [
+                px.r().abs_diff(ref_px.r()),
+                px.g().abs_diff(ref_px.g()),
+                px.b().abs_diff(ref_px.b()),
+            ];
+            if diffs != [0; 3] {
+                c.differing_pixels += 1;
+            }
+            for d in diffs {
+                c.max_channel_error = c.max_channel_error.max(d);
+                c.squared_error += u64::from(d) * u64::from(d);
+            }
+            c.pixels += 1;
+            on_pixel(column, row, px, ref_px);
+        }
+    }
+    c
+}

@@ -1,0 +1,42 @@
+//! # fixray
+//!
+//! A `no_std` ray caster for microcontrollers: ray/plane intersections in fixed-point
+//! arithmetic with an explicit precision epsilon, rendered scanline by scanline into any
+//! [`embedded-graphics`](https://docs.rs/embedded-graphics) `DrawTarget`, with no
+//! allocator and no framebuffer.
+//!
+//! Everything is generic over a number format [`Scalar`]: [`I16F16`], [`I20F12`],
+//! [`I32F32`], `f32` and `f64` (the reference). Choose the format where you parse the scene:
+//!
+//! ```
+//! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb888};
+//! use fixray::{render, Scene, I16F16};
+//!
+//! let text = "
+//!     camera cam { pixeldim 4 4 worlddim 4 4 viewpoint 2 2 5 }
+//!     material red { ambient 1 0 0 }
+//!     plane floor { material red normal 0 1 0 point 0 2 -1 }   # y = 2: the lower half
+//! ";
+//! let scene = Scene::<I16F16>::parse(text).unwrap();
+//! let mut display = MockDisplay::<Rgb888>::new();
+//! render(&scene, &mut display).unwrap();
+//! display.assert_pattern(&["KKKK", "KKKK", "RRRR", "RRRR"]);
+//! ```
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+pub mod compare;
+pub mod geometry;
+pub mod parse;
+pub mod render;
+pub mod scalar;
+pub mod scene;
+pub mod vec3;
+
+pub use geometry::{Hit, Miss, Plane, PlaneError, Ray, RayKind, Shape};
+pub use parse::{SceneError, SceneErrorKind};
+pub use render::{pixel, render, render_line};
+pub use scalar::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};
+pub use scene::{Camera, Color, Light, Material, Object, Scene};
+pub use vec3::Vec3;

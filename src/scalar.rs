@@ -1,0 +1,362 @@
+//! The [`Scalar`] trait: one code path, many number formats.
+//!
+//! Geometry, scene and renderer are generic over `Scalar`. It is implemented for the
+//! fixed-point formats [`I16F16`], [`I20F12`] and [`I32F32`] of the [`fixed`] crate and for
+//! `f32` and `f64`; the `f64` instantiation is the reference every other format is measured
+//! against.
+//!
+//! The overflow policy is in the method names, as in `fixed`: every operation that can
+//! leave the format's range is `checked_` and returns `None` instead of wrapping or
+//! panicking. For `f32`/`f64`, "overflow" means a non-finite result (infinity or NaN), so
+//! callers handle both kinds of format the same way.
+//!
+//! ```
+//! use fixray::{Scalar, I16F16};
+//!
+//! let a = I16F16::from_f64(1.5).unwrap();
+//! assert_eq!(a.checked_mul(a).map(Scalar::to_f64), Some(2.25));
+//! // 40000 does not fit in I16F16 (range ±32768): an error, never a wrap.
+//! assert_eq!(I16F16::from_f64(40000.0), None);
+//! assert_eq!(I16F16::MAX.checked_add(I16F16::ONE), None);
+//! ```
+
+use core::fmt::Debug;
+
+pub use fixed::types::{I16F16, I20F12, I32F32};
+
+/// How many of a format's [`Scalar::DELTA`]s make its default precision epsilon.
+///
+/// The epsilon guards the division by `N·d` in the plane test. `N` and `d` are unit vectors
+/// whose components each carry up to about one `DELTA` of rounding from normalisation, and
+/// the dot product adds half a `DELTA` more, so the computed `N·d` is off by at most about
+/// 4 `DELTA`s (see `docs` in [`crate::geometry`]). With `|N·d| >= 16 DELTA` the sign of `N·d`
+/// is always right and its relative error stays under 1/4, so a ray that passes the test
+/// is never sent to the wrong side of the plane. 16 is the smallest power of two with that
+/// 4× margin over the bound.
+pub const EPSILON_DELTAS: i32 = 16;
+
+/// A number format the ray caster can compute in.
+///
+/// All arithmetic that can overflow is `checked_`: `None` means "the result does not fit",
+/// which the geometry turns into a documented miss and the scene parser into an error.
+pub trait Scalar: Copy + PartialOrd + Debug + Send + Sync + 'static {
+    /// Lower-case name as used on command lines: `i16f16`, `f32`, ...
+    const NAME: &'static str;
+    /// Zero.
+    const ZERO: Self;
+    /// One.
+    const ONE: Self;
+    /// The largest finite value.
+    const MAX: Self;
+    /// The resolution: the step between neighbouring values near 1 (for fixed formats the
+    /// step everywhere; for floats the machine epsilon).
+    const DELTA: Self;
+    /// The default precision epsilon of the intersection tests: [`EPSILON_DELTAS`] × `DELTA`.
+    /// A scene's `precision` overrides it.
+    const DEFAULT_EPSILON: Self;
+
+    /// Converts an `f64`, rounding to the nearest representable value; `None` when the
+    /// value is not finite or outside the format's range.
+    fn from_f64(value: f64) -> Option<Self>;
+    /// Converts an integer exactly; `None` when it is outside the format's range.
+    fn from_i32(value: i32) -> Option<Self>;
+    /// Converts to `f64` (exact for every format here except very large `I32F32` values).
+    fn to_f64(self) -> f64;
+
+    /// `self + rhs`, or `None` on overflow.
+    fn checked_add(self, rhs: Self) -> Option<Self>;
+    /// `self - rhs`, or `None` on overflow.
+    fn checked_sub(self, rhs: Self) -> Option<Self>;
+    /// `self × rhs`, or `None` on overflow. Fixed formats round towards −∞ (error < 1 `DELTA`).
+    fn checked_mul(self, rhs: Self) -> Option<Self>;
+    /// `self / rhs`, or `None` on overflow or when `rhs` is zero.
+    fn checked_div(self, rhs: Self) -> Option<Self>;
+    /// `√self`, or `None` when `self` is negative.
+    fn checked_sqrt(self) -> Option<Self>;
+    /// `|self|`, saturating at [`Scalar::MAX`] (only the fixed formats' `MIN` saturates).
+    fn abs(self) -> Self;
+
+    /// The dot product `a·b` of two 3-vectors.
+    ///
+    /// Fixed formats multiply into the double-width format (`wide_mul`, exact), add there,
+    /// and round once to nearest when narrowing back: error ≤ ½ `DELTA` instead of up to
+    /// 3 `DELTA`s for three narrow products. `None` when the sum does not fit.
+    fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self>;
+
+    /// `self × num / den` with one rounding (a double-width intermediate for fixed formats),
+    /// `None` on overflow or when `den` is zero. Used for pixel → screen coordinates.
+    fn mul_ratio(self, num: i32, den: i32) -> Option<Self>;
+
+    /// Rounds to the nearest integer (ties away from zero); `None` when out of `i32` range.
+    fn round_to_i32(self) -> Option<i32>;
+
+    /// The larger of two values.
+    #[inline]
+    fn max(self, other: Self) -> Self {
+        if other > self { other } else { self }
+    }
+
+    /// The smaller of two values.
+    #[inline]
+    fn min(self, other: Self) -> Self {
+        if other < self { other } else { self }
+    }
+
+    /// `-self`, or `None` on overflow.
+    #[inline]
+    fn checked_neg(self) -> Option<Self> {
+        Self::ZERO.checked_sub(self)
+    }
+}
+
+macro_rules! impl_fixed {
+    ($t:ty, $name:literal, $wide:ty, $bits:ty, $wide_bits:ty) => {
+        impl Scalar for $t {
+            const NAME: &'static str = $name;
+            const ZERO: Self = <$t>::ZERO;
+            const ONE: Self = <$t>::ONE;
+            const MAX: Self = <$t>::MAX;
+            const DELTA: Self = <$t>::DELTA;
+            const DEFAULT_EPSILON: Self = <$t>::from_bits(EPSILON_DELTAS as $bits);
+
+            #[inline]
+            fn from_f64(value: f64) -> Option<Self> {
+                // `checked_from_num` rounds to nearest (ties to even) and returns `None`
+                // for NaN, infinities and out-of-range values.
+                <$t>::checked_from_num(value)
+            }
+            #[inline]
+            fn from_i32(value: i32) -> Option<Self> {
+                <$t>::checked_from_num(value)
+            }
+            #[inline]
+            fn to_f64(self) -> f64 {
+                self.to_num::<f64>()
+            }
+            #[inline]
+            fn checked_add(self, rhs: Self) -> Option<Self> {
+                <$t>::checked_add(self, rhs)
+            }
+            #[inline]
+            fn checked_sub(self, rhs: Self) -> Option<Self> {
+                <$t>::checked_sub(self, rhs)
+            }
+            #[inline]
+            fn checked_mul(self, rhs: Self) -> Option<Self> {
+                <$t>::checked_mul(self, rhs)
+            }
+            #[inline]
+            fn checked_div(self, rhs: Self) -> Option<Self> {
+                <$t>::checked_div(self, rhs)
+            }
+            #[inline]
+            fn checked_sqrt(self) -> Option<Self> {
+                <$t>::checked_sqrt(self)
+            }
+            #[inline]
+            fn abs(self) -> Self {
+                self.saturating_abs()
+            }
+            #[inline]
+            fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+                let sum = a[0]
+                    .wide_mul(b[0])
+                    .checked_add(a[1].wide_mul(b[1]))?
+                    .checked_add(a[2].wide_mul(b[2]))?;
+                // Round to nearest: add half a narrow DELTA, then narrowing floors.
+                let half = <$wide>::from_num(<$t>::DELTA) >> 1u32;
+                <$t>::checked_from_num(sum.checked_add(half)?)
+            }
+            #[inline]
+            fn mul_ratio(self, num: i32, den: i32) -> Option<Self> {
+                if den == 0 {
+                    return None;
+                }
+                let prod = <$wide_bits>::from(self.to_bits()) * <$wide_bits>::from(num);
+                let quot = prod.checked_div(<$wide_bits>::from(den))?;
+                <$bits>::try_from(quot).ok().map(<$t>::from_bits)
+            }
+            #[inline]
+            fn round_to_i32(self) -> Option<i32> {
+                self.checked_round()?.checked_to_num::<i32>()
+            }
+        }
+    };
+}
+
+impl_fixed!(I16F16, "i16f16", fixed::types::I32F32, i32, i64);
+impl_fixed!(I20F12, "i20f12", fixed::types::I40F24, i32, i64);
+impl_fixed!(I32F32, "i32f32", fixed::types::I64F64, i64, i128);
+
+macro_rules! impl_float {
+    ($t:ty, $name:literal, $sqrt:path, $round:path) => {
+        impl Scalar for $t {
+            const NAME: &'static str = $name;
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const MAX: Self = <$t>::MAX;
+            const DELTA: Self = <$t>::EPSILON;
+            // EPSILON_DELTAS is a small integer: exact in both float formats.
+            const DEFAULT_EPSILON: Self = <$t>::EPSILON * EPSILON_DELTAS as $t;
+
+            #[inline]
+            fn from_f64(value: f64) -> Option<Self> {
+                // Rounds to nearest; out-of-range values become infinite and are refused.
+                #[allow(clippy::cast_possible_truncation)]
+                let v = value as $t;
+                v.is_finite().then_some(v)
+            }
+            #[inline]
+            fn from_i32(value: i32) -> Option<Self> {
+                // Every i32 is within range; f32 rounds above 2^24.
+                Self::from_f64(f64::from(value))
+            }
+            #[inline]
+            fn to_f64(self) -> f64 {
+                f64::from(self)
+            }
+            #[inline]
+            fn checked_add(self, rhs: Self) -> Option<Self> {
+                finite(self + rhs)
+            }
+            #[inline]
+            fn checked_sub(self, rhs: Self) -> Option<Self> {
+                finite(self - rhs)
+            }
+            #[inline]
+            fn checked_mul(self, rhs: Self) -> Option<Self> {
+                finite(self * rhs)
+            }
+            #[inline]
+            fn checked_div(self, rhs: Self) -> Option<Self> {
+                finite(self / rhs)
+            }
+            #[inline]
+            fn checked_sqrt(self) -> Option<Self> {
+                finite($sqrt(self))
+            }
+            #[inline]
+            fn abs(self) -> Self {
+                if self < 0.0 { -self } else { self }
+            }
+            #[inline]
+            fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+                finite(a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
+            }
+            #[inline]
+            fn mul_ratio(self, num: i32, den: i32) -> Option<Self> {
+                let num = Self::from_i32(num)?;
+                let den = Self::from_i32(den)?;
+                finite(self * num / den)
+            }
+            #[inline]
+            fn round_to_i32(self) -> Option<i32> {
+                let r = $round(self);
+                // The range test also refuses NaN.
+                if (-2_147_483_648.0..2_147_483_648.0).contains(&r) {
+                    #[allow(clippy::cast_possible_truncation)]
+                    Some(r as i32)
+                } else {
+                    None
+                }
+            }
+        }
+    };
+}
+
+/// `Some(v)` when `v` is finite; the floats' form of "did not overflow".
+#[inline]
+fn finite<T: FloatLike>(v: T) -> Option<T> {
+    v.is_finite_value().then_some(v)
+}
+
+/// The one float query [`finite`] needs, for both float widths.
+trait FloatLike: Copy {
+    fn is_finite_value(self) -> bool;
+}
+impl FloatLike for f32 {
+    fn is_finite_value(self) -> bool {
+        self.is_finite()
+    }
+}
+impl FloatLike for f64 {
+    fn is_finite_value(self) -> bool {
+        self.is_finite()
+    }
+}
+
+impl_float!(f32, "f32", libm::sqrtf, libm::roundf);
+impl_float!(f64, "f64", libm::sqrt, libm::round);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every format in one list, so that tests cover them all.
+    fn check_basic<S: Scalar>() {
+        let two = S::from_i32(2).unwrap();
+        let three = S::from_i32(3).unwrap();
+        assert_eq!(two.checked_mul(three).unwrap().to_f64(), 6.0, "{}", S::NAME);
+        assert_eq!(S::ONE.checked_div(S::ZERO), None, "{}", S::NAME);
+        assert_eq!(S::MAX.checked_mul(two), None, "{}", S::NAME);
+        assert_eq!(S::from_f64(f64::NAN), None, "{}", S::NAME);
+        assert_eq!(S::from_f64(f64::INFINITY), None, "{}", S::NAME);
+        assert_eq!(S::from_i32(-4).unwrap().checked_sqrt(), None, "{}", S::NAME);
+        assert_eq!(
+            S::from_i32(9).unwrap().checked_sqrt().unwrap().to_f64(),
+            3.0,
+            "{}",
+            S::NAME
+        );
+        assert_eq!(S::from_f64(2.5).unwrap().round_to_i32(), Some(3), "{}", S::NAME);
+        assert_eq!(S::from_f64(-2.5).unwrap().round_to_i32(), Some(-3), "{}", S::NAME);
+        assert!(S::DEFAULT_EPSILON > S::ZERO);
+        assert_eq!(
+            S::DEFAULT_EPSILON.to_f64(),
+            S::DELTA.to_f64() * f64::from(EPSILON_DELTAS)
+        );
+    }
+
+    #[test]
+    fn basic_arithmetic_in_every_format() {
+        check_basic::<I16F16>();
+        check_basic::<I20F12>();
+        check_basic::<I32F32>();
+        check_basic::<f32>();
+        check_basic::<f64>();
+    }
+
+    #[test]
+    fn out_of_range_conversion_is_refused() {
+        assert_eq!(I16F16::from_f64(32768.0), None);
+        assert!(I16F16::from_f64(32767.0).is_some());
+        assert_eq!(I20F12::from_f64(524_288.0), None);
+        assert_eq!(I32F32::from_f64(3.0e9), None);
+        assert_eq!(f32::from_f64(1.0e39), None);
+        assert_eq!(I16F16::from_i32(40_000), None);
+    }
+
+    #[test]
+    fn wide_dot_rounds_once_to_nearest() {
+        // (1/3 quantised)² × 3: the exact sum of the quantised products, rounded once.
+        let third = I16F16::from_f64(1.0 / 3.0).unwrap();
+        let v = [third; 3];
+        let wide = I16F16::dot3(v, v).unwrap();
+        let exact = 3.0 * third.to_f64() * third.to_f64();
+        assert!((wide.to_f64() - exact).abs() <= 0.5 * I16F16::DELTA.to_f64());
+        // Overflow of the sum (not of any single product) is refused.
+        let big = I16F16::from_i32(30_000).unwrap();
+        assert_eq!(I16F16::dot3([big; 3], [I16F16::ONE; 3]), None);
+    }
+
+    #[test]
+    fn mul_ratio_has_one_rounding() {
+        let w = I16F16::from_i32(8).unwrap();
+        // 8 × 3 / 320 = 0.075
+        let x = w.mul_ratio(3, 320).unwrap();
+        assert!((x.to_f64() - 0.075).abs() <= I16F16::DELTA.to_f64());
+        assert_eq!(w.mul_ratio(1, 0), None);
+        assert_eq!(I16F16::MAX.mul_ratio(3, 1), None);
+        assert_eq!(2.0f64.mul_ratio(3, 4), Some(1.5));
+    }
+}

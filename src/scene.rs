@@ -1,0 +1,157 @@
+//! The scene: camera, materials, lights, objects, background and precision epsilon, in
+//! number format `S`, with capacities fixed in the types (no allocator).
+//!
+//! Scenes are read from the course's keyword-block text format with [`Scene::parse`]; see
+//! [`crate::parse`] for the errors. Colours are stored in *channel units*: a scene colour
+//! `c` is kept as `255 c`, so that the pixel value is `round(clamp(colour, 0, 255))` and a
+//! decimal colour such as 0.7 (178.5 channel units) is exact in every fixed format instead
+//! of being rounded to a neighbouring pixel value.
+
+use heapless::Vec;
+
+use crate::{Plane, Ray, RayKind, Scalar, Shape, Vec3};
+
+/// Maximum number of materials in a scene.
+pub const MAX_MATERIALS: usize = 16;
+/// Maximum number of lights (point lights and spotlights together).
+pub const MAX_LIGHTS: usize = 8;
+/// Maximum number of objects (planes, spheres, tiled and finite planes together).
+pub const MAX_OBJECTS: usize = 32;
+/// Largest `pixeldim` in either direction, as the scene format states.
+pub const MAX_PIXELDIM: u16 = 4096;
+
+/// An RGB colour in channel units (0 ..= 255 displays; larger values clamp).
+pub type Color<S> = [S; 3];
+
+/// The camera: image size, screen window and eye.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Camera<S> {
+    /// Image width in pixels, `1..=4096`.
+    pub width: u16,
+    /// Image height in pixels, `1..=4096`.
+    pub height: u16,
+    /// Width of the screen window `[0, WX]` on the plane z = 0, in world units.
+    pub world_width: S,
+    /// Height of the screen window `[0, WY]`, in world units.
+    pub world_height: S,
+    /// The eye, `z > 0`.
+    pub viewpoint: Vec3<S>,
+}
+
+impl<S: Scalar> Camera<S> {
+    /// The primary ray through the centre of pixel (`column`, `row`), row 0 at the top:
+    /// base = viewpoint, direction = unit(screen point − viewpoint) with the screen point
+    /// `(WX (i + ½) / W, WY (1 − (j + ½) / H), 0)`.
+    ///
+    /// `None` when the direction cannot be formed in the format (the pixel then shows the
+    /// background); never for a scene that [`Scene::parse`] accepted with an eye within
+    /// the format's range of the screen.
+    pub fn primary_ray(&self, column: u16, row: u16) -> Option<Ray<S>> {
+        let y = self.screen_y(row)?;
+        self.primary_ray_at(column, y)
+    }
+
+    /// The screen y coordinate of a pixel row (constant along a scanline).
+    pub fn screen_y(&self, row: u16) -> Option<S> {
+        let h = i32::from(self.height);
+        let j = i32::from(row);
+        self.world_height.mul_ratio(2 * (h - j) - 1, 2 * h)
+    }
+
+    /// The primary ray through pixel `column` of the scanline whose screen y is `y`.
+    pub fn primary_ray_at(&self, column: u16, y: S) -> Option<Ray<S>> {
+        let w = i32::from(self.width);
+        let x = self
+            .world_width
+            .mul_ratio(2 * i32::from(column) + 1, 2 * w)?;
+        let dir = Vec3::new(x, y, S::ZERO).diff(self.viewpoint)?.unit()?;
+        Some(Ray {
+            base: self.viewpoint,
+            dir,
+            kind: RayKind::Primary,
+        })
+    }
+}
+
+/// A surface material. Colours are in channel units (see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material<S> {
+    /// Ambient colour.
+    pub ambient: Color<S>,
+    /// Diffuse colour.
+    pub diffuse: Color<S>,
+}
+
+/// A point light.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Light<S> {
+    /// Position.
+    pub location: Vec3<S>,
+    /// Emissivity per channel (plain reals, not channel units).
+    pub emissivity: Color<S>,
+}
+
+/// A shape with its material.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Object<S> {
+    /// The geometry.
+    pub shape: Shape<S>,
+    /// Index into [`Scene::materials`].
+    pub material: u8,
+}
+
+/// A scene in number format `S`.
+///
+/// ```
+/// use fixray::{Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse(
+///     "camera cam { pixeldim 4 3 worlddim 8 6 viewpoint 4 3 5 }
+///      material grey { ambient 0.5 0.5 0.5 }
+///      plane floor { material grey normal 0 1 0 point 0 -1 0 }",
+/// )
+/// .unwrap();
+/// assert_eq!(scene.objects.len(), 1);
+/// assert_eq!((scene.camera.width, scene.camera.height), (4, 3));
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene<S> {
+    /// The camera.
+    pub camera: Camera<S>,
+    /// Materials, indexed by [`Object::material`].
+    pub materials: Vec<Material<S>, MAX_MATERIALS>,
+    /// Point lights.
+    pub lights: Vec<Light<S>, MAX_LIGHTS>,
+    /// Objects.
+    pub objects: Vec<Object<S>, MAX_OBJECTS>,
+    /// Colour where no object is hit.
+    pub background: Color<S>,
+    /// The precision epsilon of every intersection test in this scene: the scene's
+    /// `precision`, or [`Scalar::DEFAULT_EPSILON`].
+    pub epsilon: S,
+}
+
+impl<S: Scalar> Scene<S> {
+    /// A scene with a camera and nothing in it: black background, default epsilon.
+    pub fn new(camera: Camera<S>) -> Self {
+        Self {
+            camera,
+            materials: Vec::new(),
+            lights: Vec::new(),
+            objects: Vec::new(),
+            background: [S::ZERO; 3],
+            epsilon: S::DEFAULT_EPSILON,
+        }
+    }
+
+    /// Adds a plane object; hands the object back when the scene is full.
+    ///
+    /// # Errors
+    /// The object, when [`MAX_OBJECTS`] are already there.
+    pub fn push_plane(&mut self, plane: Plane<S>, material: u8) -> Result<(), Object<S>> {
+        self.objects.push(Object {
+            shape: Shape::Plane(plane),
+            material,
+        })
+    }
+}

@@ -1,0 +1,201 @@
+//! [`Vec3`]: the vector operations of the course notes (`dot`, `scale`, `sum`, `diff`,
+//! `length`, `unit`), every one checked: `None` means the result does not fit the format.
+
+use crate::Scalar;
+
+/// A 3-vector in number format `S`.
+///
+/// ```
+/// use fixray::{Scalar, Vec3, I16F16};
+///
+/// let v = Vec3::<I16F16>::from_f64([3.0, 0.0, -4.0]).unwrap();
+/// assert_eq!(v.length().unwrap().to_f64(), 5.0);
+/// let u = v.unit().unwrap();
+/// assert!((u.z.to_f64() + 0.8).abs() <= I16F16::DELTA.to_f64());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Vec3<S> {
+    /// x component.
+    pub x: S,
+    /// y component.
+    pub y: S,
+    /// z component.
+    pub z: S,
+}
+
+impl<S: Scalar> Vec3<S> {
+    /// The zero vector.
+    pub const ZERO: Self = Self::new(S::ZERO, S::ZERO, S::ZERO);
+
+    /// A vector from its components.
+    pub const fn new(x: S, y: S, z: S) -> Self {
+        Self { x, y, z }
+    }
+
+    /// Converts `f64` components (rounded to nearest); `None` if one does not fit.
+    pub fn from_f64(v: [f64; 3]) -> Option<Self> {
+        Some(Self::new(
+            S::from_f64(v[0])?,
+            S::from_f64(v[1])?,
+            S::from_f64(v[2])?,
+        ))
+    }
+
+    /// The components as `f64`.
+    pub fn to_f64(self) -> [f64; 3] {
+        [self.x.to_f64(), self.y.to_f64(), self.z.to_f64()]
+    }
+
+    fn to_array(self) -> [S; 3] {
+        [self.x, self.y, self.z]
+    }
+
+    /// The dot product (see [`Scalar::dot3`] for how each format rounds it).
+    #[inline]
+    pub fn dot(self, other: Self) -> Option<S> {
+        S::dot3(self.to_array(), other.to_array())
+    }
+
+    /// `k × self`.
+    #[inline]
+    pub fn scale(self, k: S) -> Option<Self> {
+        Some(Self::new(
+            k.checked_mul(self.x)?,
+            k.checked_mul(self.y)?,
+            k.checked_mul(self.z)?,
+        ))
+    }
+
+    /// `self + other`.
+    #[inline]
+    pub fn sum(self, other: Self) -> Option<Self> {
+        Some(Self::new(
+            self.x.checked_add(other.x)?,
+            self.y.checked_add(other.y)?,
+            self.z.checked_add(other.z)?,
+        ))
+    }
+
+    /// `self − other`.
+    #[inline]
+    pub fn diff(self, other: Self) -> Option<Self> {
+        Some(Self::new(
+            self.x.checked_sub(other.x)?,
+            self.y.checked_sub(other.y)?,
+            self.z.checked_sub(other.z)?,
+        ))
+    }
+
+    /// The largest absolute component (the ∞-norm).
+    #[inline]
+    pub fn max_abs(self) -> S {
+        self.x.abs().max(self.y.abs()).max(self.z.abs())
+    }
+
+    /// Divides by the largest absolute component, so that every component lies in
+    /// [−1, 1] and one of them is ±1. `None` for the zero vector.
+    ///
+    /// Squaring a fixed-point vector overflows early (in I16F16 a component of 182 already
+    /// squares past the range); the scaled vector's squared length lies in [1, 3] in every
+    /// format, so `length` and `unit` work for every representable vector.
+    #[inline]
+    fn scaled(self) -> Option<(Self, S)> {
+        let m = self.max_abs();
+        if m <= S::ZERO {
+            return None;
+        }
+        let w = Self::new(
+            self.x.checked_div(m)?,
+            self.y.checked_div(m)?,
+            self.z.checked_div(m)?,
+        );
+        Some((w, m))
+    }
+
+    /// The Euclidean length, `None` when it does not fit the format. The zero vector has
+    /// length zero.
+    pub fn length(self) -> Option<S> {
+        match self.scaled() {
+            None if self.max_abs() == S::ZERO => Some(S::ZERO),
+            None => None,
+            Some((w, m)) => m.checked_mul(w.dot(w)?.checked_sqrt()?),
+        }
+    }
+
+    /// The unit vector along `self`; `None` for the zero vector (or a vector too short
+    /// for the format to give a direction).
+    ///
+    /// Components are clamped to [−1, 1], so multiplying anything by a component of a
+    /// unit vector can never overflow.
+    pub fn unit(self) -> Option<Self> {
+        let (w, _) = self.scaled()?;
+        let len = w.dot(w)?.checked_sqrt()?;
+        let clamp = |c: S| -> Option<S> {
+            let one = S::ONE;
+            let minus_one = one.checked_neg()?;
+            Some(c.checked_div(len)?.min(one).max(minus_one))
+        };
+        Some(Self::new(clamp(w.x)?, clamp(w.y)?, clamp(w.z)?))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{I16F16, I20F12, I32F32};
+
+    /// Unit vectors of random-ish directions have length 1 within a few DELTAs.
+    fn unit_table<S: Scalar>(max_error_deltas: f64) {
+        let cases = [
+            [3.0, 0.0, -4.0],
+            [1.0, 1.0, 1.0],
+            [-0.001, 0.002, 0.0005],
+            [1000.0, -2000.0, 30.0],
+            [0.0, 0.0, -1.0],
+        ];
+        for c in cases {
+            let u = Vec3::<S>::from_f64(c).unwrap().unit().unwrap().to_f64();
+            let len = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+            for i in 0..3 {
+                let err = (u[i] - c[i] / len).abs() / S::DELTA.to_f64();
+                assert!(err <= max_error_deltas, "{} {:?}: {err} DELTAs", S::NAME, c);
+            }
+        }
+    }
+
+    #[test]
+    fn unit_error_is_within_two_deltas() {
+        // Quantising the input (for [-0.001, ..] in I20F12 that alone is a large relative
+        // error) is excluded by choosing inputs exact in every format except that one,
+        // which is checked only in formats with at least 16 fraction bits.
+        unit_table::<I16F16>(2.0);
+        unit_table::<I32F32>(2.0);
+        unit_table::<f32>(2.0);
+        unit_table::<f64>(2.0);
+    }
+
+    #[test]
+    fn zero_vector_has_no_direction() {
+        assert_eq!(Vec3::<I16F16>::ZERO.unit(), None);
+        assert_eq!(Vec3::<f64>::ZERO.unit(), None);
+        assert_eq!(Vec3::<I20F12>::ZERO.length(), Some(I20F12::ZERO));
+    }
+
+    #[test]
+    fn long_vectors_do_not_overflow_length() {
+        // 20000² overflows I16F16, the scaled length does not.
+        let v = Vec3::<I16F16>::from_f64([20000.0, 0.0, 0.0]).unwrap();
+        assert_eq!(v.length().unwrap().to_f64(), 20000.0);
+        let v = Vec3::<I16F16>::from_f64([30000.0, 30000.0, 0.0]).unwrap();
+        assert_eq!(v.length(), None, "42426 does not fit I16F16");
+        assert!(v.unit().is_some());
+    }
+
+    #[test]
+    fn sum_and_scale_refuse_overflow() {
+        let v = Vec3::<I16F16>::from_f64([30000.0, 1.0, 1.0]).unwrap();
+        assert_eq!(v.sum(v), None);
+        assert_eq!(v.scale(I16F16::from_i32(2).unwrap()), None);
+        assert!(v.diff(v).is_some());
+    }
+}
