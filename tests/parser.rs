@@ -1,0 +1,474 @@
+//! The scene parser: every error kind with its line and column, the lexical rules of
+//! `scene-format.md`, and a seeded storm of mangled inputs that must never panic.
+
+use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, SceneError};
+
+const CAMERA: &str = "camera cam { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n";
+
+fn err<S: Scalar>(text: &str) -> SceneError {
+    match Scene::<S>::parse(text) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e,
+    }
+}
+
+/// Parses in I16F16 and checks position and kind (by the `Display` text, which also
+/// checks the message a user reads).
+fn check(text: &str, line: u32, column: u32, message: &str) {
+    let e = err::<I16F16>(text);
+    assert_eq!(
+        (e.line, e.column),
+        (line, column),
+        "position of `{e}` in:\n{text}"
+    );
+    assert_eq!(e.to_string(), format!("{line}:{column}: {message}"));
+}
+
+#[test]
+fn the_notes_scene_parses_with_every_feature_of_the_lexer() {
+    let text = "# a comment line\n\
+        camera cam{pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5}  # braces against words\n\
+        material m { diffuse .25 0.5 1 ambient 1e-1 +0.2 0.3 specular 0 shininess 5 reflective 0 }\n\
+        light l { emissivity 1 1 1 location -7 2.5E1 3 }\n\
+        plane p { point 0 0 -7 normal 0 0 1 material m }\n\
+        background 0 0 0.5 precision 0.001";
+    let s = Scene::<I16F16>::parse(text).unwrap();
+    assert_eq!(s.camera.width, 8);
+    assert_eq!(s.materials[0].diffuse[0].to_f64(), 0.25 * 255.0);
+    assert_eq!(s.lights[0].location.y.to_f64(), 25.0);
+    assert_eq!(s.background[2].to_f64(), 127.5);
+    assert_eq!(s.epsilon, I16F16::from_f64(0.001).unwrap());
+    assert_eq!(s.objects.len(), 1);
+    // Without `precision` the format's default applies.
+    let s = Scene::<I32F32>::parse(CAMERA).unwrap();
+    assert_eq!(s.epsilon, I32F32::DEFAULT_EPSILON);
+}
+
+#[test]
+fn unknown_keyword() {
+    check(
+        "camer cam { }",
+        1,
+        1,
+        "unknown keyword `camer` (expected camera, material, light, spotlight, plane, sphere, \
+         tiled_plane, fplane, background or precision)",
+    );
+}
+
+#[test]
+fn unknown_attribute() {
+    check(
+        &format!("{CAMERA}material m {{\n  ambiant 1 1 1 }}"),
+        3,
+        3,
+        "`ambiant` is not an attribute of material",
+    );
+}
+
+#[test]
+fn duplicate_attribute() {
+    check(
+        "camera c { pixeldim 8 6 pixeldim 8 6 }",
+        1,
+        25,
+        "`pixeldim` given twice in one block",
+    );
+}
+
+#[test]
+fn missing_attribute() {
+    check(
+        "\n  camera c { pixeldim 8 6 worlddim 8 6 }",
+        2,
+        3,
+        "camera is missing its `viewpoint`",
+    );
+    check(
+        &format!("{CAMERA}material m {{}}\nplane p {{ material m normal 0 1 0 }}"),
+        3,
+        1,
+        "plane is missing its `point`",
+    );
+}
+
+#[test]
+fn missing_open_brace() {
+    check(
+        "camera c pixeldim 8 6",
+        1,
+        10,
+        "expected `{`, found `pixeldim`",
+    );
+}
+
+#[test]
+fn missing_close_brace_at_end_of_input() {
+    check(
+        "camera c { pixeldim 8 6\n worlddim 8 6",
+        2,
+        14,
+        "unexpected end of input: expected an attribute or `}`",
+    );
+}
+
+#[test]
+fn bad_name() {
+    check("camera 9lives { }", 1, 8, "expected a name, found `9lives`");
+    check("camera {", 1, 8, "expected a name, found `{`");
+}
+
+#[test]
+fn bad_number() {
+    check(
+        "camera c { pixeldim 8 six }",
+        1,
+        23,
+        "expected a number, found `six`",
+    );
+    check("camera c { worlddim inf 1 }", 1, 21, "expected a number, found `inf`");
+    check(
+        "camera c { worlddim 1 }",
+        1,
+        23,
+        "expected a number, found `}`",
+    );
+}
+
+#[test]
+fn number_beyond_the_format() {
+    check(
+        &format!("{CAMERA}plane p {{ material m normal 0 1 0 point 0 40000 0 }}"),
+        2,
+        20,
+        "unknown material `m` (a material must be defined before it is named)",
+    );
+    let text = format!("{CAMERA}material m {{}}\nplane p {{ material m normal 0 1 0 point 0 40000 0 }}");
+    check(&text, 3, 43, "40000 does not fit in the i16f16 number format");
+    // The same scene fits in I20F12 (±524288) and f32.
+    assert!(Scene::<I20F12>::parse(&text).is_ok());
+    assert!(Scene::<f32>::parse(&text).is_ok());
+    // Colours are checked in channel units (× 255): 200 → 51000 > 32768.
+    check(
+        &format!("{CAMERA}background 200 0 0"),
+        2,
+        12,
+        "51000 does not fit in the i16f16 number format",
+    );
+    // Beyond even f64.
+    check("precision 1e999", 1, 11, "inf does not fit in the i16f16 number format");
+}
+
+#[test]
+fn out_of_domain() {
+    check(
+        "camera c { pixeldim 8 6.5 worlddim 8 6 viewpoint 4 3 5 }",
+        1,
+        23,
+        "`pixeldim` must be integers in 1..=4096",
+    );
+    check(
+        "camera c { pixeldim 4097 6 worlddim 8 6 viewpoint 4 3 5 }",
+        1,
+        21,
+        "`pixeldim` must be integers in 1..=4096",
+    );
+    check(
+        "camera c { pixeldim 8 6 worlddim 8 0 viewpoint 4 3 5 }",
+        1,
+        36,
+        "`worlddim` must be > 0",
+    );
+    check(
+        "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 -5 }",
+        1,
+        52,
+        "`viewpoint` must be at z > 0",
+    );
+    check(
+        &format!("{CAMERA}material m {{ ambient 1 -0.5 0 }}"),
+        2,
+        24,
+        "`ambient` must be >= 0",
+    );
+    check(
+        &format!("{CAMERA}material m {{ shininess 0.5 }}"),
+        2,
+        24,
+        "`shininess` must be >= 1",
+    );
+    check(
+        &format!("{CAMERA}material m {{ reflective 1.5 }}"),
+        2,
+        25,
+        "`reflective` must be in [0, 1]",
+    );
+    check("precision 0", 1, 11, "`precision` must be > 0");
+    // Below I16F16's resolution: it would round to 0 and disable the test.
+    check(
+        "precision 1e-9",
+        1,
+        11,
+        "`precision` must be at least the number format's resolution (it rounds to 0)",
+    );
+    assert!(Scene::<f64>::parse(&format!("{CAMERA}precision 1e-9")).is_ok());
+}
+
+#[test]
+fn duplicate_names() {
+    check(
+        &format!("{CAMERA}material m {{}}\nmaterial m {{}}"),
+        3,
+        10,
+        "material `m` is defined twice",
+    );
+    check(
+        &format!(
+            "{CAMERA}material m {{}}\nplane a {{ material m normal 0 1 0 point 0 0 0 }}\n\
+             plane a {{ material m normal 1 0 0 point 0 0 0 }}"
+        ),
+        4,
+        7,
+        "plane `a` is defined twice",
+    );
+    // Names are unique per kind: a plane and a material may share one.
+    assert!(
+        Scene::<I16F16>::parse(&format!(
+            "{CAMERA}material a {{}}\nplane a {{ material a normal 0 1 0 point 0 0 0 }}"
+        ))
+        .is_ok()
+    );
+}
+
+#[test]
+fn unknown_material_and_definition_order() {
+    check(
+        &format!("{CAMERA}plane p {{ material m normal 0 1 0 point 0 0 0 }}\nmaterial m {{}}"),
+        2,
+        20,
+        "unknown material `m` (a material must be defined before it is named)",
+    );
+}
+
+#[test]
+fn zero_normal() {
+    check(
+        &format!("{CAMERA}material m {{}}\nplane p {{ material m normal 0 0 0 point 0 0 0 }}"),
+        3,
+        22,
+        "the normal is zero",
+    );
+    // A normal that rounds to zero in the format is zero there.
+    check(
+        &format!("{CAMERA}material m {{}}\nplane p {{ material m normal 1e-7 0 0 point 0 0 0 }}"),
+        3,
+        22,
+        "the normal is zero",
+    );
+}
+
+#[test]
+fn derived_value_beyond_the_format() {
+    // N·point = 60000/√2 ≈ 42426 does not fit I16F16.
+    check(
+        &format!(
+            "{CAMERA}material m {{}}\nplane p {{ material m normal 1 1 0 point 30000 30000 0 }}"
+        ),
+        3,
+        1,
+        "the plane's offset N·point does not fit in the i16f16 number format",
+    );
+}
+
+#[test]
+fn duplicates_of_singletons() {
+    check(&format!("{CAMERA}{CAMERA}"), 2, 1, "a second `camera` (only one is allowed)");
+    check(
+        &format!("{CAMERA}background 0 0 0\nbackground 1 1 1"),
+        3,
+        1,
+        "a second `background` (only one is allowed)",
+    );
+    check(
+        &format!("{CAMERA}precision 0.1\nprecision 0.2"),
+        3,
+        1,
+        "a second `precision` (only one is allowed)",
+    );
+}
+
+#[test]
+fn missing_camera() {
+    check("material m {}\n", 2, 1, "the scene has no camera");
+    check("", 1, 1, "the scene has no camera");
+}
+
+#[test]
+fn too_many() {
+    let mut text = String::from(CAMERA);
+    for i in 0..=fixray::scene::MAX_MATERIALS {
+        text.push_str(&format!("material m{i} {{}}\n"));
+    }
+    let line = u32::try_from(fixray::scene::MAX_MATERIALS).unwrap() + 2;
+    check(&text, line, 1, "too many materials (this build holds 16)");
+
+    let mut text = format!("{CAMERA}material m {{}}\n");
+    for i in 0..=fixray::scene::MAX_OBJECTS {
+        text.push_str(&format!("plane p{i} {{ material m normal 0 1 0 point 0 {i} 0 }}\n"));
+    }
+    let line = u32::try_from(fixray::scene::MAX_OBJECTS).unwrap() + 3;
+    check(&text, line, 1, "too many objects (this build holds 32)");
+
+    let mut text = String::from(CAMERA);
+    for i in 0..=fixray::scene::MAX_LIGHTS {
+        text.push_str(&format!("light l{i} {{ location 0 0 0 emissivity 1 1 1 }}\n"));
+    }
+    let line = u32::try_from(fixray::scene::MAX_LIGHTS).unwrap() + 2;
+    check(&text, line, 1, "too many lights (this build holds 8)");
+}
+
+#[test]
+fn entities_not_drawn_yet_are_refused_after_being_checked() {
+    let m = format!("{CAMERA}material m {{}}\nmaterial n {{}}\n");
+    check(
+        &format!("{m}sphere s {{ material m center 0 0 -5 radius 1 }}"),
+        4,
+        1,
+        "sphere is not supported yet",
+    );
+    // ... but a broken sphere gets its own error first.
+    check(
+        &format!("{m}sphere s {{ material m center 0 0 -5 radius -1 }}"),
+        4,
+        44,
+        "`radius` must be > 0",
+    );
+    check(
+        &format!(
+            "{m}spotlight s {{ location 0 5 0 emissivity 1 1 1 point 0 0 -5 theta 30 }}"
+        ),
+        4,
+        1,
+        "spotlight is not supported yet",
+    );
+    check(
+        &format!(
+            "{m}spotlight s {{ location 0 5 0 emissivity 1 1 1 point 0 0 -5 theta 95 }}"
+        ),
+        4,
+        66,
+        "`theta` must be in (0, 90]",
+    );
+    check(
+        &format!(
+            "{m}tiled_plane t {{ material m altmaterial n normal 0 1 0 point 0 0 0 \
+             xdir 1 0 0 dimension 1 1 }}"
+        ),
+        4,
+        1,
+        "tiled_plane is not supported yet",
+    );
+    check(
+        &format!(
+            "{m}tiled_plane t {{ material m altmaterial x normal 0 1 0 point 0 0 0 \
+             xdir 1 0 0 dimension 1 1 }}"
+        ),
+        4,
+        40,
+        "unknown material `x` (a material must be defined before it is named)",
+    );
+    check(
+        &format!(
+            "{m}fplane f {{ material m normal 0 1 0 point 0 0 0 xdir 1 0 0 dimensions 2 0 }}"
+        ),
+        4,
+        72,
+        "`dimensions` must be > 0",
+    );
+    check(
+        &format!(
+            "{m}fplane f {{ material m normal 0 1 0 point 0 0 0 xdir 1 0 0 dimensions 2 1 }}"
+        ),
+        4,
+        1,
+        "fplane is not supported yet",
+    );
+    check(
+        &format!("{CAMERA}material m {{ specular 0.5 }}"),
+        2,
+        14,
+        "specular is not supported yet",
+    );
+    check(
+        &format!("{CAMERA}material m {{ reflective 0.5 }}"),
+        2,
+        14,
+        "reflective material is not supported yet",
+    );
+}
+
+/// A tiny deterministic generator (SplitMix64), so that the storm below is the same on
+/// every run and a failure can be replayed.
+struct SplitMix(u64);
+impl SplitMix {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn below(&mut self, n: usize) -> usize {
+        usize::try_from(self.next() % u64::try_from(n).unwrap()).unwrap()
+    }
+}
+
+/// Mangles a valid scene in many ways (cut, duplicate, replace, insert tokens and bytes)
+/// and parses each result in every format: each must end in a scene or an error whose
+/// position lies inside the text, never a panic (this test runs with overflow checks).
+#[test]
+fn mangled_scenes_never_panic() {
+    let base = include_str!("../scenes/default.scene");
+    let pieces = [
+        "{", "}", "#", "\n", " ", "-", ".", "e", "1e999", "-0", "40000", "plane", "camera",
+        "material", "light", "sphere", "precision", "background", "é", "0.0000001", "9999999",
+        "normal", "point", "pixeldim", "4097", "0", "NaN",
+    ];
+    let mut rng = SplitMix(0x5EED_F1C5);
+    let mut errors = 0;
+    for _ in 0..3000 {
+        let mut text: String = base.into();
+        for _ in 0..=rng.below(4) {
+            let chars: Vec<char> = text.chars().collect();
+            let at = rng.below(chars.len() + 1);
+            let (head, tail) = chars.split_at(at);
+            let head: String = head.iter().collect();
+            let tail: String = tail.iter().collect();
+            text = match rng.below(4) {
+                0 => head + pieces[rng.below(pieces.len())] + &tail,
+                1 => head + tail.get(rng.below(8).min(tail.len())..).unwrap_or(""),
+                2 => head,
+                _ => {
+                    let byte = char::from(u8::try_from(rng.below(128)).unwrap());
+                    head + &byte.to_string() + &tail
+                }
+            };
+        }
+        let lines = u32::try_from(text.lines().count().max(1)).unwrap() + 1;
+        for result in [
+            Scene::<I16F16>::parse(&text).err(),
+            Scene::<I20F12>::parse(&text).err(),
+            Scene::<I32F32>::parse(&text).err(),
+            Scene::<f32>::parse(&text).err(),
+            Scene::<f64>::parse(&text).err(),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            errors += 1;
+            assert!(result.line >= 1 && result.line <= lines, "{result} in:\n{text}");
+            assert!(result.column >= 1, "{result}");
+        }
+    }
+    // The storm must actually produce errors (it is not testing only valid scenes).
+    assert!(errors > 3000, "only {errors} errors");
+}
