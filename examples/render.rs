@@ -152,7 +152,11 @@ fn heat_color(error: u8) -> Rgb888 {
     let lerp = |a: f64, b: f64, s: f64| (a + (b - a) * s).round() as u8;
     if t < 0.5 {
         let s = t / 0.5;
-        Rgb888::new(lerp(40.0, 255.0, s), lerp(60.0, 230.0, s), lerp(255.0, 0.0, s))
+        Rgb888::new(
+            lerp(40.0, 255.0, s),
+            lerp(60.0, 230.0, s),
+            lerp(255.0, 0.0, s),
+        )
     } else {
         let s = (t - 0.5) / 0.5;
         Rgb888::new(255, lerp(230.0, 0.0, s), 0)
@@ -282,10 +286,18 @@ fn main() -> ExitCode {
         }
         None => {
             print_header(&scene_name, &reference);
-            let (_, f64_frame) = time_frames(&reference);
+            // Every format first, so that each row's ratio uses the f64 time of this run.
+            let runs: Vec<_> = FORMATS
+                .iter()
+                .map(|f| (*f, run_format(f, &text, &reference)))
+                .collect();
+            let f64_frame = runs
+                .iter()
+                .find_map(|(f, r)| r.as_ref().ok().filter(|_| *f == "f64"))
+                .map_or(Duration::from_secs(1), |r| r.frame);
             let mut shown = None;
-            for format in FORMATS {
-                match run_format(format, &text, &reference) {
+            for (format, result) in runs {
+                match result {
                     Ok(run) => {
                         print_row(format, &run, f64_frame);
                         if format == "i16f16" {

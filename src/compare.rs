@@ -6,7 +6,7 @@
 //!
 //! let text = "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }
 //!             material m { ambient 0.7 0.3 0.1 }
-//!             plane p { material m normal 0 1 0 point 0 1 0 }";
+//!             plane p { material m normal 0 0 1 point 0 0 -5 }";
 //! let fixed = Scene::<I16F16>::parse(text).unwrap();
 //! let reference = Scene::<f64>::parse(text).unwrap();
 //! let c = compare(&fixed, &reference, |_, _, _, _| {});

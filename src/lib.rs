@@ -15,14 +15,14 @@
 //! let text = "
 //!     camera cam { pixeldim 4 4 worlddim 4 4 viewpoint 2 2 5 }
 //!     material red { ambient 1 0 0 }
-//!     plane floor { material red normal 0 1 0 point 0 2 -1 }   # y = 2: the lower half
+//!     plane floor { material red normal 0 1 0 point 0 0.4 0 }   # y = 0.4: the lower half
 //! ";
 //! let scene = Scene::<I16F16>::parse(text).unwrap();
 //! let mut display = MockDisplay::<Rgb888>::new();
 //! render(&scene, &mut display).unwrap();
 //! display.assert_pattern(&["KKKK", "KKKK", "RRRR", "RRRR"]);
 //! ```
-#![no_std]
+#![cfg_attr(not(test), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
@@ -33,6 +33,11 @@ pub mod render;
 pub mod scalar;
 pub mod scene;
 pub mod vec3;
+
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
 
 pub use geometry::{Hit, Miss, Plane, PlaneError, Ray, RayKind, Shape};
 pub use parse::{SceneError, SceneErrorKind};

@@ -9,7 +9,8 @@
 //! ```
 //! use fixray::{Scene, SceneErrorKind, I16F16};
 //!
-//! let err = Scene::<I16F16>::parse("camera c {\n  pixeldim 4 0\n}").unwrap_err();
+//! let text = "camera c {\n  pixeldim 4 0 worlddim 4 3 viewpoint 2 1.5 5\n}";
+//! let err = Scene::<I16F16>::parse(text).unwrap_err();
 //! assert_eq!((err.line, err.column), (2, 14));
 //! assert!(matches!(err.kind, SceneErrorKind::OutOfDomain { .. }));
 //! assert_eq!(
@@ -123,6 +124,8 @@ impl fmt::Display for SceneError {
         write!(f, "{}:{}: {}", self.line, self.column, self.kind)
     }
 }
+
+impl core::error::Error for SceneError {}
 
 impl fmt::Display for SceneErrorKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -351,7 +354,11 @@ const MAX_ATTRS: usize = 6;
 const ENTITIES: [(&str, &[AttrSpec]); 8] = [
     (
         "camera",
-        &[attr("pixeldim", 2), attr("worlddim", 2), attr("viewpoint", 3)],
+        &[
+            attr("pixeldim", 2),
+            attr("worlddim", 2),
+            attr("viewpoint", 3),
+        ],
     ),
     (
         "material",
@@ -473,9 +480,7 @@ impl<'a, S: Scalar> Parser<'a, S> {
     fn number(&mut self) -> Result<(f64, Pos)> {
         let t = self.expect("a number")?;
         if !is_number(t.text) {
-            return Err(t
-                .pos
-                .error(SceneErrorKind::ExpectedNumber(quote(t.text))));
+            return Err(t.pos.error(SceneErrorKind::ExpectedNumber(quote(t.text))));
         }
         match t.text.parse::<f64>() {
             Ok(v) if v.is_finite() => Ok((v, t.pos)),
@@ -496,7 +501,12 @@ impl<'a, S: Scalar> Parser<'a, S> {
         }
     }
 
-    fn block(&mut self, entity: &'static str, specs: &'static [AttrSpec], pos: Pos) -> Result<Block<'a>> {
+    fn block(
+        &mut self,
+        entity: &'static str,
+        specs: &'static [AttrSpec],
+        pos: Pos,
+    ) -> Result<Block<'a>> {
         let name = self.name()?;
         let open = self.expect("`{`")?;
         if open.text != "{" {
@@ -570,10 +580,12 @@ impl<'a, S: Scalar> Parser<'a, S> {
         // Capacity: every entity is stored or refused before this list could fill.
         self.names
             .push((block.entity, block.name.text))
-            .map_err(|_| block.pos.error(SceneErrorKind::TooMany {
-                what: "named entities",
-                capacity: MAX_LIGHTS + MAX_OBJECTS + 1,
-            }))
+            .map_err(|_| {
+                block.pos.error(SceneErrorKind::TooMany {
+                    what: "named entities",
+                    capacity: MAX_LIGHTS + MAX_OBJECTS + 1,
+                })
+            })
     }
 
     fn material_index(&self, block: &Block<'a>, attribute: &'static str) -> Result<u8> {
@@ -607,8 +619,7 @@ impl<'a, S: Scalar> Parser<'a, S> {
                     }
                 }
                 _ => {
-                    let Some((entity, specs)) = ENTITIES.iter().find(|(e, _)| *e == t.text)
-                    else {
+                    let Some((entity, specs)) = ENTITIES.iter().find(|(e, _)| *e == t.text) else {
                         return Err(t.pos.error(SceneErrorKind::UnknownKeyword(quote(t.text))));
                     };
                     let block = self.block(entity, specs, t.pos)?;
@@ -682,8 +693,8 @@ impl<'a, S: Scalar> Parser<'a, S> {
                 self.register(b)?;
                 let material = self.material_index(b, "material")?;
                 let normal = required(b, "normal")?;
-                let plane = Plane::new(vector(normal)?, vector(required(b, "point")?)?)
-                    .map_err(|e| match e {
+                let plane = Plane::new(vector(normal)?, vector(required(b, "point")?)?).map_err(
+                    |e| match e {
                         PlaneError::ZeroNormal => normal.name_pos.error(SceneErrorKind::ZeroNormal),
                         PlaneError::OffsetOutOfRange => {
                             b.pos.error(SceneErrorKind::DerivedDoesNotFit {
@@ -691,7 +702,8 @@ impl<'a, S: Scalar> Parser<'a, S> {
                                 format: S::NAME,
                             })
                         }
-                    })?;
+                    },
+                )?;
                 self.objects
                     .push(crate::Object {
                         shape: crate::Shape::Plane(plane),
@@ -805,7 +817,11 @@ fn positive<S: Scalar>(v: &Value<'_>, k: usize, attribute: &'static str) -> Resu
 }
 
 /// Three reals ≥ 0, multiplied by `scale` (255 for colours in channel units).
-fn non_negative3<S: Scalar>(v: &Value<'_>, attribute: &'static str, scale: f64) -> Result<Color<S>> {
+fn non_negative3<S: Scalar>(
+    v: &Value<'_>,
+    attribute: &'static str,
+    scale: f64,
+) -> Result<Color<S>> {
     let mut c = [S::ZERO; 3];
     for (k, ck) in c.iter_mut().enumerate() {
         in_domain(v, k, |x| x >= 0.0, attribute, ">= 0")?;
@@ -850,7 +866,9 @@ fn material_of<S: Scalar>(b: &Block<'_>) -> Result<Material<S>> {
     if let Some(v) = b.get("specular") {
         in_domain(v, 0, |x| x >= 0.0, "specular", ">= 0")?;
         if v.nums[0] != 0.0 {
-            return Err(v.name_pos.error(SceneErrorKind::NotSupported("specular is")));
+            return Err(v
+                .name_pos
+                .error(SceneErrorKind::NotSupported("specular is")));
         }
     }
     if let Some(v) = b.get("shininess") {
@@ -858,7 +876,13 @@ fn material_of<S: Scalar>(b: &Block<'_>) -> Result<Material<S>> {
         in_domain(v, 0, |x| x >= 1.0, "shininess", ">= 1")?;
     }
     if let Some(v) = b.get("reflective") {
-        in_domain(v, 0, |x| (0.0..=1.0).contains(&x), "reflective", "in [0, 1]")?;
+        in_domain(
+            v,
+            0,
+            |x| (0.0..=1.0).contains(&x),
+            "reflective",
+            "in [0, 1]",
+        )?;
         if v.nums[0] != 0.0 {
             return Err(v
                 .name_pos
@@ -921,7 +945,9 @@ mod tests {
         for ok in ["-7", "0.5", ".25", "1e-3", "+2", "5.", "1E+4", "-0.0"] {
             assert!(is_number(ok), "{ok}");
         }
-        for bad in ["", "-", ".", "e5", "1e", "1.2.3", "inf", "NaN", "0x10", "1,5", "--1"] {
+        for bad in [
+            "", "-", ".", "e5", "1e", "1.2.3", "inf", "NaN", "0x10", "1,5", "--1",
+        ] {
             assert!(!is_number(bad), "{bad}");
         }
     }
@@ -943,7 +969,10 @@ mod tests {
         assert_eq!(toks, ["plane", "floor", "{", "x", "}"]);
         let mut lx = Lexer::new("a\n  bb");
         lx.next_token();
-        assert_eq!(lx.next_token().map(|t| t.pos), Some(Pos { line: 2, column: 3 }));
+        assert_eq!(
+            lx.next_token().map(|t| t.pos),
+            Some(Pos { line: 2, column: 3 })
+        );
     }
 
     #[test]

@@ -23,10 +23,10 @@ use crate::{Color, Hit, Object, Ray, RayKind, Scalar, Scene, Vec3};
 pub fn nearest_hit<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Option<(usize, Hit<S>)> {
     let mut best: Option<(usize, Hit<S>)> = None;
     for (i, object) in scene.objects.iter().enumerate() {
-        if let Ok(hit) = object.shape.intersect(ray, scene.epsilon) {
-            if best.is_none_or(|(_, b)| hit.t < b.t) {
-                best = Some((i, hit));
-            }
+        if let Ok(hit) = object.shape.intersect(ray, scene.epsilon)
+            && best.is_none_or(|(_, b)| hit.t < b.t)
+        {
+            best = Some((i, hit));
         }
     }
     best
@@ -91,12 +91,14 @@ pub fn shade<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, index: usize, hit: &Hit<
         }
         // cos / dist: a light on the surface (dist → 0) saturates to full intensity.
         let falloff = cos.checked_div(dist).unwrap_or(S::MAX);
-        for ch in 0..3 {
-            let term = material.diffuse[ch]
-                .checked_mul(light.emissivity[ch])
+        for ((c, diffuse), emissivity) in
+            color.iter_mut().zip(material.diffuse).zip(light.emissivity)
+        {
+            let term = diffuse
+                .checked_mul(emissivity)
                 .and_then(|k| k.checked_mul(falloff))
                 .unwrap_or(S::MAX);
-            color[ch] = add_sat(color[ch], term);
+            *c = add_sat(*c, term);
         }
     }
     color
@@ -138,7 +140,9 @@ fn scanline<S: Scalar, C: From<Rgb888>>(
     let y = scene.camera.screen_y(row);
     columns.map(move |column| {
         let ray = y.and_then(|y| scene.camera.primary_ray_at(column, y));
-        C::from(to_rgb888(ray.map_or(scene.background, |r| trace(scene, &r))))
+        C::from(to_rgb888(
+            ray.map_or(scene.background, |r| trace(scene, &r)),
+        ))
     })
 }
 
@@ -162,7 +166,9 @@ pub fn render_line<S: Scalar, C: From<Rgb888>>(scene: &Scene<S>, row: u16, line:
     if row >= scene.camera.height {
         return;
     }
-    let width = u16::try_from(line.len()).unwrap_or(u16::MAX).min(scene.camera.width);
+    let width = u16::try_from(line.len())
+        .unwrap_or(u16::MAX)
+        .min(scene.camera.width);
     for (slot, color) in line.iter_mut().zip(scanline(scene, row, 0..width)) {
         *slot = color;
     }
@@ -209,7 +215,10 @@ where
     let to_u16 = |v: i32| u16::try_from(v).unwrap_or(0);
     let (x0, x1) = (to_u16(area.top_left.x), to_u16(bottom_right.x));
     for row in to_u16(area.top_left.y)..=to_u16(bottom_right.y) {
-        let line = Rectangle::new(Point::new(area.top_left.x, i32::from(row)), Size::new(area.size.width, 1));
+        let line = Rectangle::new(
+            Point::new(area.top_left.x, i32::from(row)),
+            Size::new(area.size.width, 1),
+        );
         target.fill_contiguous(&line, scanline(scene, row, x0..x1 + 1))?;
     }
     Ok(())

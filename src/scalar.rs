@@ -308,8 +308,18 @@ mod tests {
             "{}",
             S::NAME
         );
-        assert_eq!(S::from_f64(2.5).unwrap().round_to_i32(), Some(3), "{}", S::NAME);
-        assert_eq!(S::from_f64(-2.5).unwrap().round_to_i32(), Some(-3), "{}", S::NAME);
+        assert_eq!(
+            S::from_f64(2.5).unwrap().round_to_i32(),
+            Some(3),
+            "{}",
+            S::NAME
+        );
+        assert_eq!(
+            S::from_f64(-2.5).unwrap().round_to_i32(),
+            Some(-3),
+            "{}",
+            S::NAME
+        );
         assert!(S::DEFAULT_EPSILON > S::ZERO);
         assert_eq!(
             S::DEFAULT_EPSILON.to_f64(),

@@ -155,3 +155,22 @@ impl<S: Scalar> Scene<S> {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{I16F16, I32F32};
+
+    /// The RAM a scene takes, as the README states it (update both together).
+    #[test]
+    fn scene_sizes_are_as_documented() {
+        std::println!(
+            "Scene<I16F16>: {} bytes, Scene<I32F32>: {} bytes, Scene<f32>: {} bytes",
+            core::mem::size_of::<Scene<I16F16>>(),
+            core::mem::size_of::<Scene<I32F32>>(),
+            core::mem::size_of::<Scene<f32>>()
+        );
+        assert_eq!(core::mem::size_of::<Scene<I16F16>>(), 1280);
+        assert_eq!(core::mem::size_of::<Scene<I32F32>>(), 2536);
+    }
+}

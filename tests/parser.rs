@@ -125,7 +125,12 @@ fn bad_number() {
         23,
         "expected a number, found `six`",
     );
-    check("camera c { worlddim inf 1 }", 1, 21, "expected a number, found `inf`");
+    check(
+        "camera c { worlddim inf 1 }",
+        1,
+        21,
+        "expected a number, found `inf`",
+    );
     check(
         "camera c { worlddim 1 }",
         1,
@@ -142,8 +147,14 @@ fn number_beyond_the_format() {
         20,
         "unknown material `m` (a material must be defined before it is named)",
     );
-    let text = format!("{CAMERA}material m {{}}\nplane p {{ material m normal 0 1 0 point 0 40000 0 }}");
-    check(&text, 3, 43, "40000 does not fit in the i16f16 number format");
+    let text =
+        format!("{CAMERA}material m {{}}\nplane p {{ material m normal 0 1 0 point 0 40000 0 }}");
+    check(
+        &text,
+        3,
+        43,
+        "40000 does not fit in the i16f16 number format",
+    );
     // The same scene fits in I20F12 (±524288) and f32.
     assert!(Scene::<I20F12>::parse(&text).is_ok());
     assert!(Scene::<f32>::parse(&text).is_ok());
@@ -155,7 +166,12 @@ fn number_beyond_the_format() {
         "51000 does not fit in the i16f16 number format",
     );
     // Beyond even f64.
-    check("precision 1e999", 1, 11, "inf does not fit in the i16f16 number format");
+    check(
+        "precision 1e999",
+        1,
+        11,
+        "inf does not fit in the i16f16 number format",
+    );
 }
 
 #[test]
@@ -281,7 +297,12 @@ fn derived_value_beyond_the_format() {
 
 #[test]
 fn duplicates_of_singletons() {
-    check(&format!("{CAMERA}{CAMERA}"), 2, 1, "a second `camera` (only one is allowed)");
+    check(
+        &format!("{CAMERA}{CAMERA}"),
+        2,
+        1,
+        "a second `camera` (only one is allowed)",
+    );
     check(
         &format!("{CAMERA}background 0 0 0\nbackground 1 1 1"),
         3,
@@ -313,14 +334,18 @@ fn too_many() {
 
     let mut text = format!("{CAMERA}material m {{}}\n");
     for i in 0..=fixray::scene::MAX_OBJECTS {
-        text.push_str(&format!("plane p{i} {{ material m normal 0 1 0 point 0 {i} 0 }}\n"));
+        text.push_str(&format!(
+            "plane p{i} {{ material m normal 0 1 0 point 0 {i} 0 }}\n"
+        ));
     }
     let line = u32::try_from(fixray::scene::MAX_OBJECTS).unwrap() + 3;
     check(&text, line, 1, "too many objects (this build holds 32)");
 
     let mut text = String::from(CAMERA);
     for i in 0..=fixray::scene::MAX_LIGHTS {
-        text.push_str(&format!("light l{i} {{ location 0 0 0 emissivity 1 1 1 }}\n"));
+        text.push_str(&format!(
+            "light l{i} {{ location 0 0 0 emissivity 1 1 1 }}\n"
+        ));
     }
     let line = u32::try_from(fixray::scene::MAX_LIGHTS).unwrap() + 2;
     check(&text, line, 1, "too many lights (this build holds 8)");
@@ -343,17 +368,13 @@ fn entities_not_drawn_yet_are_refused_after_being_checked() {
         "`radius` must be > 0",
     );
     check(
-        &format!(
-            "{m}spotlight s {{ location 0 5 0 emissivity 1 1 1 point 0 0 -5 theta 30 }}"
-        ),
+        &format!("{m}spotlight s {{ location 0 5 0 emissivity 1 1 1 point 0 0 -5 theta 30 }}"),
         4,
         1,
         "spotlight is not supported yet",
     );
     check(
-        &format!(
-            "{m}spotlight s {{ location 0 5 0 emissivity 1 1 1 point 0 0 -5 theta 95 }}"
-        ),
+        &format!("{m}spotlight s {{ location 0 5 0 emissivity 1 1 1 point 0 0 -5 theta 95 }}"),
         4,
         66,
         "`theta` must be in (0, 90]",
@@ -377,17 +398,13 @@ fn entities_not_drawn_yet_are_refused_after_being_checked() {
         "unknown material `x` (a material must be defined before it is named)",
     );
     check(
-        &format!(
-            "{m}fplane f {{ material m normal 0 1 0 point 0 0 0 xdir 1 0 0 dimensions 2 0 }}"
-        ),
+        &format!("{m}fplane f {{ material m normal 0 1 0 point 0 0 0 xdir 1 0 0 dimensions 2 0 }}"),
         4,
         72,
         "`dimensions` must be > 0",
     );
     check(
-        &format!(
-            "{m}fplane f {{ material m normal 0 1 0 point 0 0 0 xdir 1 0 0 dimensions 2 1 }}"
-        ),
+        &format!("{m}fplane f {{ material m normal 0 1 0 point 0 0 0 xdir 1 0 0 dimensions 2 1 }}"),
         4,
         1,
         "fplane is not supported yet",
@@ -429,9 +446,33 @@ impl SplitMix {
 fn mangled_scenes_never_panic() {
     let base = include_str!("../scenes/default.scene");
     let pieces = [
-        "{", "}", "#", "\n", " ", "-", ".", "e", "1e999", "-0", "40000", "plane", "camera",
-        "material", "light", "sphere", "precision", "background", "é", "0.0000001", "9999999",
-        "normal", "point", "pixeldim", "4097", "0", "NaN",
+        "{",
+        "}",
+        "#",
+        "\n",
+        " ",
+        "-",
+        ".",
+        "e",
+        "1e999",
+        "-0",
+        "40000",
+        "plane",
+        "camera",
+        "material",
+        "light",
+        "sphere",
+        "precision",
+        "background",
+        "é",
+        "0.0000001",
+        "9999999",
+        "normal",
+        "point",
+        "pixeldim",
+        "4097",
+        "0",
+        "NaN",
     ];
     let mut rng = SplitMix(0x5EED_F1C5);
     let mut errors = 0;
@@ -465,7 +506,10 @@ fn mangled_scenes_never_panic() {
         .flatten()
         {
             errors += 1;
-            assert!(result.line >= 1 && result.line <= lines, "{result} in:\n{text}");
+            assert!(
+                result.line >= 1 && result.line <= lines,
+                "{result} in:\n{text}"
+            );
             assert!(result.column >= 1, "{result}");
         }
     }

@@ -1,9 +1,7 @@
 //! The plane test of the course notes (`plane_hits`), in every number format: the notes'
 //! numeric example exactly, then a table of cases around each rule of the test.
 
-use fixray::{
-    Hit, I16F16, I20F12, I32F32, Miss, Plane, PlaneError, Ray, RayKind, Scalar, Vec3,
-};
+use fixray::{Hit, I16F16, I20F12, I32F32, Miss, Plane, PlaneError, Ray, RayKind, Scalar, Vec3};
 
 fn v<S: Scalar>(x: f64, y: f64, z: f64) -> Vec3<S> {
     Vec3::from_f64([x, y, z]).unwrap()
@@ -54,7 +52,12 @@ fn parallel_within_epsilon<S: Scalar>() {
         // dir = (√(1 − a²), 0, a): N·d = a.
         let dir_for = |a: f64| [(1.0 - a * a).sqrt(), 0.0, sign * a];
         let below = ray::<S>([0.0, 0.0, 5.0], dir_for(0.9 / 64.0), RayKind::Secondary);
-        assert_eq!(plane.intersect(&below, eps), Err(Miss::Parallel), "{}", S::NAME);
+        assert_eq!(
+            plane.intersect(&below, eps),
+            Err(Miss::Parallel),
+            "{}",
+            S::NAME
+        );
         let above = ray::<S>([0.0, 0.0, 5.0], dir_for(1.1 / 64.0), RayKind::Secondary);
         let got = plane.intersect(&above, eps);
         if sign < 0.0 {
@@ -136,7 +139,12 @@ fn non_unit_normal<S: Scalar>() {
     let tilted = Plane::new(v::<S>(1.0, 2.0, 2.0), v(0.0, 0.0, 0.0)).unwrap();
     let hit = tilted.intersect(&r, S::DEFAULT_EPSILON).unwrap();
     let tol = 64.0 * S::DELTA.to_f64();
-    assert!((hit.t.to_f64() - 10.0).abs() <= tol, "{} t = {:?}", S::NAME, hit.t);
+    assert!(
+        (hit.t.to_f64() - 10.0).abs() <= tol,
+        "{} t = {:?}",
+        S::NAME,
+        hit.t
+    );
     assert!((hit.point.z.to_f64() + 5.0).abs() <= tol, "{}", S::NAME);
 }
 

@@ -121,7 +121,10 @@ impl OriginDimensions for Recorder {
 impl DrawTarget for Recorder {
     type Color = Rgb888;
     type Error = core::convert::Infallible;
-    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb888>>>(&mut self, _: I) -> Result<(), Self::Error> {
+    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb888>>>(
+        &mut self,
+        _: I,
+    ) -> Result<(), Self::Error> {
         panic!("the renderer must stream through fill_contiguous, not draw_iter");
     }
     fn fill_contiguous<I: IntoIterator<Item = Rgb888>>(
@@ -172,7 +175,10 @@ fn a_smaller_target_gets_the_visible_part_only() {
     let mut line = vec![Rgb888::BLACK; 64];
     render_line(&scene, 10, &mut line);
     for (x, c) in line.iter().enumerate() {
-        assert_eq!(display.get_pixel(Point::new(i32::try_from(x).unwrap(), 10)), Some(*c));
+        assert_eq!(
+            display.get_pixel(Point::new(i32::try_from(x).unwrap(), 10)),
+            Some(*c)
+        );
     }
 }
 
@@ -181,7 +187,8 @@ fn framebuffer_targets_hold_the_same_picture() {
     const W: usize = 160;
     const H: usize = 120;
     let scene = Scene::<I16F16>::parse(DEFAULT).unwrap();
-    let mut fb = Framebuffer::<Rgb565, RawU16, LittleEndian, W, H, { buffer_size::<Rgb565>(W, H) }>::new();
+    let mut fb =
+        Framebuffer::<Rgb565, RawU16, LittleEndian, W, H, { buffer_size::<Rgb565>(W, H) }>::new();
     render(&scene, &mut fb).unwrap();
     let mut line = vec![Rgb565::BLACK; W];
     for row in [0u16, 37, 119] {
@@ -198,7 +205,17 @@ fn render_line_leaves_pixels_outside_the_image_untouched() {
     let scene = Scene::<I16F16>::parse(&format!("{CAM4}background 1 1 1")).unwrap();
     let mut line = [Rgb888::RED; 6];
     render_line(&scene, 0, &mut line);
-    assert_eq!(line, [Rgb888::WHITE, Rgb888::WHITE, Rgb888::WHITE, Rgb888::WHITE, Rgb888::RED, Rgb888::RED]);
+    assert_eq!(
+        line,
+        [
+            Rgb888::WHITE,
+            Rgb888::WHITE,
+            Rgb888::WHITE,
+            Rgb888::WHITE,
+            Rgb888::RED,
+            Rgb888::RED
+        ]
+    );
     let mut line = [Rgb888::RED; 4];
     render_line(&scene, 4, &mut line); // row 4 of a 4-row image
     assert_eq!(line, [Rgb888::RED; 4]);

@@ -1,0 +1,105 @@
+//! The `render` example's command-line interface, as outside checks use it:
+//! `render [SCENE_FILE] [--format F] [--out FILE.png] [--compare FILE.png]`.
+//!
+//! `cargo test` builds the examples next to the test binaries; these tests run that build.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+use embedded_graphics::prelude::*;
+use embedded_graphics_simulator::SimulatorDisplay;
+use fixray::{I16F16, Scene, render_line};
+
+fn render_exe() -> PathBuf {
+    // target/<profile>/deps/cli-<hash> → target/<profile>/examples/render
+    let exe = std::env::current_exe().unwrap();
+    let dir = exe.parent().and_then(Path::parent).unwrap();
+    dir.join("examples")
+        .join(format!("render{}", std::env::consts::EXE_SUFFIX))
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(render_exe())
+        .args(args)
+        .output()
+        .expect("the render example is built by `cargo test`")
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("fixray-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn a_scene_error_prints_file_line_column_and_fails() {
+    let path = temp("bad.scene");
+    std::fs::write(
+        &path,
+        "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\nmaterial m {\n  ambiant 1 1 1 }\n",
+    )
+    .unwrap();
+    let out = run(&[path.to_str().unwrap(), "--format", "i16f16"]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(
+        stderr.trim_end(),
+        format!(
+            "{}:3:3: `ambiant` is not an attribute of material",
+            path.display()
+        )
+    );
+}
+
+#[test]
+fn bad_arguments_fail_with_usage() {
+    let out = run(&["--format", "i8f8"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("usage: render"));
+}
+
+#[test]
+fn one_format_renders_the_scene_at_its_pixeldim() {
+    let png = temp("i16f16.png");
+    let cmp = temp("cmp.png");
+    let out = run(&[
+        "--format",
+        "i16f16",
+        "--out",
+        png.to_str().unwrap(),
+        "--compare",
+        cmp.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    // The PNG holds exactly what the library renders, pixel for pixel.
+    let image = SimulatorDisplay::<Rgb888>::load_png(&png).unwrap();
+    assert_eq!(image.size(), Size::new(160, 120));
+    let scene = Scene::<I16F16>::parse(include_str!("../scenes/default.scene")).unwrap();
+    let mut line = vec![Rgb888::BLACK; 160];
+    for row in [0u16, 60, 119] {
+        render_line(&scene, row, &mut line);
+        for (x, c) in line.iter().enumerate() {
+            let p = Point::new(i32::try_from(x).unwrap(), i32::from(row));
+            assert_eq!(image.get_pixel(p), *c, "{p:?}");
+        }
+    }
+    // The comparison: format | f64 | heat map, side by side.
+    let compare = SimulatorDisplay::<Rgb888>::load_png(&cmp).unwrap();
+    assert_eq!(compare.size(), Size::new(480, 120));
+}
+
+#[test]
+fn without_a_format_every_format_is_reported() {
+    let png = temp("all.png");
+    let out = run(&["--out", png.to_str().unwrap()]);
+    assert!(out.status.success(), "{out:?}");
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    for format in ["i16f16", "i20f12", "i32f32", "f32", "f64"] {
+        assert!(
+            stdout.lines().any(|l| l.starts_with(format)),
+            "{format} missing from:\n{stdout}"
+        );
+    }
+    assert!(png.exists());
+}
