@@ -1,18 +1,61 @@
-//! Puts `memory.x` on the linker's search path for the Cortex-M firmware builds (the
-//! cortex-m-quickstart pattern). Host builds are left alone: nothing is emitted for them.
+//! Build script: the firmware's link setup (the cortex-m-quickstart pattern) and its build
+//! options. Host builds get nothing but the declarations of the firmware's cfgs.
+//!
+//! For Cortex-M targets (`thumb*`):
+//! - puts `memory.x` on the linker's search path and links the examples with
+//!   `cortex-m-rt`'s `link.x`;
+//! - `fw_microbit` (thumbv6m: the BBC micro:bit, SysTick at 16 MHz) or `fw_mps2`
+//!   (otherwise: MPS2 AN386, SysTick at 25 MHz) tell `examples/firmware.rs` its board;
+//! - `FIXRAY_FW_FORMATS` (default `i16f16,i20f12,i32f32,f32`) chooses which number
+//!   formats the firmware renders (one `fw_<format>` cfg each), so that flash can be
+//!   measured per format;
+//! - `FIXRAY_FW_PPM=1` makes the firmware also write each frame to the host as a PPM file
+//!   through semihosting (`fw_ppm`).
 
 use std::env;
 use std::fs;
 use std::path::PathBuf;
 
+const FORMATS: [&str; 5] = ["i16f16", "i20f12", "i32f32", "f32", "f64"];
+
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=memory.x");
+    println!("cargo:rerun-if-env-changed=FIXRAY_FW_FORMATS");
+    println!("cargo:rerun-if-env-changed=FIXRAY_FW_PPM");
+    for cfg in ["fw_microbit", "fw_mps2", "fw_ppm"] {
+        println!("cargo:rustc-check-cfg=cfg({cfg})");
+    }
+    for f in FORMATS {
+        println!("cargo:rustc-check-cfg=cfg(fw_{f})");
+    }
+
     let target = env::var("TARGET").unwrap_or_default();
     if !target.starts_with("thumb") {
         return;
     }
-    let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR for build scripts"));
+    let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     fs::write(out.join("memory.x"), include_bytes!("memory.x")).expect("OUT_DIR is writable");
     println!("cargo:rustc-link-search={}", out.display());
+    println!("cargo:rustc-link-arg-examples=--nmagic");
+    println!("cargo:rustc-link-arg-examples=-Tlink.x");
+
+    let board = if target.starts_with("thumbv6m") {
+        "fw_microbit"
+    } else {
+        "fw_mps2"
+    };
+    println!("cargo:rustc-cfg={board}");
+    let formats =
+        env::var("FIXRAY_FW_FORMATS").unwrap_or_else(|_| "i16f16,i20f12,i32f32,f32".into());
+    for f in formats.split(',').map(str::trim).filter(|f| !f.is_empty()) {
+        assert!(
+            FORMATS.contains(&f),
+            "FIXRAY_FW_FORMATS: unknown format `{f}` (one of {FORMATS:?})"
+        );
+        println!("cargo:rustc-cfg=fw_{f}");
+    }
+    if env::var("FIXRAY_FW_PPM").is_ok_and(|v| v == "1") {
+        println!("cargo:rustc-cfg=fw_ppm");
+    }
 }

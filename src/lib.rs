@@ -28,6 +28,7 @@
 
 pub mod compare;
 pub mod geometry;
+pub mod hash;
 pub mod parse;
 pub mod render;
 pub mod scalar;

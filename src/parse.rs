@@ -74,10 +74,12 @@ pub enum SceneErrorKind {
     UnexpectedEnd(&'static str),
     /// A number is outside what the chosen number format can hold.
     DoesNotFit {
-        /// The number as written (after the channel-unit scaling for colours).
-        value: f64,
+        /// The number as written.
+        value: Quoted,
         /// The number format.
         format: &'static str,
+        /// It is a colour, which is stored × 255 (in channel units).
+        colour: bool,
     },
     /// A number outside the attribute's domain (`pixeldim 0`, `radius -1`, ...).
     OutOfDomain {
@@ -147,8 +149,16 @@ impl fmt::Display for SceneErrorKind {
             K::ExpectedOpenBrace(w) => write!(f, "expected `{{`, found `{w}`"),
             K::ExpectedNumber(w) => write!(f, "expected a number, found `{w}`"),
             K::UnexpectedEnd(what) => write!(f, "unexpected end of input: expected {what}"),
-            K::DoesNotFit { value, format } => {
-                write!(f, "{value} does not fit in the {format} number format")
+            K::DoesNotFit {
+                value,
+                format,
+                colour,
+            } => {
+                write!(f, "`{value}` does not fit in the {format} number format")?;
+                if *colour {
+                    write!(f, " (colours are stored × 255, in channel units)")?;
+                }
+                Ok(())
             }
             K::OutOfDomain { attribute, rule } => write!(f, "`{attribute}` must be {rule}"),
             K::DuplicateName { entity, name } => write!(f, "{entity} `{name}` is defined twice"),
@@ -417,6 +427,8 @@ struct Value<'a> {
     name_pos: Pos,
     nums: [f64; 3],
     pos: [Pos; 3],
+    /// The numbers as written, for messages.
+    texts: [&'a str; 3],
     name: &'a str,
 }
 
@@ -477,17 +489,18 @@ impl<'a, S: Scalar> Parser<'a, S> {
         self.lexer.pos
     }
 
-    fn number(&mut self) -> Result<(f64, Pos)> {
+    fn number(&mut self) -> Result<(f64, Token<'a>)> {
         let t = self.expect("a number")?;
         if !is_number(t.text) {
             return Err(t.pos.error(SceneErrorKind::ExpectedNumber(quote(t.text))));
         }
         match t.text.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok((v, t.pos)),
+            Ok(v) if v.is_finite() => Ok((v, t)),
             // Syntactically a number, but beyond f64 (`1e999`): beyond every format.
             _ => Err(t.pos.error(SceneErrorKind::DoesNotFit {
-                value: f64::INFINITY,
+                value: quote(t.text),
                 format: S::NAME,
+                colour: false,
             })),
         }
     }
@@ -543,7 +556,8 @@ impl<'a, S: Scalar> Parser<'a, S> {
                 }
                 Arity::Numbers(n) => {
                     for k in 0..n {
-                        (v.nums[k], v.pos[k]) = self.number()?;
+                        let (x, t) = self.number()?;
+                        (v.nums[k], v.pos[k], v.texts[k]) = (x, t.pos, t.text);
                     }
                 }
             }
@@ -612,8 +626,8 @@ impl<'a, S: Scalar> Parser<'a, S> {
                     }
                 }
                 "precision" => {
-                    let (v, pos) = self.number()?;
-                    let eps = precision::<S>(v, pos)?;
+                    let (v, token) = self.number()?;
+                    let eps = precision::<S>(v, token)?;
                     if self.scene_epsilon.replace(eps).is_some() {
                         return Err(t.pos.error(SceneErrorKind::Duplicate("precision")));
                     }
@@ -647,7 +661,8 @@ impl<'a, S: Scalar> Parser<'a, S> {
             ..Value::default()
         };
         for k in 0..3 {
-            (v.nums[k], v.pos[k]) = self.number()?;
+            let (x, t) = self.number()?;
+            (v.nums[k], v.pos[k], v.texts[k]) = (x, t.pos, t.text);
         }
         color(&v, attribute)
     }
@@ -668,13 +683,18 @@ impl<'a, S: Scalar> Parser<'a, S> {
                         name: quote(b.name.text),
                     }));
                 }
-                let m = material_of(b)?;
-                let full = b.pos.error(SceneErrorKind::TooMany {
-                    what: "materials",
-                    capacity: MAX_MATERIALS,
-                });
-                self.materials.push(m).map_err(|_| full.clone())?;
-                self.material_names.push(b.name.text).map_err(|_| full)?;
+                let full = || {
+                    b.pos.error(SceneErrorKind::TooMany {
+                        what: "materials",
+                        capacity: MAX_MATERIALS,
+                    })
+                };
+                // Both lists have the same capacity and length: check once, push both.
+                if self.materials.is_full() {
+                    return Err(full());
+                }
+                self.materials.push(material_of(b)?).map_err(|_| full())?;
+                self.material_names.push(b.name.text).map_err(|_| full())?;
             }
             "light" => {
                 self.register(b)?;
@@ -771,11 +791,11 @@ fn required<'v, 'a>(b: &'v Block<'a>, attribute: &'static str) -> Result<&'v Val
 
 /// Converts one number of a value into the format.
 fn convert<S: Scalar>(v: &Value<'_>, k: usize, scale: f64) -> Result<S> {
-    let x = v.nums[k] * scale;
-    S::from_f64(x).ok_or_else(|| {
+    S::from_f64(v.nums[k] * scale).ok_or_else(|| {
         v.pos[k].error(SceneErrorKind::DoesNotFit {
-            value: x,
+            value: quote(v.texts[k]),
             format: S::NAME,
+            colour: scale != 1.0,
         })
     })
 }
@@ -896,10 +916,12 @@ fn material_of<S: Scalar>(b: &Block<'_>) -> Result<Material<S>> {
 }
 
 /// The precision epsilon: a real > 0 that must stay > 0 in the format.
-fn precision<S: Scalar>(value: f64, pos: Pos) -> Result<S> {
+fn precision<S: Scalar>(value: f64, token: Token<'_>) -> Result<S> {
+    let pos = token.pos;
     let v = Value {
         nums: [value, 0.0, 0.0],
         pos: [pos; 3],
+        texts: [token.text; 3],
         ..Value::default()
     };
     in_domain(&v, 0, |x| x > 0.0, "precision", "> 0")?;

@@ -153,7 +153,7 @@ fn number_beyond_the_format() {
         &text,
         3,
         43,
-        "40000 does not fit in the i16f16 number format",
+        "`40000` does not fit in the i16f16 number format",
     );
     // The same scene fits in I20F12 (±524288) and f32.
     assert!(Scene::<I20F12>::parse(&text).is_ok());
@@ -163,14 +163,15 @@ fn number_beyond_the_format() {
         &format!("{CAMERA}background 200 0 0"),
         2,
         12,
-        "51000 does not fit in the i16f16 number format",
+        "`200` does not fit in the i16f16 number format (colours are stored × 255, in channel \
+         units)",
     );
     // Beyond even f64.
     check(
         "precision 1e999",
         1,
         11,
-        "inf does not fit in the i16f16 number format",
+        "`1e999` does not fit in the i16f16 number format",
     );
 }
 

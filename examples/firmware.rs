@@ -1,0 +1,280 @@
+//! `firmware`: the ray caster on a Cortex-M chip. Parses the default scene text at run
+//! time with the library's parser, renders it one scanline at a time into a line buffer
+//! (no framebuffer) in every number format built in, and reports each frame over
+//! semihosting as one line:
+//!
+//! ```text
+//! format=i16f16 size=160x120 hash=0x1a2b3c4d instructions=1234567 per_pixel=64.3 stack=2048 parse_instructions=… hash_instructions=…
+//! ```
+//!
+//! `hash` is [`fixray::hash::FrameHash`] over every pixel (the host computes the same);
+//! `instructions` counts the frame loop (render_line + hashing each pixel); the hashing
+//! alone is measured too (`hash_instructions`), so the renderer's share is the difference.
+//! `stack` is the deepest stack use seen during parse + frame (painted stack).
+//!
+//! Run it under QEMU (the runners are in `.cargo/config.toml`; needs `qemu-system-arm`):
+//! ```text
+//! cargo run --release --example firmware --target thumbv6m-none-eabi      # Cortex-M0 (micro:bit)
+//! cargo run --release --example firmware --target thumbv7em-none-eabihf  # Cortex-M4F (MPS2 AN386)
+//! FIXRAY_FW_FORMATS=i16f16 cargo build ...   # only some formats (to measure flash per format)
+//! FIXRAY_FW_PPM=1 cargo run ...              # also write fixray-<core>-<format>.ppm to the host
+//! ```
+//!
+//! Counting: QEMU does not model the cycle counter, but with `-icount shift=0` each
+//! instruction advances virtual time by 1 ns, so SysTick (at the board's 16 or 25 MHz)
+//! ticks once per 62.5 or 40 instructions. Counts are deterministic; their resolution is
+//! one tick. A calibration line at start-up checks the rate with 4000 `nop`s.
+//!
+//! Off target (host builds, `cargo test`) this example compiles to an empty `main`.
+
+#![cfg_attr(target_os = "none", no_std)]
+#![cfg_attr(target_os = "none", no_main)]
+
+#[cfg(not(target_os = "none"))]
+fn main() {
+    // Firmware: build it for thumbv6m-none-eabi or thumbv7em-none-eabihf (see above).
+}
+
+#[cfg(target_os = "none")]
+mod firmware {
+    use core::sync::atomic::{AtomicU32, Ordering};
+
+    use cortex_m::peripheral::SYST;
+    use cortex_m::peripheral::syst::SystClkSource;
+    use cortex_m_rt::{entry, exception};
+    use cortex_m_semihosting::{debug, hprintln};
+    use embedded_graphics::pixelcolor::Rgb888;
+    use fixray::hash::FrameHash;
+    use fixray::{Scalar, Scene, render_line};
+    use panic_semihosting as _;
+
+    /// The default scene, as text: parsed on the chip.
+    const SCENE: &str = include_str!("../scenes/default.scene");
+
+    /// The line buffer's capacity in pixels (a 320-pixel-wide panel; 960 bytes).
+    const MAX_WIDTH: usize = 320;
+
+    /// Board name and SysTick rate: instructions per tick × 2 (62.5 is not an integer).
+    #[cfg(fw_microbit)]
+    const BOARD: (&str, u64) = ("cortex-m0", 125);
+    #[cfg(fw_mps2)]
+    const BOARD: (&str, u64) = ("cortex-m4f", 80);
+
+    /// The painted stack's pattern.
+    const PAINT: u32 = 0xC0DE_F00D;
+
+    static WRAPS: AtomicU32 = AtomicU32::new(0);
+
+    #[exception]
+    fn SysTick() {
+        // Only this handler writes WRAPS: a load and a store are enough (the M0 has no
+        // atomic read-modify-write).
+        WRAPS.store(WRAPS.load(Ordering::Relaxed) + 1, Ordering::Relaxed);
+    }
+
+    /// Executed instructions since SysTick was started (24-bit counter + wraps).
+    fn instructions() -> u64 {
+        loop {
+            let wraps = WRAPS.load(Ordering::Relaxed);
+            let current = SYST::get_current();
+            if WRAPS.load(Ordering::Relaxed) == wraps {
+                let ticks = (u64::from(wraps) << 24) + u64::from(0x00FF_FFFF - current);
+                return ticks * BOARD.1 / 2;
+            }
+        }
+    }
+
+    unsafe extern "C" {
+        /// End of .bss (cortex-m-rt): the lowest address the stack may grow to.
+        static mut __sheap: u32;
+        /// Top of the stack (cortex-m-rt).
+        static _stack_start: u32;
+    }
+
+    /// Fills the free stack below the current stack pointer with `PAINT`.
+    fn paint_stack() {
+        let bottom = (&raw mut __sheap).cast::<u32>();
+        // Leave 64 bytes under the current frame untouched.
+        let top = (cortex_m::register::msp::read() as usize - 64) as *mut u32;
+        let mut p = bottom;
+        while p < top {
+            // SAFETY: [__sheap, msp − 64) is unused stack: nothing lives there now.
+            unsafe { p.write_volatile(PAINT) };
+            p = p.wrapping_add(1);
+        }
+    }
+
+    /// Bytes of stack used since `paint_stack`: from the top down to the lowest word that
+    /// no longer holds the pattern.
+    fn stack_used() -> usize {
+        let bottom = (&raw mut __sheap).cast::<u32>();
+        let top = (&raw const _stack_start) as usize;
+        let mut p = bottom;
+        // SAFETY: reading the stack region between the end of .bss and its top.
+        while (p as usize) < top && unsafe { p.read_volatile() } == PAINT {
+            p = p.wrapping_add(1);
+        }
+        top - p as usize
+    }
+
+    /// Writes one frame to the host as `fixray-<core>-<format>.ppm` (semihosting file I/O).
+    #[cfg(fw_ppm)]
+    fn write_ppm<S: Scalar>(scene: &Scene<S>, line: &mut [Rgb888]) {
+        use core::fmt::Write;
+        use cortex_m_semihosting::{nr, syscall};
+        use embedded_graphics::pixelcolor::RgbColor;
+        let mut name: heapless::String<48> = heapless::String::new();
+        let _ = write!(name, "fixray-{}-{}.ppm\0", BOARD.0, S::NAME);
+        // SAFETY: semihosting OPEN with a NUL-terminated name and its length without NUL.
+        let fd = unsafe {
+            syscall!(
+                OPEN,
+                name.as_ptr(),
+                nr::open::W_TRUNC_BINARY,
+                name.len() - 1
+            )
+        };
+        if fd as isize == -1 {
+            hprintln!("format={} ppm=failed", S::NAME);
+            return;
+        }
+        let write = |bytes: &[u8]| {
+            // SAFETY: semihosting WRITE of a live buffer.
+            unsafe { syscall!(WRITE, fd, bytes.as_ptr(), bytes.len()) };
+        };
+        let mut header: heapless::String<32> = heapless::String::new();
+        let _ = write!(
+            header,
+            "P6\n{} {}\n255\n",
+            scene.camera.width, scene.camera.height
+        );
+        write(header.as_bytes());
+        let w = usize::from(scene.camera.width);
+        for row in 0..scene.camera.height {
+            render_line(scene, row, &mut line[..w]);
+            let mut bytes = [0u8; 3 * MAX_WIDTH];
+            for (chunk, c) in bytes.chunks_mut(3).zip(&line[..w]) {
+                chunk.copy_from_slice(&[c.r(), c.g(), c.b()]);
+            }
+            write(&bytes[..3 * w]);
+        }
+        // SAFETY: semihosting CLOSE of the descriptor opened above.
+        unsafe { syscall!(CLOSE, fd) };
+        hprintln!("format={} ppm={}", S::NAME, name.trim_end_matches('\0'));
+    }
+
+    /// Parses the scene in format `S`, renders one frame and reports it.
+    #[inline(never)]
+    fn frame<S: Scalar>(line: &mut [Rgb888; MAX_WIDTH]) {
+        paint_stack();
+        let start = instructions();
+        let scene = match Scene::<S>::parse(SCENE) {
+            Ok(s) => s,
+            Err(e) => {
+                hprintln!("format={} error=\"scenes/default.scene:{}\"", S::NAME, e);
+                return;
+            }
+        };
+        let parsed = instructions();
+        let (w, h) = (usize::from(scene.camera.width), scene.camera.height);
+        if w > MAX_WIDTH {
+            hprintln!(
+                "format={} error=\"width {} > line buffer {}\"",
+                S::NAME,
+                w,
+                MAX_WIDTH
+            );
+            return;
+        }
+        let mut hash = FrameHash::new();
+        let before = instructions();
+        for row in 0..h {
+            render_line(&scene, row, &mut line[..w]);
+            for c in &line[..w] {
+                hash.push(*c);
+            }
+        }
+        let after = instructions();
+        let stack = stack_used();
+        // The hashing alone, over the last line as many times: its share of `instructions`.
+        let mut sink = FrameHash::new();
+        let hash_start = instructions();
+        for _ in 0..h {
+            for c in &line[..w] {
+                sink.push(*c);
+            }
+        }
+        let hash_cost = instructions() - hash_start;
+        core::hint::black_box(sink);
+        let pixels = (w as u64) * u64::from(h);
+        let frame = after - before;
+        let tenths = frame * 10 / pixels;
+        hprintln!(
+            "format={} size={}x{} hash=0x{:08x} instructions={} per_pixel={}.{} stack={} parse_instructions={} hash_instructions={} core={}",
+            S::NAME,
+            w,
+            h,
+            hash.value(),
+            frame,
+            tenths / 10,
+            tenths % 10,
+            stack,
+            parsed - start,
+            hash_cost,
+            BOARD.0
+        );
+        #[cfg(fw_ppm)]
+        write_ppm(&scene, line);
+    }
+
+    /// Exactly 4000 instructions: 1000 rounds of two `nop`s, a subtract and a branch.
+    #[inline(never)]
+    fn nops() {
+        // SAFETY: nops and a counted loop on a scratch register.
+        unsafe {
+            core::arch::asm!(
+                "2:", "nop", "nop", "subs {n}, #1", "bne 2b",
+                n = inout(reg) 1000u32 => _,
+                options(nomem, nostack),
+            );
+        }
+    }
+
+    #[entry]
+    fn main() -> ! {
+        let mut core = cortex_m::Peripherals::take().unwrap();
+        let syst = &mut core.SYST;
+        syst.set_clock_source(SystClkSource::Core);
+        syst.set_reload(0x00FF_FFFF);
+        syst.clear_current();
+        syst.enable_interrupt();
+        syst.enable_counter();
+        // The counter starts at 0 and loads the reload value on its first tick; wait for
+        // that, so that counting starts from a full period.
+        while SYST::get_current() == 0 {}
+
+        // Calibration: 4000 nops must count as 4000 instructions (± one tick), plus the
+        // few instructions of the two reads.
+        let a = instructions();
+        nops();
+        let b = instructions();
+        hprintln!("calibration nops=4000 counted={} core={}", b - a, BOARD.0);
+
+        let mut line = [Rgb888::new(0, 0, 0); MAX_WIDTH];
+        #[cfg(fw_i16f16)]
+        frame::<fixray::I16F16>(&mut line);
+        #[cfg(fw_i20f12)]
+        frame::<fixray::I20F12>(&mut line);
+        #[cfg(fw_i32f32)]
+        frame::<fixray::I32F32>(&mut line);
+        #[cfg(fw_f32)]
+        frame::<f32>(&mut line);
+        #[cfg(fw_f64)]
+        frame::<f64>(&mut line);
+        debug::exit(debug::EXIT_SUCCESS);
+        // Only reached without a semihosting host: sleep.
+        loop {
+            cortex_m::asm::wfi();
+        }
+    }
+}
