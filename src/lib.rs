@@ -27,6 +27,7 @@
 #![deny(missing_docs)]
 
 pub mod compare;
+pub mod decimal;
 pub mod geometry;
 pub mod hash;
 pub mod parse;

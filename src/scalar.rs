@@ -22,6 +22,8 @@
 
 use core::fmt::Debug;
 
+use crate::decimal::Decimal;
+
 pub use fixed::types::{I16F16, I20F12, I32F32};
 
 /// How many of a format's [`Scalar::DELTA`]s make its default precision epsilon.
@@ -58,6 +60,10 @@ pub trait Scalar: Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// Converts an `f64`, rounding to the nearest representable value; `None` when the
     /// value is not finite or outside the format's range.
     fn from_f64(value: f64) -> Option<Self>;
+    /// Converts a decimal as written in a scene, rounding its exact value to the nearest
+    /// representable one (ties away from zero for fixed formats, to even for floats);
+    /// `None` when it is outside the format's range.
+    fn from_decimal(value: Decimal) -> Option<Self>;
     /// Converts an integer exactly; `None` when it is outside the format's range.
     fn from_i32(value: i32) -> Option<Self>;
     /// Converts to `f64` (exact for every format here except very large `I32F32` values).
@@ -124,6 +130,11 @@ macro_rules! impl_fixed {
                 // `checked_from_num` rounds to nearest (ties to even) and returns `None`
                 // for NaN, infinities and out-of-range values.
                 <$t>::checked_from_num(value)
+            }
+            fn from_decimal(value: Decimal) -> Option<Self> {
+                // Integer arithmetic only: exact, and no float code on a chip.
+                let bits = value.to_fixed_bits(<$t>::FRAC_NBITS)?;
+                <$bits>::try_from(bits).ok().map(<$t>::from_bits)
             }
             #[inline]
             fn from_i32(value: i32) -> Option<Self> {
@@ -205,6 +216,15 @@ macro_rules! impl_float {
                 #[allow(clippy::cast_possible_truncation)]
                 let v = value as $t;
                 v.is_finite().then_some(v)
+            }
+            fn from_decimal(value: Decimal) -> Option<Self> {
+                // core's parser rounds correctly (straight to this width, no double
+                // rounding); the decimal is written back out digit for digit to use it.
+                use core::fmt::Write;
+                let mut text: heapless::String<40> = heapless::String::new();
+                let sign = if value.negative { "-" } else { "" };
+                write!(text, "{sign}{}e{}", value.mantissa, value.exponent).ok()?;
+                text.parse::<$t>().ok().filter(|v| v.is_finite())
             }
             #[inline]
             fn from_i32(value: i32) -> Option<Self> {

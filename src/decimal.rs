@@ -1,0 +1,282 @@
+//! [`Decimal`]: a scene number exactly as written, `±mantissa × 10^exponent`.
+//!
+//! The parser keeps numbers in this form and converts each one once, straight into the
+//! chosen format ([`crate::Scalar::from_decimal`]): fixed formats round the exact decimal
+//! value to nearest with integer arithmetic (no `f64` on the way, so no double rounding
+//! and, on a chip, no soft-float code or float-parsing tables in flash); float formats
+//! use `core`'s correctly rounded parser. Domain checks (`> 0`, `in [0, 1]`, ...) are
+//! exact comparisons on the decimal.
+//!
+//! ```
+//! use fixray::decimal::Decimal;
+//! use core::cmp::Ordering;
+//!
+//! let d = Decimal::parse("-2.50e1").unwrap();
+//! assert_eq!((d.negative, d.mantissa, d.exponent), (true, 250, -1));
+//! assert_eq!(d.cmp_int(-25), Ordering::Equal);
+//! assert!(Decimal::parse("1e").is_none());
+//! ```
+
+use core::cmp::Ordering;
+
+/// `(−1)^negative × mantissa × 10^exponent`.
+///
+/// At least 19 significant digits are kept exactly; further digits are dropped (truncation,
+/// a relative change below 1e-18, far under every format's resolution).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Decimal {
+    /// Sign (`-0` is negative zero, which compares equal to zero).
+    pub negative: bool,
+    /// The significant digits.
+    pub mantissa: u64,
+    /// The power of ten.
+    pub exponent: i32,
+}
+
+/// Exponents beyond this are saturated: every format's range ends long before.
+const EXPONENT_LIMIT: i32 = 100_000;
+
+impl Decimal {
+    /// Parses the scene format's number syntax: optional sign, digits, optional fraction,
+    /// optional exponent (`-7`, `0.5`, `.25`, `1e-3`). `None` for anything else (`inf`,
+    /// `NaN`, `0x10`, `1,5`, ...).
+    pub fn parse(text: &str) -> Option<Self> {
+        let b = text.as_bytes();
+        let mut i = 0;
+        let mut d = Self::default();
+        if let Some(&sign @ (b'+' | b'-')) = b.first() {
+            d.negative = sign == b'-';
+            i = 1;
+        }
+        let mut digits = 0;
+        let mut fraction = false;
+        while let Some(&c) = b.get(i) {
+            match c {
+                b'0'..=b'9' => {
+                    digits += 1;
+                    let value = u64::from(c - b'0');
+                    match d
+                        .mantissa
+                        .checked_mul(10)
+                        .and_then(|m| m.checked_add(value))
+                    {
+                        Some(m) => {
+                            d.mantissa = m;
+                            if fraction {
+                                d.exponent -= 1;
+                            }
+                        }
+                        // Beyond 19 digits: an integer digit still scales the value.
+                        None if !fraction => d.exponent = d.exponent.saturating_add(1),
+                        None => {}
+                    }
+                }
+                b'.' if !fraction => fraction = true,
+                _ => break,
+            }
+            i += 1;
+        }
+        if digits == 0 {
+            return None;
+        }
+        if let Some(b'e' | b'E') = b.get(i) {
+            i += 1;
+            let negative = match b.get(i) {
+                Some(b'-') => {
+                    i += 1;
+                    true
+                }
+                Some(b'+') => {
+                    i += 1;
+                    false
+                }
+                _ => false,
+            };
+            let start = i;
+            let mut e: i32 = 0;
+            while let Some(&c @ b'0'..=b'9') = b.get(i) {
+                e = e
+                    .saturating_mul(10)
+                    .saturating_add(i32::from(c - b'0'))
+                    .min(EXPONENT_LIMIT);
+                i += 1;
+            }
+            if i == start {
+                return None;
+            }
+            d.exponent = d
+                .exponent
+                .saturating_add(if negative { -e } else { e })
+                .clamp(-EXPONENT_LIMIT, EXPONENT_LIMIT);
+        }
+        (i == b.len()).then_some(d)
+    }
+
+    /// Whether the value is zero (of either sign).
+    pub fn is_zero(&self) -> bool {
+        self.mantissa == 0
+    }
+
+    /// Compares the value with an integer, exactly.
+    pub fn cmp_int(&self, n: i64) -> Ordering {
+        let self_negative = self.negative && !self.is_zero();
+        match (self_negative, n < 0) {
+            (false, true) => return Ordering::Greater,
+            (true, false) => return Ordering::Less,
+            _ => {}
+        }
+        let magnitude = self.cmp_magnitude(n.unsigned_abs());
+        if self_negative {
+            magnitude.reverse()
+        } else {
+            magnitude
+        }
+    }
+
+    /// Compares |value| with `n`.
+    fn cmp_magnitude(&self, n: u64) -> Ordering {
+        let m = u128::from(self.mantissa);
+        let n = u128::from(n);
+        if self.exponent >= 0 {
+            // m × 10^e against n: overflow means far larger.
+            match pow10(self.exponent).and_then(|p| m.checked_mul(p)) {
+                Some(lhs) => lhs.cmp(&n),
+                None => Ordering::Greater,
+            }
+        } else {
+            // m against n × 10^−e: overflow means far smaller.
+            match pow10(-self.exponent).and_then(|p| n.checked_mul(p)) {
+                Some(rhs) => m.cmp(&rhs),
+                None => Ordering::Less,
+            }
+        }
+    }
+
+    /// The value as an integer, when it is one and fits an `i64`.
+    pub fn to_integer(&self) -> Option<i64> {
+        let m = i128::from(self.mantissa);
+        let magnitude = if self.exponent >= 0 {
+            m.checked_mul(i128::try_from(pow10(self.exponent)?).ok()?)?
+        } else {
+            let p = i128::try_from(pow10(-self.exponent)?).ok()?;
+            if m % p != 0 {
+                return None;
+            }
+            m / p
+        };
+        i64::try_from(if self.negative { -magnitude } else { magnitude }).ok()
+    }
+
+    /// The value times `k`, exactly when the digits allow, else with the least significant
+    /// digits dropped (see the type's documentation).
+    pub fn times(self, k: u64) -> Self {
+        let mut d = self;
+        loop {
+            if let Some(m) = d.mantissa.checked_mul(k) {
+                return Self { mantissa: m, ..d };
+            }
+            d.mantissa /= 10;
+            d.exponent = d.exponent.saturating_add(1);
+        }
+    }
+
+    /// `round(value × 2^frac_bits)`, ties away from zero: the bits of the nearest
+    /// fixed-point number with `frac_bits` fraction bits. `None` beyond `i128`.
+    pub fn to_fixed_bits(&self, frac_bits: u32) -> Option<i128> {
+        let scaled = i128::from(self.mantissa).checked_mul(1i128.checked_shl(frac_bits)?)?;
+        let magnitude = if self.exponent >= 0 {
+            scaled.checked_mul(i128::try_from(pow10(self.exponent)?).ok()?)?
+        } else {
+            match pow10(-self.exponent).and_then(|p| i128::try_from(p).ok()) {
+                Some(p) => scaled / p + i128::from(2 * (scaled % p) >= p),
+                // 10^−e beyond i128 while |scaled| < 2^127: rounds to zero.
+                None => 0,
+            }
+        };
+        Some(if self.negative { -magnitude } else { magnitude })
+    }
+}
+
+/// 10^e for 0 ≤ e ≤ 38 (the powers that fit a `u128`).
+fn pow10(e: i32) -> Option<u128> {
+    10u128.checked_pow(u32::try_from(e).ok()?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parse_table() {
+        type Parts = Option<(bool, u64, i32)>;
+        let cases: [(&str, Parts); 18] = [
+            ("-7", Some((true, 7, 0))),
+            ("0.5", Some((false, 5, -1))),
+            (".25", Some((false, 25, -2))),
+            ("1e-3", Some((false, 1, -3))),
+            ("+2", Some((false, 2, 0))),
+            ("5.", Some((false, 5, 0))),
+            ("1E+4", Some((false, 1, 4))),
+            ("-0.0", Some((true, 0, -1))),
+            (
+                "123456789012345678901",
+                Some((false, 12_345_678_901_234_567_890, 1)),
+            ),
+            (
+                "0.12345678901234567890123",
+                Some((false, 12_345_678_901_234_567_890, -20)),
+            ),
+            ("", None),
+            ("-", None),
+            (".", None),
+            ("e5", None),
+            ("1e", None),
+            ("1.2.3", None),
+            ("inf", None),
+            ("0x10", None),
+        ];
+        for (text, expected) in cases {
+            let got = Decimal::parse(text).map(|d| (d.negative, d.mantissa, d.exponent));
+            assert_eq!(got, expected, "{text}");
+        }
+        for bad in ["NaN", "1,5", "--1", "1e+-2", "é"] {
+            assert_eq!(Decimal::parse(bad), None, "{bad}");
+        }
+        // Huge exponents saturate instead of overflowing.
+        assert_eq!(
+            Decimal::parse("1e99999999999").unwrap().exponent,
+            EXPONENT_LIMIT
+        );
+    }
+
+    #[test]
+    fn comparisons_are_exact() {
+        let d = |s| Decimal::parse(s).unwrap();
+        assert_eq!(d("90").cmp_int(90), Ordering::Equal);
+        assert_eq!(d("90.0000000001").cmp_int(90), Ordering::Greater);
+        assert_eq!(d("-0").cmp_int(0), Ordering::Equal);
+        assert_eq!(d("-1e-300").cmp_int(0), Ordering::Less);
+        assert_eq!(d("1e300").cmp_int(i64::MAX), Ordering::Greater);
+        assert_eq!(d("-1e300").cmp_int(i64::MIN), Ordering::Less);
+        assert_eq!(d("4.096e3").to_integer(), Some(4096));
+        assert_eq!(d("6.5").to_integer(), None);
+        assert_eq!(d("1e30").to_integer(), None);
+    }
+
+    #[test]
+    fn fixed_bits_round_to_nearest() {
+        let d = |s| Decimal::parse(s).unwrap();
+        // 0.7 × 2^16 = 45875.2 → 45875; 0.7 × 255 = 178.5 exactly.
+        assert_eq!(d("0.7").to_fixed_bits(16), Some(45875));
+        assert_eq!(
+            d("0.7").times(255).to_fixed_bits(16),
+            Some(178 * 65536 + 32768)
+        );
+        // Ties away from zero: 2^-17 = 0.00000762939453125 is half a DELTA of I16F16.
+        assert_eq!(d("0.00000762939453125").to_fixed_bits(16), Some(1));
+        assert_eq!(d("-0.00000762939453125").to_fixed_bits(16), Some(-1));
+        assert_eq!(d("1e-60").to_fixed_bits(32), Some(0));
+        assert_eq!(d("-7").to_fixed_bits(16), Some(-7 * 65536));
+        assert_eq!(d("1e40").to_fixed_bits(16), None);
+    }
+}
