@@ -7,9 +7,13 @@
 //! ```text
 //! cargo test --release --test firmware -- --ignored --nocapture
 //! ```
-//! It also writes the report table to `target/firmware-report.md`.
+//! Each core × format is built on its own (`FIXRAY_FW_FORMATS=<format>`), so that its
+//! flash size is that format's alone; the report table goes to stdout and to
+//! `target/firmware-report.md`.
 
 use std::collections::BTreeMap;
+
+use object::{Object as _, ObjectSection as _};
 use std::fmt::Write as _;
 use std::process::Command;
 
@@ -34,9 +38,10 @@ fn host_hash<S: Scalar>() -> u32 {
     hash.value()
 }
 
-/// Runs the firmware for one target through its cargo runner (QEMU) and returns the
-/// `key=value` fields of each `format=` line.
-fn run_firmware(target: &str) -> Vec<BTreeMap<String, String>> {
+/// Builds the firmware for one target with only `format` in it, runs it through the
+/// cargo runner (QEMU), and returns the `key=value` fields of its frame line and the
+/// ELF's flash (vector table + text + rodata) and static RAM (data + bss) in bytes.
+fn run_firmware(target: &str, format: &str) -> (BTreeMap<String, String>, u64, u64) {
     let out = Command::new(env!("CARGO"))
         .args([
             "run",
@@ -47,7 +52,7 @@ fn run_firmware(target: &str) -> Vec<BTreeMap<String, String>> {
             "--target",
             target,
         ])
-        .env_remove("FIXRAY_FW_FORMATS")
+        .env("FIXRAY_FW_FORMATS", format)
         .env_remove("FIXRAY_FW_PPM")
         .output()
         .expect("cargo runs");
@@ -58,7 +63,7 @@ fn run_firmware(target: &str) -> Vec<BTreeMap<String, String>> {
         out.status,
         String::from_utf8_lossy(&out.stderr)
     );
-    stdout
+    let lines: Vec<BTreeMap<String, String>> = stdout
         .lines()
         .filter(|l| l.starts_with("format="))
         .map(|l| {
@@ -67,50 +72,67 @@ fn run_firmware(target: &str) -> Vec<BTreeMap<String, String>> {
                 .map(|(k, v)| (k.to_string(), v.to_string()))
                 .collect()
         })
-        .collect()
+        .collect();
+    assert_eq!(lines.len(), 1, "{target} {format}:\n{stdout}");
+    let elf = std::fs::read(format!(
+        "{}/target/{target}/release/examples/firmware",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let file = object::File::parse(&*elf).unwrap();
+    let size = |names: &[&str]| -> u64 {
+        file.sections()
+            .filter(|s| s.name().is_ok_and(|n| names.contains(&n)))
+            .map(|s| s.size())
+            .sum()
+    };
+    let flash = size(&[".vector_table", ".text", ".rodata", ".data"]);
+    let ram = size(&[".data", ".bss", ".uninit"]);
+    (lines.into_iter().next().unwrap(), flash, ram)
 }
 
 #[test]
 #[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
 fn firmware_frames_match_the_host_bit_for_bit() {
-    let host: BTreeMap<&str, u32> = [
+    let host: [(&str, u32); 4] = [
         ("i16f16", host_hash::<I16F16>()),
         ("i20f12", host_hash::<I20F12>()),
         ("i32f32", host_hash::<I32F32>()),
         ("f32", host_hash::<f32>()),
-    ]
-    .into();
+    ];
     let mut report = String::from(
-        "| core | format | instructions/frame | instructions/pixel | hashing share/pixel | stack bytes | hash | equal to host |\n|---|---|---|---|---|---|---|---|\n",
+        "| core | format | instructions/frame | instructions/pixel | of which hashing | \
+         parse instructions | flash bytes | RAM bytes (static + stack) | hash | equal to host |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n",
     );
     let mut mismatches = Vec::new();
     for target in TARGETS {
-        let frames = run_firmware(target);
-        assert_eq!(frames.len(), host.len(), "{target}: {frames:?}");
-        for f in frames {
-            let format = f["format"].as_str();
+        for (format, host_hash) in host {
+            let (f, flash, ram) = run_firmware(target, format);
+            assert_eq!(f["format"], format);
             let hash = u32::from_str_radix(f["hash"].trim_start_matches("0x"), 16).unwrap();
-            let equal = host[format] == hash;
+            let equal = host_hash == hash;
             let pixels: u64 = f["size"]
                 .split('x')
                 .map(|n| n.parse::<u64>().unwrap())
                 .product();
-            let hash_share = f["hash_instructions"].parse::<u64>().unwrap() as f64 / pixels as f64;
+            let hashing = f["hash_instructions"].parse::<u64>().unwrap() as f64 / pixels as f64;
+            let stack: u64 = f["stack"].parse().unwrap();
             writeln!(
                 report,
-                "| {} | {format} | {} | {} | {hash_share:.1} | {} | {} | {} |",
+                "| {} | {format} | {} | {} | {hashing:.1} | {} | {flash} | {} ({ram} + {stack}) | {} | {} |",
                 f["core"],
                 f["instructions"],
                 f["per_pixel"],
-                f["stack"],
+                f["parse_instructions"],
+                ram + stack,
                 f["hash"],
                 if equal { "yes" } else { "no" }
             )
             .unwrap();
             if !equal && format != "f32" {
                 mismatches.push(format!(
-                    "{target} {format}: firmware 0x{hash:08x}, host 0x{:08x}",
-                    host[format]
+                    "{target} {format}: firmware 0x{hash:08x}, host 0x{host_hash:08x}"
                 ));
             }
         }
