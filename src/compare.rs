@@ -17,7 +17,7 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
-use crate::render::{nearest_hit, shade, to_rgb888};
+use crate::render::{Traced, to_rgb888, trace_pixel};
 use crate::{Scalar, Scene};
 
 /// How a render in one format differs from a reference render of the same scene.
@@ -82,20 +82,14 @@ pub fn compare<S: Scalar, R: Scalar>(
     let height = scene.camera.height.min(reference.camera.height);
     for row in 0..height {
         for column in 0..width {
-            let ray = scene.camera.primary_ray(column, row);
-            let ref_ray = reference.camera.primary_ray(column, row);
-            let hit = ray.and_then(|r| nearest_hit(scene, &r).map(|h| (r, h)));
-            let ref_hit = ref_ray.and_then(|r| nearest_hit(reference, &r).map(|h| (r, h)));
-            let px = to_rgb888(match hit {
-                Some((r, (i, h))) => shade(scene, &r, i, &h),
-                None => scene.background,
-            });
-            let ref_px = to_rgb888(match ref_hit {
-                Some((r, (i, h))) => shade(reference, &r, i, &h),
-                None => reference.background,
-            });
+            let Traced { hit, color } = trace_pixel(scene, column, row);
+            let Traced {
+                hit: ref_hit,
+                color: ref_color,
+            } = trace_pixel(reference, column, row);
+            let (px, ref_px) = (to_rgb888(color), to_rgb888(ref_color));
             match (hit, ref_hit) {
-                (Some((_, (i, h))), Some((_, (j, g)))) if i == j => {
+                (Some((i, h)), Some((j, g))) if i == j => {
                     let dt = libm::fabs(h.t.to_f64() - g.t.to_f64());
                     c.max_dt = c.max_dt.max(dt);
                     c.sum_dt += dt;

@@ -48,27 +48,33 @@ impl Decimal {
             d.negative = sign == b'-';
             i = 1;
         }
-        let mut digits = 0;
+        let mut any_digit = false;
         let mut fraction = false;
+        // Set at the first digit that no longer fits: every later digit is dropped too.
+        let mut truncated = false;
         while let Some(&c) = b.get(i) {
             match c {
                 b'0'..=b'9' => {
-                    digits += 1;
+                    any_digit = true;
                     let value = u64::from(c - b'0');
-                    match d
+                    let next = d
                         .mantissa
                         .checked_mul(10)
-                        .and_then(|m| m.checked_add(value))
-                    {
+                        .and_then(|m| m.checked_add(value));
+                    match next.filter(|_| !truncated) {
                         Some(m) => {
                             d.mantissa = m;
                             if fraction {
-                                d.exponent -= 1;
+                                d.exponent = d.exponent.saturating_sub(1).max(-EXPONENT_LIMIT);
                             }
                         }
-                        // Beyond 19 digits: an integer digit still scales the value.
-                        None if !fraction => d.exponent = d.exponent.saturating_add(1),
-                        None => {}
+                        None => {
+                            truncated = true;
+                            // A dropped integer digit still scales the value.
+                            if !fraction {
+                                d.exponent = d.exponent.saturating_add(1).min(EXPONENT_LIMIT);
+                            }
+                        }
                     }
                 }
                 b'.' if !fraction => fraction = true,
@@ -76,7 +82,7 @@ impl Decimal {
             }
             i += 1;
         }
-        if digits == 0 {
+        if !any_digit {
             return None;
         }
         if let Some(b'e' | b'E') = b.get(i) {
@@ -109,7 +115,19 @@ impl Decimal {
                 .saturating_add(if negative { -e } else { e })
                 .clamp(-EXPONENT_LIMIT, EXPONENT_LIMIT);
         }
-        (i == b.len()).then_some(d)
+        (i == b.len()).then_some(d.normalized())
+    }
+
+    /// Zero gets exponent 0, so that `0e39` is simply zero.
+    fn normalized(self) -> Self {
+        if self.mantissa == 0 {
+            Self {
+                exponent: 0,
+                ..self
+            }
+        } else {
+            self
+        }
     }
 
     /// Whether the value is zero (of either sign).
@@ -137,6 +155,9 @@ impl Decimal {
     fn cmp_magnitude(&self, n: u64) -> Ordering {
         let m = u128::from(self.mantissa);
         let n = u128::from(n);
+        if m == 0 {
+            return 0.cmp(&n);
+        }
         if self.exponent >= 0 {
             // m × 10^e against n: overflow means far larger.
             match pow10(self.exponent).and_then(|p| m.checked_mul(p)) {
@@ -145,7 +166,7 @@ impl Decimal {
             }
         } else {
             // m against n × 10^−e: overflow means far smaller.
-            match pow10(-self.exponent).and_then(|p| n.checked_mul(p)) {
+            match pow10(self.exponent).and_then(|p| n.checked_mul(p)) {
                 Some(rhs) => m.cmp(&rhs),
                 None => Ordering::Less,
             }
@@ -155,10 +176,12 @@ impl Decimal {
     /// The value as an integer, when it is one and fits an `i64`.
     pub fn to_integer(&self) -> Option<i64> {
         let m = i128::from(self.mantissa);
-        let magnitude = if self.exponent >= 0 {
+        let magnitude = if m == 0 {
+            0
+        } else if self.exponent >= 0 {
             m.checked_mul(i128::try_from(pow10(self.exponent)?).ok()?)?
         } else {
-            let p = i128::try_from(pow10(-self.exponent)?).ok()?;
+            let p = i128::try_from(pow10(self.exponent)?).ok()?;
             if m % p != 0 {
                 return None;
             }
@@ -173,7 +196,7 @@ impl Decimal {
         let mut d = self;
         loop {
             if let Some(m) = d.mantissa.checked_mul(k) {
-                return Self { mantissa: m, ..d };
+                return Self { mantissa: m, ..d }.normalized();
             }
             d.mantissa /= 10;
             d.exponent = d.exponent.saturating_add(1);
@@ -184,10 +207,12 @@ impl Decimal {
     /// fixed-point number with `frac_bits` fraction bits. `None` beyond `i128`.
     pub fn to_fixed_bits(&self, frac_bits: u32) -> Option<i128> {
         let scaled = i128::from(self.mantissa).checked_mul(1i128.checked_shl(frac_bits)?)?;
-        let magnitude = if self.exponent >= 0 {
+        let magnitude = if scaled == 0 {
+            0
+        } else if self.exponent >= 0 {
             scaled.checked_mul(i128::try_from(pow10(self.exponent)?).ok()?)?
         } else {
-            match pow10(-self.exponent).and_then(|p| i128::try_from(p).ok()) {
+            match pow10(self.exponent).and_then(|p| i128::try_from(p).ok()) {
                 Some(p) => scaled / p + i128::from(2 * (scaled % p) >= p),
                 // 10^−e beyond i128 while |scaled| < 2^127: rounds to zero.
                 None => 0,
@@ -197,9 +222,9 @@ impl Decimal {
     }
 }
 
-/// 10^e for 0 ≤ e ≤ 38 (the powers that fit a `u128`).
+/// 10^|e| for |e| ≤ 38 (the powers that fit a `u128`); callers pick the direction.
 fn pow10(e: i32) -> Option<u128> {
-    10u128.checked_pow(u32::try_from(e).ok()?)
+    10u128.checked_pow(e.unsigned_abs())
 }
 
 #[cfg(test)]
@@ -217,7 +242,7 @@ mod tests {
             ("+2", Some((false, 2, 0))),
             ("5.", Some((false, 5, 0))),
             ("1E+4", Some((false, 1, 4))),
-            ("-0.0", Some((true, 0, -1))),
+            ("-0.0", Some((true, 0, 0))),
             (
                 "123456789012345678901",
                 Some((false, 12_345_678_901_234_567_890, 1)),
@@ -247,6 +272,39 @@ mod tests {
             Decimal::parse("1e99999999999").unwrap().exponent,
             EXPONENT_LIMIT
         );
+        // Zero is zero whatever its exponent.
+        assert_eq!(Decimal::parse("0e39").unwrap().exponent, 0);
+        // Once a digit is dropped, later ones are too (no digit is shifted into its place).
+        let d = Decimal::parse("184467440737095516160").unwrap();
+        assert_eq!((d.mantissa, d.exponent), (1_844_674_407_370_955_161, 2));
+        let d = Decimal::parse("1844674407370955161.61").unwrap();
+        assert_eq!((d.mantissa, d.exponent), (1_844_674_407_370_955_161, 0));
+    }
+
+    /// The fields are public: extreme values must not overflow any method.
+    #[test]
+    fn extreme_fields_do_not_overflow() {
+        for exponent in [i32::MIN, i32::MAX, -39, 39] {
+            for mantissa in [0, 1, u64::MAX] {
+                for negative in [false, true] {
+                    let d = Decimal {
+                        negative,
+                        mantissa,
+                        exponent,
+                    };
+                    let _ = (d.cmp_int(0), d.cmp_int(i64::MIN), d.to_integer());
+                    let _ = (d.to_fixed_bits(16), d.to_fixed_bits(64), d.times(255));
+                }
+            }
+        }
+        let zero_big = Decimal {
+            negative: false,
+            mantissa: 0,
+            exponent: 50,
+        };
+        assert_eq!(zero_big.cmp_int(0), Ordering::Equal);
+        assert_eq!(zero_big.to_fixed_bits(16), Some(0));
+        assert_eq!(zero_big.to_integer(), Some(0));
     }
 
     #[test]

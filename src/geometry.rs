@@ -12,16 +12,22 @@
 //!    front of the screen — [`Miss::InFrontOfScreen`].
 //!
 //! # Overflow
-//! When `t`, `N·b` or the hit point does not fit the number format, the result is
+//! When `t` or the hit point does not fit the number format, the result is
 //! [`Miss::OutOfRange`]: a documented miss, never a wrapped value and never a panic, in
-//! debug and in release builds. Such a plane is beyond what the format can address (for
-//! I16F16: 32768 world units), so the pixel shows whatever else it sees.
+//! debug and in release builds. Such a hit is beyond what the format can address (for
+//! I16F16: 32768 world units), so the pixel shows whatever else it sees. `D' − N·b` is
+//! computed in one wide step, so a large `N·b` alone (a far eye) does not cause a miss.
 //!
 //! # Error bound (first order, fixed formats)
-//! `N` and `d` carry ≤ 2 `DELTA`s per component from normalisation, each dot product adds
-//! ≤ ½ `DELTA`, so `N·d` is off by ≲ 4 `DELTA`s and `D' − N·b` by ≲ 2|b|·2 `DELTA`s + 1
-//! `DELTA`. Hence `|Δt| ≲ (4|b| + 1 + 4 t) · DELTA / |N·d|`: small for steep rays, large
-//! near the epsilon. The precision tests measure it on every scene.
+//! With δ the format's `DELTA`: `N` and `d` carry ≤ 2δ per component from normalisation
+//! and each wide dot product rounds once (≤ ½δ), so `N·d` is off by ≤ 2(‖N‖₁ + ‖d‖₁)δ + ½δ
+//! ≤ 7.5δ and `D' − N·b` by ≤ ΔD' + 2‖b‖₁δ + ½δ, where ΔD' is the error of the stored
+//! offset. Then
+//!
+//! `|Δt| ≤ (ΔD' + (2‖b‖₁ + ½)δ + 7.5 t δ) / |N·d| + δ`
+//!
+//! (the last δ for the division): small for steep rays, large near the epsilon.
+//! `tests/precision.rs` checks every pixel of the shipped scenes against it.
 
 use crate::{Scalar, Vec3};
 
@@ -129,10 +135,8 @@ impl<S: Scalar> Plane<S> {
         if n_dot_d.abs() < epsilon {
             return Err(Miss::Parallel);
         }
-        let n_dot_b = self.normal.dot(ray.base).ok_or(Miss::OutOfRange)?;
-        let t = self
-            .offset
-            .checked_sub(n_dot_b)
+        // D' − N·b in one wide step: N·b alone may exceed the range when t does not.
+        let t = S::sub_dot3(self.offset, self.normal.to_array(), ray.base.to_array())
             .and_then(|num| num.checked_div(n_dot_d))
             .ok_or(Miss::OutOfRange)?;
         if t < S::ZERO {

@@ -43,7 +43,7 @@ pub struct ReadmeDoctests;
 
 pub use geometry::{Hit, Miss, Plane, PlaneError, Ray, RayKind, Shape};
 pub use parse::{SceneError, SceneErrorKind};
-pub use render::{pixel, render, render_line};
+pub use render::{Traced, pixel, render, render_line, trace, trace_pixel};
 pub use scalar::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};
 pub use scene::{Camera, Color, Light, Material, Object, Scene};
-pub use vec3::Vec3;
+pub use vec3::{Normalized, Vec3};

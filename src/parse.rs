@@ -81,8 +81,6 @@ pub enum SceneErrorKind {
         value: Quoted,
         /// The number format.
         format: &'static str,
-        /// It is a colour, which is stored × 255 (in channel units).
-        colour: bool,
     },
     /// A number outside the attribute's domain (`pixeldim 0`, `radius -1`, ...).
     OutOfDomain {
@@ -152,16 +150,8 @@ impl fmt::Display for SceneErrorKind {
             K::ExpectedOpenBrace(w) => write!(f, "expected `{{`, found `{w}`"),
             K::ExpectedNumber(w) => write!(f, "expected a number, found `{w}`"),
             K::UnexpectedEnd(what) => write!(f, "unexpected end of input: expected {what}"),
-            K::DoesNotFit {
-                value,
-                format,
-                colour,
-            } => {
-                write!(f, "`{value}` does not fit in the {format} number format")?;
-                if *colour {
-                    write!(f, " (colours are stored × 255, in channel units)")?;
-                }
-                Ok(())
+            K::DoesNotFit { value, format } => {
+                write!(f, "`{value}` does not fit in the {format} number format")
             }
             K::OutOfDomain { attribute, rule } => write!(f, "`{attribute}` must be {rule}"),
             K::DuplicateName { entity, name } => write!(f, "{entity} `{name}` is defined twice"),
@@ -287,6 +277,123 @@ fn is_name(s: &str) -> bool {
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
+/// The entity kinds of the scene format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Entity {
+    Camera,
+    Material,
+    Light,
+    Spotlight,
+    Plane,
+    Sphere,
+    TiledPlane,
+    FPlane,
+}
+
+impl Entity {
+    const ALL: [Self; 8] = [
+        Self::Camera,
+        Self::Material,
+        Self::Light,
+        Self::Spotlight,
+        Self::Plane,
+        Self::Sphere,
+        Self::TiledPlane,
+        Self::FPlane,
+    ];
+
+    fn keyword(self) -> &'static str {
+        match self {
+            Self::Camera => "camera",
+            Self::Material => "material",
+            Self::Light => "light",
+            Self::Spotlight => "spotlight",
+            Self::Plane => "plane",
+            Self::Sphere => "sphere",
+            Self::TiledPlane => "tiled_plane",
+            Self::FPlane => "fplane",
+        }
+    }
+
+    /// The attributes, as `scene-format.md` lists them.
+    fn attributes(self) -> &'static [AttrSpec] {
+        match self {
+            Self::Camera => {
+                const {
+                    &[
+                        numbers("pixeldim", 2),
+                        numbers("worlddim", 2),
+                        numbers("viewpoint", 3),
+                    ]
+                }
+            }
+            Self::Material => {
+                const {
+                    &[
+                        optional("ambient", 3),
+                        optional("diffuse", 3),
+                        optional("specular", 1),
+                        optional("shininess", 1),
+                        optional("reflective", 1),
+                    ]
+                }
+            }
+            Self::Light => const { &[numbers("location", 3), numbers("emissivity", 3)] },
+            Self::Spotlight => {
+                const {
+                    &[
+                        numbers("location", 3),
+                        numbers("emissivity", 3),
+                        numbers("point", 3),
+                        numbers("theta", 1),
+                    ]
+                }
+            }
+            Self::Plane => {
+                const {
+                    &[
+                        material("material"),
+                        numbers("normal", 3),
+                        numbers("point", 3),
+                    ]
+                }
+            }
+            Self::Sphere => {
+                const {
+                    &[
+                        material("material"),
+                        numbers("center", 3),
+                        numbers("radius", 1),
+                    ]
+                }
+            }
+            Self::TiledPlane => {
+                const {
+                    &[
+                        material("material"),
+                        material("altmaterial"),
+                        numbers("normal", 3),
+                        numbers("point", 3),
+                        numbers("xdir", 3),
+                        numbers("dimension", 2),
+                    ]
+                }
+            }
+            Self::FPlane => {
+                const {
+                    &[
+                        material("material"),
+                        numbers("normal", 3),
+                        numbers("point", 3),
+                        numbers("xdir", 3),
+                        numbers("dimensions", 2),
+                    ]
+                }
+            }
+        }
+    }
+}
+
 /// How an attribute's value is written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Arity {
@@ -302,7 +409,7 @@ struct AttrSpec {
     required: bool,
 }
 
-const fn attr(name: &'static str, n: usize) -> AttrSpec {
+const fn numbers(name: &'static str, n: usize) -> AttrSpec {
     AttrSpec {
         name,
         arity: Arity::Numbers(n),
@@ -327,139 +434,89 @@ const fn material(name: &'static str) -> AttrSpec {
 /// The most attributes any entity has.
 const MAX_ATTRS: usize = 6;
 
-/// The entity kinds and their attributes, as `scene-format.md` lists them.
-const ENTITIES: [(&str, &[AttrSpec]); 8] = [
-    (
-        "camera",
-        &[
-            attr("pixeldim", 2),
-            attr("worlddim", 2),
-            attr("viewpoint", 3),
-        ],
-    ),
-    (
-        "material",
-        &[
-            optional("ambient", 3),
-            optional("diffuse", 3),
-            optional("specular", 1),
-            optional("shininess", 1),
-            optional("reflective", 1),
-        ],
-    ),
-    ("light", &[attr("location", 3), attr("emissivity", 3)]),
-    (
-        "spotlight",
-        &[
-            attr("location", 3),
-            attr("emissivity", 3),
-            attr("point", 3),
-            attr("theta", 1),
-        ],
-    ),
-    (
-        "plane",
-        &[material("material"), attr("normal", 3), attr("point", 3)],
-    ),
-    (
-        "sphere",
-        &[material("material"), attr("center", 3), attr("radius", 1)],
-    ),
-    (
-        "tiled_plane",
-        &[
-            material("material"),
-            material("altmaterial"),
-            attr("normal", 3),
-            attr("point", 3),
-            attr("xdir", 3),
-            attr("dimension", 2),
-        ],
-    ),
-    (
-        "fplane",
-        &[
-            material("material"),
-            attr("normal", 3),
-            attr("point", 3),
-            attr("xdir", 3),
-            attr("dimensions", 2),
-        ],
-    ),
-];
-
-/// One attribute's value as written: up to three numbers or a name, with positions.
+/// A number as written, where it was written.
 #[derive(Debug, Clone, Copy, Default)]
-struct Value<'a> {
-    name_pos: Pos,
-    nums: [Decimal; 3],
-    pos: [Pos; 3],
-    /// The numbers as written, for messages.
-    texts: [&'a str; 3],
-    name: &'a str,
+struct Number<'a> {
+    value: Decimal,
+    pos: Pos,
+    text: &'a str,
 }
 
-/// A parsed block: its keyword, name and attribute values (indexed like its specs).
+/// One attribute's value: up to three numbers or a material name.
+#[derive(Debug, Clone, Copy, Default)]
+struct Value<'a> {
+    /// Where the attribute's keyword is.
+    pos: Pos,
+    nums: [Number<'a>; 3],
+    name: Option<Token<'a>>,
+}
+
+/// A parsed block: its entity, name and attribute values (indexed like its attributes).
 struct Block<'a> {
-    entity: &'static str,
+    entity: Entity,
     pos: Pos,
     name: Token<'a>,
     values: [Option<Value<'a>>; MAX_ATTRS],
 }
 
 impl<'a> Block<'a> {
-    fn specs(&self) -> &'static [AttrSpec] {
-        ENTITIES
-            .iter()
-            .find(|(e, _)| *e == self.entity)
-            .map_or(&[], |(_, s)| *s)
-    }
-
     /// The value of an attribute; `None` when it is optional and absent.
     fn get(&self, attribute: &'static str) -> Option<&Value<'a>> {
-        let i = self.specs().iter().position(|s| s.name == attribute)?;
+        let i = self
+            .entity
+            .attributes()
+            .iter()
+            .position(|s| s.name == attribute)?;
         self.values.get(i)?.as_ref()
+    }
+
+    /// The value of a required attribute (its presence was checked when the block was
+    /// read; the error covers a mismatch between the tables and the code).
+    fn required(&self, attribute: &'static str) -> Result<&Value<'a>> {
+        self.get(attribute).ok_or_else(|| {
+            self.pos.error(SceneErrorKind::MissingAttribute {
+                entity: self.entity.keyword(),
+                attribute,
+            })
+        })
+    }
+
+    fn error(&self, kind: SceneErrorKind) -> SceneError {
+        self.pos.error(kind)
     }
 }
 
 /// Builds a scene from the parsed pieces.
 struct Parser<'a, S> {
     lexer: Lexer<'a>,
-    /// Position of the last token read (for end-of-input errors).
-    last: Pos,
     camera: Option<Camera<S>>,
-    scene_background: Option<Color<S>>,
-    scene_epsilon: Option<S>,
-    materials: Vec<Material<S>, MAX_MATERIALS>,
+    background: Option<Color<S>>,
+    epsilon: Option<S>,
+    /// The scene under construction (its camera is a placeholder until the end).
+    scene: Scene<S>,
     material_names: Vec<&'a str, MAX_MATERIALS>,
-    /// Names of every other entity, with their keyword, for the uniqueness rule.
-    names: Vec<(&'static str, &'a str), { MAX_LIGHTS + MAX_OBJECTS + 1 }>,
-    lights: Vec<Light<S>, MAX_LIGHTS>,
-    objects: Vec<crate::Object<S>, MAX_OBJECTS>,
+    /// Names of every entity but materials, with their kind, for the uniqueness rule.
+    names: Vec<(Entity, &'a str), { MAX_LIGHTS + MAX_OBJECTS + 1 }>,
 }
 
 type Result<T> = core::result::Result<T, SceneError>;
 
 impl<'a, S: Scalar> Parser<'a, S> {
-    fn next(&mut self) -> Option<Token<'a>> {
-        let t = self.lexer.next_token()?;
-        self.last = t.pos;
-        Some(t)
-    }
-
     fn expect(&mut self, what: &'static str) -> Result<Token<'a>> {
-        self.next()
-            .ok_or_else(|| self.end_pos().error(SceneErrorKind::UnexpectedEnd(what)))
+        let end = self.lexer.pos;
+        self.lexer
+            .next_token()
+            .ok_or_else(|| end.error(SceneErrorKind::UnexpectedEnd(what)))
     }
 
-    fn end_pos(&self) -> Pos {
-        self.lexer.pos
-    }
-
-    fn number(&mut self) -> Result<(Decimal, Token<'a>)> {
+    fn number(&mut self) -> Result<Number<'a>> {
         let t = self.expect("a number")?;
         match Decimal::parse(t.text) {
-            Some(d) => Ok((d, t)),
+            Some(value) => Ok(Number {
+                value,
+                pos: t.pos,
+                text: t.text,
+            }),
             None => Err(t.pos.error(SceneErrorKind::ExpectedNumber(quote(t.text)))),
         }
     }
@@ -473,12 +530,8 @@ impl<'a, S: Scalar> Parser<'a, S> {
         }
     }
 
-    fn block(
-        &mut self,
-        entity: &'static str,
-        specs: &'static [AttrSpec],
-        pos: Pos,
-    ) -> Result<Block<'a>> {
+    fn block(&mut self, entity: Entity, pos: Pos) -> Result<Block<'a>> {
+        let specs = entity.attributes();
         let name = self.name()?;
         let open = self.expect("`{`")?;
         if open.text != "{" {
@@ -494,7 +547,7 @@ impl<'a, S: Scalar> Parser<'a, S> {
             }
             let Some(i) = specs.iter().position(|s| s.name == t.text) else {
                 return Err(t.pos.error(SceneErrorKind::UnknownAttribute {
-                    entity,
+                    entity: entity.keyword(),
                     found: quote(t.text),
                 }));
             };
@@ -504,19 +557,14 @@ impl<'a, S: Scalar> Parser<'a, S> {
                     .error(SceneErrorKind::DuplicateAttribute(specs[i].name)));
             }
             let mut v = Value {
-                name_pos: t.pos,
+                pos: t.pos,
                 ..Value::default()
             };
             match specs[i].arity {
-                Arity::Name => {
-                    let n = self.name()?;
-                    v.name = n.text;
-                    v.pos[0] = n.pos;
-                }
+                Arity::Name => v.name = Some(self.name()?),
                 Arity::Numbers(n) => {
-                    for k in 0..n {
-                        let (x, t) = self.number()?;
-                        (v.nums[k], v.pos[k], v.texts[k]) = (x, t.pos, t.text);
+                    for slot in v.nums.iter_mut().take(n) {
+                        *slot = self.number()?;
                     }
                 }
             }
@@ -525,7 +573,7 @@ impl<'a, S: Scalar> Parser<'a, S> {
         for (spec, value) in specs.iter().zip(values.iter()) {
             if spec.required && value.is_none() {
                 return Err(pos.error(SceneErrorKind::MissingAttribute {
-                    entity,
+                    entity: entity.keyword(),
                     attribute: spec.name,
                 }));
             }
@@ -540,102 +588,91 @@ impl<'a, S: Scalar> Parser<'a, S> {
 
     /// Registers a name for the uniqueness rule (materials have their own list).
     fn register(&mut self, block: &Block<'a>) -> Result<()> {
-        let dup = self
+        let name = block.name.text;
+        if self
             .names
             .iter()
-            .any(|(e, n)| *e == block.entity && *n == block.name.text);
-        if dup {
+            .any(|&(e, n)| e == block.entity && n == name)
+        {
             return Err(block.name.pos.error(SceneErrorKind::DuplicateName {
-                entity: block.entity,
-                name: quote(block.name.text),
+                entity: block.entity.keyword(),
+                name: quote(name),
             }));
         }
-        // Capacity: every entity is stored or refused before this list could fill.
-        self.names
-            .push((block.entity, block.name.text))
-            .map_err(|_| {
-                block.pos.error(SceneErrorKind::TooMany {
-                    what: "named entities",
-                    capacity: MAX_LIGHTS + MAX_OBJECTS + 1,
-                })
+        // Every light and object is stored or refused by its own capacity before this
+        // list could fill; the error is the same either way.
+        self.names.push((block.entity, name)).map_err(|_| {
+            block.error(SceneErrorKind::TooMany {
+                what: "named entities",
+                capacity: MAX_LIGHTS + MAX_OBJECTS + 1,
             })
+        })
     }
 
     fn material_index(&self, block: &Block<'a>, attribute: &'static str) -> Result<u8> {
-        let Some(v) = block.get(attribute) else {
-            return Err(block.pos.error(SceneErrorKind::MissingAttribute {
-                entity: block.entity,
-                attribute,
-            }));
-        };
+        let name = block
+            .required(attribute)?
+            .name
+            .ok_or_else(|| block.error(SceneErrorKind::ExpectedName(quote(attribute))))?;
         self.material_names
             .iter()
-            .position(|n| *n == v.name)
+            .position(|n| *n == name.text)
             .and_then(|i| u8::try_from(i).ok())
-            .ok_or_else(|| v.pos[0].error(SceneErrorKind::UnknownMaterial(quote(v.name))))
+            .ok_or_else(|| {
+                name.pos
+                    .error(SceneErrorKind::UnknownMaterial(quote(name.text)))
+            })
     }
 
     fn parse(mut self) -> Result<Scene<S>> {
-        while let Some(t) = self.next() {
+        while let Some(t) = self.lexer.next_token() {
             match t.text {
                 "background" => {
-                    let c = self.color_values(t.pos, "background")?;
-                    if self.scene_background.replace(c).is_some() {
+                    let mut nums = [Number::default(); 3];
+                    for n in &mut nums {
+                        *n = self.number()?;
+                    }
+                    let c = channel_colour(&nums, "background")?;
+                    if self.background.replace(c).is_some() {
                         return Err(t.pos.error(SceneErrorKind::Duplicate("background")));
                     }
                 }
                 "precision" => {
-                    let (v, token) = self.number()?;
-                    let eps = precision::<S>(v, token)?;
-                    if self.scene_epsilon.replace(eps).is_some() {
+                    let eps = precision::<S>(&self.number()?)?;
+                    if self.epsilon.replace(eps).is_some() {
                         return Err(t.pos.error(SceneErrorKind::Duplicate("precision")));
                     }
                 }
                 _ => {
-                    let Some((entity, specs)) = ENTITIES.iter().find(|(e, _)| *e == t.text) else {
+                    let Some(entity) = Entity::ALL.into_iter().find(|e| e.keyword() == t.text)
+                    else {
                         return Err(t.pos.error(SceneErrorKind::UnknownKeyword(quote(t.text))));
                     };
-                    let block = self.block(entity, specs, t.pos)?;
+                    let block = self.block(entity, t.pos)?;
                     self.entity(&block)?;
                 }
             }
         }
         let camera = self
             .camera
-            .ok_or_else(|| self.end_pos().error(SceneErrorKind::MissingCamera))?;
-        Ok(Scene {
-            camera,
-            materials: self.materials,
-            lights: self.lights,
-            objects: self.objects,
-            background: self.scene_background.unwrap_or([S::ZERO; 3]),
-            epsilon: self.scene_epsilon.unwrap_or(S::DEFAULT_EPSILON),
-        })
-    }
-
-    /// Reads three colour numbers after a bare keyword (`background R G B`).
-    fn color_values(&mut self, pos: Pos, attribute: &'static str) -> Result<Color<S>> {
-        let mut v = Value {
-            name_pos: pos,
-            ..Value::default()
-        };
-        for k in 0..3 {
-            let (x, t) = self.number()?;
-            (v.nums[k], v.pos[k], v.texts[k]) = (x, t.pos, t.text);
-        }
-        color(&v, attribute)
+            .ok_or_else(|| self.lexer.pos.error(SceneErrorKind::MissingCamera))?;
+        let mut scene = self.scene;
+        scene.camera = camera;
+        scene.background = self.background.unwrap_or([S::ZERO; 3]);
+        scene.epsilon = self.epsilon.unwrap_or(S::DEFAULT_EPSILON);
+        Ok(scene)
     }
 
     fn entity(&mut self, b: &Block<'a>) -> Result<()> {
-        let not_supported = |what| Err(b.pos.error(SceneErrorKind::NotSupported(what)));
+        let not_supported = |what| Err(b.error(SceneErrorKind::NotSupported(what)));
         match b.entity {
-            "camera" => {
+            Entity::Camera => {
                 if self.camera.is_some() {
-                    return Err(b.pos.error(SceneErrorKind::Duplicate("camera")));
+                    return Err(b.error(SceneErrorKind::Duplicate("camera")));
                 }
                 self.camera = Some(camera(b)?);
             }
-            "material" => {
+            Entity::Material => {
                 if self.material_names.contains(&b.name.text) {
                     return Err(b.name.pos.error(SceneErrorKind::DuplicateName {
                         entity: "material",
@@ -643,128 +680,115 @@ impl<'a, S: Scalar> Parser<'a, S> {
                     }));
                 }
                 let full = || {
-                    b.pos.error(SceneErrorKind::TooMany {
+                    b.error(SceneErrorKind::TooMany {
                         what: "materials",
                         capacity: MAX_MATERIALS,
                     })
                 };
                 // Both lists have the same capacity and length: check once, push both.
-                if self.materials.is_full() {
+                if self.scene.materials.is_full() {
                     return Err(full());
                 }
-                self.materials.push(material_of(b)?).map_err(|_| full())?;
+                self.scene
+                    .materials
+                    .push(material_of(b)?)
+                    .map_err(|_| full())?;
                 self.material_names.push(b.name.text).map_err(|_| full())?;
             }
-            "light" => {
+            Entity::Light => {
                 self.register(b)?;
                 let light = Light {
-                    location: vector(required(b, "location")?)?,
-                    emissivity: non_negative3(required(b, "emissivity")?, "emissivity", 1)?,
+                    location: vector(b.required("location")?)?,
+                    emissivity: non_negative3(b.required("emissivity")?, "emissivity")?,
                 };
-                self.lights.push(light).map_err(|_| {
-                    b.pos.error(SceneErrorKind::TooMany {
+                self.scene.lights.push(light).map_err(|_| {
+                    b.error(SceneErrorKind::TooMany {
                         what: "lights",
                         capacity: MAX_LIGHTS,
                     })
                 })?;
             }
-            "plane" => {
+            Entity::Plane => {
                 self.register(b)?;
                 let material = self.material_index(b, "material")?;
-                let normal = required(b, "normal")?;
-                let plane = Plane::new(vector(normal)?, vector(required(b, "point")?)?).map_err(
+                let normal = b.required("normal")?;
+                let plane = Plane::new(vector(normal)?, vector(b.required("point")?)?).map_err(
                     |e| match e {
-                        PlaneError::ZeroNormal => normal.name_pos.error(SceneErrorKind::ZeroNormal),
+                        PlaneError::ZeroNormal => normal.pos.error(SceneErrorKind::ZeroNormal),
                         PlaneError::OffsetOutOfRange => {
-                            b.pos.error(SceneErrorKind::DerivedDoesNotFit {
+                            b.error(SceneErrorKind::DerivedDoesNotFit {
                                 what: "the plane's offset N·point",
                                 format: S::NAME,
                             })
                         }
                     },
                 )?;
-                self.objects
-                    .push(crate::Object {
-                        shape: crate::Shape::Plane(plane),
-                        material,
+                self.scene.push_plane(plane, material).map_err(|_| {
+                    b.error(SceneErrorKind::TooMany {
+                        what: "objects",
+                        capacity: MAX_OBJECTS,
                     })
-                    .map_err(|_| {
-                        b.pos.error(SceneErrorKind::TooMany {
-                            what: "objects",
-                            capacity: MAX_OBJECTS,
-                        })
-                    })?;
+                })?;
             }
             // The entities below are checked completely, then refused: the renderer
             // does not draw them yet.
-            "spotlight" => {
+            Entity::Spotlight => {
                 self.register(b)?;
-                vector::<S>(required(b, "location")?)?;
-                non_negative3::<S>(required(b, "emissivity")?, "emissivity", 1)?;
-                vector::<S>(required(b, "point")?)?;
-                let theta = required(b, "theta")?;
+                vector::<S>(b.required("location")?)?;
+                non_negative3::<S>(b.required("emissivity")?, "emissivity")?;
+                vector::<S>(b.required("point")?)?;
+                let theta = &b.required("theta")?.nums[0];
                 let ok = |d: &Decimal| positive_value(d) && d.cmp_int(90) != Ordering::Greater;
-                in_domain(theta, 0, ok, "theta", "in (0, 90]")?;
+                in_domain(theta, ok, "theta", "in (0, 90]")?;
                 return not_supported("spotlight is");
             }
-            "sphere" => {
+            Entity::Sphere => {
                 self.register(b)?;
                 self.material_index(b, "material")?;
-                vector::<S>(required(b, "center")?)?;
-                positive::<S>(required(b, "radius")?, 0, "radius")?;
+                vector::<S>(b.required("center")?)?;
+                positive::<S>(&b.required("radius")?.nums[0], "radius")?;
                 return not_supported("sphere is");
             }
-            "tiled_plane" | "fplane" => {
+            Entity::TiledPlane | Entity::FPlane => {
                 self.register(b)?;
                 self.material_index(b, "material")?;
-                let (dims, what) = if b.entity == "fplane" {
+                let (dims, what) = if b.entity == Entity::FPlane {
                     ("dimensions", "fplane is")
                 } else {
                     self.material_index(b, "altmaterial")?;
                     ("dimension", "tiled_plane is")
                 };
-                let normal = required(b, "normal")?;
+                let normal = b.required("normal")?;
                 if vector::<S>(normal)?.unit().is_none() {
-                    return Err(normal.name_pos.error(SceneErrorKind::ZeroNormal));
+                    return Err(normal.pos.error(SceneErrorKind::ZeroNormal));
                 }
-                vector::<S>(required(b, "point")?)?;
-                vector::<S>(required(b, "xdir")?)?;
-                let d = required(b, dims)?;
-                positive::<S>(d, 0, dims)?;
-                positive::<S>(d, 1, dims)?;
+                vector::<S>(b.required("point")?)?;
+                vector::<S>(b.required("xdir")?)?;
+                let d = b.required(dims)?;
+                positive::<S>(&d.nums[0], dims)?;
+                positive::<S>(&d.nums[1], dims)?;
                 return not_supported(what);
             }
-            _ => {}
         }
         Ok(())
     }
 }
 
-fn required<'v, 'a>(b: &'v Block<'a>, attribute: &'static str) -> Result<&'v Value<'a>> {
-    b.get(attribute).ok_or_else(|| {
-        b.pos.error(SceneErrorKind::MissingAttribute {
-            entity: b.entity,
-            attribute,
-        })
-    })
-}
-
-/// Converts one number of a value into the format.
-fn convert<S: Scalar>(v: &Value<'_>, k: usize, scale: u64) -> Result<S> {
-    S::from_decimal(v.nums[k].times(scale)).ok_or_else(|| {
-        v.pos[k].error(SceneErrorKind::DoesNotFit {
-            value: quote(v.texts[k]),
+/// Converts a number into the format, times `scale` (exact, in decimal).
+fn convert<S: Scalar>(n: &Number<'_>, scale: u64) -> Result<S> {
+    S::from_decimal(n.value.times(scale)).ok_or_else(|| {
+        n.pos.error(SceneErrorKind::DoesNotFit {
+            value: quote(n.text),
             format: S::NAME,
-            colour: scale != 1,
         })
     })
 }
 
 fn vector<S: Scalar>(v: &Value<'_>) -> Result<Vec3<S>> {
     Ok(Vec3::new(
-        convert(v, 0, 1)?,
-        convert(v, 1, 1)?,
-        convert(v, 2, 1)?,
+        convert(&v.nums[0], 1)?,
+        convert(&v.nums[1], 1)?,
+        convert(&v.nums[2], 1)?,
     ))
 }
 
@@ -779,109 +803,111 @@ fn non_negative_value(d: &Decimal) -> bool {
 }
 
 fn in_domain(
-    v: &Value<'_>,
-    k: usize,
+    n: &Number<'_>,
     ok: impl Fn(&Decimal) -> bool,
     attribute: &'static str,
     rule: &'static str,
 ) -> Result<()> {
-    if ok(&v.nums[k]) {
+    if ok(&n.value) {
         Ok(())
     } else {
-        Err(v.pos[k].error(SceneErrorKind::OutOfDomain { attribute, rule }))
+        Err(n.pos.error(SceneErrorKind::OutOfDomain { attribute, rule }))
     }
 }
 
 /// A number that must be > 0 and stay > 0 in the format.
-fn positive<S: Scalar>(v: &Value<'_>, k: usize, attribute: &'static str) -> Result<S> {
-    in_domain(v, k, positive_value, attribute, "> 0")?;
-    let x = convert::<S>(v, k, 1)?;
+fn positive<S: Scalar>(n: &Number<'_>, attribute: &'static str) -> Result<S> {
+    in_domain(n, positive_value, attribute, "> 0")?;
+    let x = convert::<S>(n, 1)?;
     if x > S::ZERO {
         Ok(x)
     } else {
-        Err(v.pos[k].error(SceneErrorKind::OutOfDomain {
+        Err(n.pos.error(SceneErrorKind::OutOfDomain {
             attribute,
             rule: "> 0 (it rounds to 0 in this number format)",
         }))
     }
 }
 
-/// Three reals ≥ 0, multiplied by `scale` (255 for colours in channel units).
-fn non_negative3<S: Scalar>(
-    v: &Value<'_>,
-    attribute: &'static str,
-    scale: u64,
-) -> Result<Color<S>> {
+/// Three reals ≥ 0.
+fn non_negative3<S: Scalar>(v: &Value<'_>, attribute: &'static str) -> Result<[S; 3]> {
     let mut c = [S::ZERO; 3];
-    for (k, ck) in c.iter_mut().enumerate() {
-        in_domain(v, k, non_negative_value, attribute, ">= 0")?;
-        *ck = convert(v, k, scale)?;
+    for (ck, n) in c.iter_mut().zip(&v.nums) {
+        in_domain(n, non_negative_value, attribute, ">= 0")?;
+        *ck = convert(n, 1)?;
     }
     Ok(c)
 }
 
-/// A colour in channel units.
-fn color<S: Scalar>(v: &Value<'_>, attribute: &'static str) -> Result<Color<S>> {
-    non_negative3(v, attribute, 255)
+/// A displayed colour (ambient, background) in channel units: 255 × the value, computed
+/// exactly in decimal. The value itself must fit the format; if 255 × it does not, it
+/// saturates at the format's maximum, which displays as 255 exactly like the value would.
+fn channel_colour<S: Scalar>(nums: &[Number<'_>; 3], attribute: &'static str) -> Result<Color<S>> {
+    let mut c = [S::ZERO; 3];
+    for (ck, n) in c.iter_mut().zip(nums) {
+        in_domain(n, non_negative_value, attribute, ">= 0")?;
+        convert::<S>(n, 1)?;
+        *ck = convert(n, 255).unwrap_or(S::MAX);
+    }
+    Ok(c)
 }
 
 fn camera<S: Scalar>(b: &Block<'_>) -> Result<Camera<S>> {
-    let pixeldim = required(b, "pixeldim")?;
+    let pixeldim = b.required("pixeldim")?;
     let mut dims = [0u16; 2];
-    for (k, d) in dims.iter_mut().enumerate() {
-        let value = pixeldim.nums[k]
+    for (d, n) in dims.iter_mut().zip(&pixeldim.nums) {
+        *d = n
+            .value
             .to_integer()
             .and_then(|i| u16::try_from(i).ok())
-            .filter(|i| (1..=MAX_PIXELDIM).contains(i));
-        let Some(value) = value else {
-            return Err(pixeldim.pos[k].error(SceneErrorKind::OutOfDomain {
-                attribute: "pixeldim",
-                rule: "integers in 1..=4096",
-            }));
-        };
-        *d = value;
+            .filter(|i| (1..=MAX_PIXELDIM).contains(i))
+            .ok_or_else(|| {
+                n.pos.error(SceneErrorKind::OutOfDomain {
+                    attribute: "pixeldim",
+                    rule: "integers in 1..=4096",
+                })
+            })?;
     }
-    let worlddim = required(b, "worlddim")?;
-    let viewpoint = required(b, "viewpoint")?;
+    let worlddim = b.required("worlddim")?;
+    let viewpoint = b.required("viewpoint")?;
     let eye = vector::<S>(viewpoint)?;
-    in_domain(viewpoint, 2, positive_value, "viewpoint", "at z > 0")?;
+    in_domain(&viewpoint.nums[2], positive_value, "viewpoint", "at z > 0")?;
     Ok(Camera {
         width: dims[0],
         height: dims[1],
-        world_width: positive(worlddim, 0, "worlddim")?,
-        world_height: positive(worlddim, 1, "worlddim")?,
-        viewpoint: Vec3::new(eye.x, eye.y, positive(viewpoint, 2, "viewpoint")?),
+        world_width: positive(&worlddim.nums[0], "worlddim")?,
+        world_height: positive(&worlddim.nums[1], "worlddim")?,
+        viewpoint: Vec3::new(eye.x, eye.y, positive(&viewpoint.nums[2], "viewpoint")?),
     })
 }
 
 fn material_of<S: Scalar>(b: &Block<'_>) -> Result<Material<S>> {
     let zero = [S::ZERO; 3];
-    let ambient = b.get("ambient").map(|v| color(v, "ambient")).transpose()?;
-    let diffuse = b.get("diffuse").map(|v| color(v, "diffuse")).transpose()?;
+    let ambient = b
+        .get("ambient")
+        .map(|v| channel_colour(&v.nums, "ambient"))
+        .transpose()?;
+    let diffuse = b
+        .get("diffuse")
+        .map(|v| non_negative3(v, "diffuse"))
+        .transpose()?;
     if let Some(v) = b.get("specular") {
-        in_domain(v, 0, non_negative_value, "specular", ">= 0")?;
-        if !v.nums[0].is_zero() {
-            return Err(v
-                .name_pos
-                .error(SceneErrorKind::NotSupported("specular is")));
+        in_domain(&v.nums[0], non_negative_value, "specular", ">= 0")?;
+        if !v.nums[0].value.is_zero() {
+            return Err(v.pos.error(SceneErrorKind::NotSupported("specular is")));
         }
     }
     if let Some(v) = b.get("shininess") {
         // Shininess only shapes a specular glint; without specular it changes nothing.
         let ok = |d: &Decimal| d.cmp_int(1) != Ordering::Less;
-        in_domain(v, 0, ok, "shininess", ">= 1")?;
+        in_domain(&v.nums[0], ok, "shininess", ">= 1")?;
     }
     if let Some(v) = b.get("reflective") {
-        in_domain(
-            v,
-            0,
-            |d| non_negative_value(d) && d.cmp_int(1) != Ordering::Greater,
-            "reflective",
-            "in [0, 1]",
-        )?;
-        if !v.nums[0].is_zero() {
+        let ok = |d: &Decimal| non_negative_value(d) && d.cmp_int(1) != Ordering::Greater;
+        in_domain(&v.nums[0], ok, "reflective", "in [0, 1]")?;
+        if !v.nums[0].value.is_zero() {
             return Err(v
-                .name_pos
+                .pos
                 .error(SceneErrorKind::NotSupported("reflective material is")));
         }
     }
@@ -892,20 +918,13 @@ fn material_of<S: Scalar>(b: &Block<'_>) -> Result<Material<S>> {
 }
 
 /// The precision epsilon: a real > 0 that must stay > 0 in the format.
-fn precision<S: Scalar>(value: Decimal, token: Token<'_>) -> Result<S> {
-    let pos = token.pos;
-    let v = Value {
-        nums: [value; 3],
-        pos: [pos; 3],
-        texts: [token.text; 3],
-        ..Value::default()
-    };
-    in_domain(&v, 0, positive_value, "precision", "> 0")?;
-    let eps = convert::<S>(&v, 0, 1)?;
+fn precision<S: Scalar>(n: &Number<'_>) -> Result<S> {
+    in_domain(n, positive_value, "precision", "> 0")?;
+    let eps = convert::<S>(n, 1)?;
     if eps > S::ZERO {
         Ok(eps)
     } else {
-        Err(pos.error(SceneErrorKind::OutOfDomain {
+        Err(n.pos.error(SceneErrorKind::OutOfDomain {
             attribute: "precision",
             rule: "at least the number format's resolution (it rounds to 0)",
         }))
@@ -918,17 +937,21 @@ impl<S: Scalar> Scene<S> {
     /// # Errors
     /// A [`SceneError`] with the line and column of the first problem.
     pub fn parse(text: &str) -> core::result::Result<Self, SceneError> {
+        let placeholder = Camera {
+            width: 1,
+            height: 1,
+            world_width: S::ONE,
+            world_height: S::ONE,
+            viewpoint: Vec3::new(S::ZERO, S::ZERO, S::ONE),
+        };
         Parser {
             lexer: Lexer::new(text),
-            last: Pos::default(),
             camera: None,
-            scene_background: None,
-            scene_epsilon: None,
-            materials: Vec::new(),
+            background: None,
+            epsilon: None,
+            scene: Scene::new(placeholder),
             material_names: Vec::new(),
             names: Vec::new(),
-            lights: Vec::new(),
-            objects: Vec::new(),
         }
         .parse()
     }

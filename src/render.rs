@@ -54,7 +54,13 @@ fn add_sat<S: Scalar>(a: S, b: S) -> S {
     a.checked_add(b).unwrap_or(S::MAX)
 }
 
-/// The colour of a hit on `objects[index]`, lit by the scene's lights.
+/// The colour of a hit on `objects[index]`, lit by the scene's lights, in channel units.
+///
+/// Per light: `255 × diffuse × emissivity × cos / dist`, evaluated as
+/// `emissivity × cos` (≤ emissivity, cos ≤ 1), divided by the distance in its two
+/// overflow-free parts ([`crate::Normalized::divide`]), times the diffuse reflectance,
+/// times 255. A product that overflows is far above 255 and saturates; a light exactly at
+/// the hit point gives no direction and lights nothing there.
 pub fn shade<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, index: usize, hit: &Hit<S>) -> Color<S> {
     let Some(object): Option<&Object<S>> = scene.objects.get(index) else {
         return scene.background;
@@ -63,40 +69,40 @@ pub fn shade<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, index: usize, hit: &Hit<
         return [S::ZERO; 3];
     };
     let mut color = material.ambient;
-    if scene.lights.is_empty() {
+    if scene.lights.is_empty() || material.diffuse == [S::ZERO; 3] {
         return color;
     }
+    let channel_max = S::from_i32(255).unwrap_or(S::MAX);
     // The normal facing the incoming ray.
     let mut normal = object.shape.normal_at(hit.point);
     if normal.dot(ray.dir).is_some_and(|d| d > S::ZERO) {
         normal = Vec3::ZERO.diff(normal).unwrap_or(normal);
     }
     for light in &scene.lights {
-        let Some(to_light) = light.location.diff(hit.point) else {
+        let Some(to_light) = light.location.diff(hit.point).and_then(Vec3::normalize) else {
             continue;
         };
-        let (Some(dist), Some(dir)) = (to_light.length(), to_light.unit()) else {
-            continue;
-        };
-        let Some(cos) = normal.dot(dir).filter(|c| *c > S::ZERO) else {
+        let Some(cos) = normal.dot(to_light.unit).filter(|c| *c > S::ZERO) else {
             continue;
         };
         let shadow_ray = Ray {
             base: hit.point,
-            dir,
+            dir: to_light.unit,
             kind: RayKind::Secondary,
         };
+        // The distance itself may not fit (a far light): then nothing lies beyond it.
+        let dist = to_light.length().unwrap_or(S::MAX);
         if occludes(scene, &shadow_ray, dist, index) {
             continue;
         }
-        // cos / dist: a light on the surface (dist → 0) saturates to full intensity.
-        let falloff = cos.checked_div(dist).unwrap_or(S::MAX);
         for ((c, diffuse), emissivity) in
             color.iter_mut().zip(material.diffuse).zip(light.emissivity)
         {
-            let term = diffuse
-                .checked_mul(emissivity)
-                .and_then(|k| k.checked_mul(falloff))
+            let term = emissivity
+                .checked_mul(cos)
+                .and_then(|ec| to_light.divide(ec))
+                .and_then(|irradiance| irradiance.checked_mul(diffuse))
+                .and_then(|k| k.checked_mul(channel_max))
                 .unwrap_or(S::MAX);
             *c = add_sat(*c, term);
         }
@@ -117,18 +123,45 @@ pub fn to_rgb888<S: Scalar>(c: Color<S>) -> Rgb888 {
     Rgb888::new(channel(c[0]), channel(c[1]), channel(c[2]))
 }
 
-/// Traces one primary ray and returns its colour in channel units.
-pub fn trace<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Color<S> {
-    match nearest_hit(scene, ray) {
-        Some((i, hit)) => shade(scene, ray, i, &hit),
+/// What a primary ray found: the nearest hit (object index and hit) and the colour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Traced<S> {
+    /// The nearest accepted hit, or `None` for the background.
+    pub hit: Option<(usize, Hit<S>)>,
+    /// The colour in channel units.
+    pub color: Color<S>,
+}
+
+/// Traces one ray: its nearest hit and colour.
+pub fn trace<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Traced<S> {
+    let hit = nearest_hit(scene, ray);
+    let color = match &hit {
+        Some((i, h)) => shade(scene, ray, *i, h),
         None => scene.background,
+    };
+    Traced { hit, color }
+}
+
+/// Traces the primary ray of pixel (`column`, `row`), row 0 at the top. A ray that cannot
+/// be formed in the format (see [`crate::Camera::primary_ray`]) sees the background.
+pub fn trace_pixel<S: Scalar>(scene: &Scene<S>, column: u16, row: u16) -> Traced<S> {
+    trace_at(scene, column, scene.camera.screen_y(row))
+}
+
+/// Traces pixel `column` of the scanline whose screen y is `y` (computed once per row).
+fn trace_at<S: Scalar>(scene: &Scene<S>, column: u16, y: Option<S>) -> Traced<S> {
+    match y.and_then(|y| scene.camera.primary_ray_at(column, y)) {
+        Some(ray) => trace(scene, &ray),
+        None => Traced {
+            hit: None,
+            color: scene.background,
+        },
     }
 }
 
 /// The colour of pixel (`column`, `row`), row 0 at the top.
 pub fn pixel<S: Scalar>(scene: &Scene<S>, column: u16, row: u16) -> Rgb888 {
-    let ray = scene.camera.primary_ray(column, row);
-    to_rgb888(ray.map_or(scene.background, |r| trace(scene, &r)))
+    to_rgb888(trace_pixel(scene, column, row).color)
 }
 
 /// Iterates over the pixels of scanline `row`, tracing each one when it is asked for.
@@ -138,12 +171,7 @@ fn scanline<S: Scalar, C: From<Rgb888>>(
     columns: core::ops::Range<u16>,
 ) -> impl Iterator<Item = C> + '_ {
     let y = scene.camera.screen_y(row);
-    columns.map(move |column| {
-        let ray = y.and_then(|y| scene.camera.primary_ray_at(column, y));
-        C::from(to_rgb888(
-            ray.map_or(scene.background, |r| trace(scene, &r)),
-        ))
-    })
+    columns.map(move |column| C::from(to_rgb888(trace_at(scene, column, y).color)))
 }
 
 /// Renders scanline `row` into `line`: pixel `i` of `line` is column `i`. Columns beyond

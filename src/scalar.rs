@@ -29,12 +29,13 @@ pub use fixed::types::{I16F16, I20F12, I32F32};
 /// How many of a format's [`Scalar::DELTA`]s make its default precision epsilon.
 ///
 /// The epsilon guards the division by `N·d` in the plane test. `N` and `d` are unit vectors
-/// whose components each carry up to about one `DELTA` of rounding from normalisation, and
-/// the dot product adds half a `DELTA` more, so the computed `N·d` is off by at most about
-/// 4 `DELTA`s (see `docs` in [`crate::geometry`]). With `|N·d| >= 16 DELTA` the sign of `N·d`
-/// is always right and its relative error stays under 1/4, so a ray that passes the test
-/// is never sent to the wrong side of the plane. 16 is the smallest power of two with that
-/// 4× margin over the bound.
+/// whose components each carry up to 2 `DELTA`s of rounding from normalisation (measured
+/// in `vec3`'s tests), and the wide dot product adds half a `DELTA`, so the computed `N·d`
+/// is off by at most 2(‖N‖₁ + ‖d‖₁) + ½ ≤ 7.5 `DELTA`s (‖·‖₁ ≤ √3 for unit vectors; see
+/// [`crate::geometry`]). With `|N·d| >= 16 DELTA` the sign of `N·d` is always right, with a
+/// 2× margin, so a ray that passes the test is never sent to the wrong side of the plane;
+/// its relative error is then at most 7.5/16 ≈ 0.47, and falls as 1/|N·d| above that.
+/// 16 is the smallest power of two above twice the bound.
 pub const EPSILON_DELTAS: i32 = 16;
 
 /// A number format the ray caster can compute in.
@@ -89,8 +90,13 @@ pub trait Scalar: Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// 3 `DELTA`s for three narrow products. `None` when the sum does not fit.
     fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self>;
 
-    /// `self × num / den` with one rounding (a double-width intermediate for fixed formats),
-    /// `None` on overflow or when `den` is zero. Used for pixel → screen coordinates.
+    /// `c − a·b`, rounded once like [`Scalar::dot3`]: `None` only when the result does not
+    /// fit (`a·b` alone may exceed the range, as for `D' − N·b` with a far eye).
+    fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self>;
+
+    /// `self × num / den`, `None` on overflow or when `den` is zero. Fixed formats round
+    /// once (a double-width intermediate); floats round the product and the quotient.
+    /// Used for pixel → screen coordinates.
     fn mul_ratio(self, num: i32, den: i32) -> Option<Self>;
 
     /// Rounds to the nearest integer (ties away from zero); `None` when out of `i32` range.
@@ -179,6 +185,15 @@ macro_rules! impl_fixed {
                 <$t>::checked_from_num(sum.checked_add(half)?)
             }
             #[inline]
+            fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+                let diff = <$wide>::from_num(c)
+                    .checked_sub(a[0].wide_mul(b[0]))?
+                    .checked_sub(a[1].wide_mul(b[1]))?
+                    .checked_sub(a[2].wide_mul(b[2]))?;
+                let half = <$wide>::from_num(<$t>::DELTA) >> 1u32;
+                <$t>::checked_from_num(diff.checked_add(half)?)
+            }
+            #[inline]
             fn mul_ratio(self, num: i32, den: i32) -> Option<Self> {
                 if den == 0 {
                     return None;
@@ -237,23 +252,23 @@ macro_rules! impl_float {
             }
             #[inline]
             fn checked_add(self, rhs: Self) -> Option<Self> {
-                finite(self + rhs)
+                Some(self + rhs).filter(|v| v.is_finite())
             }
             #[inline]
             fn checked_sub(self, rhs: Self) -> Option<Self> {
-                finite(self - rhs)
+                Some(self - rhs).filter(|v| v.is_finite())
             }
             #[inline]
             fn checked_mul(self, rhs: Self) -> Option<Self> {
-                finite(self * rhs)
+                Some(self * rhs).filter(|v| v.is_finite())
             }
             #[inline]
             fn checked_div(self, rhs: Self) -> Option<Self> {
-                finite(self / rhs)
+                Some(self / rhs).filter(|v| v.is_finite())
             }
             #[inline]
             fn checked_sqrt(self) -> Option<Self> {
-                finite($sqrt(self))
+                Some($sqrt(self)).filter(|v| v.is_finite())
             }
             #[inline]
             fn abs(self) -> Self {
@@ -261,13 +276,17 @@ macro_rules! impl_float {
             }
             #[inline]
             fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
-                finite(a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
+                Some(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).filter(|v| v.is_finite())
+            }
+            #[inline]
+            fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+                Some(c - (a[0] * b[0] + a[1] * b[1] + a[2] * b[2])).filter(|v| v.is_finite())
             }
             #[inline]
             fn mul_ratio(self, num: i32, den: i32) -> Option<Self> {
                 let num = Self::from_i32(num)?;
                 let den = Self::from_i32(den)?;
-                finite(self * num / den)
+                Some(self * num / den).filter(|v| v.is_finite())
             }
             #[inline]
             fn round_to_i32(self) -> Option<i32> {
@@ -282,27 +301,6 @@ macro_rules! impl_float {
             }
         }
     };
-}
-
-/// `Some(v)` when `v` is finite; the floats' form of "did not overflow".
-#[inline]
-fn finite<T: FloatLike>(v: T) -> Option<T> {
-    v.is_finite_value().then_some(v)
-}
-
-/// The one float query [`finite`] needs, for both float widths.
-trait FloatLike: Copy {
-    fn is_finite_value(self) -> bool;
-}
-impl FloatLike for f32 {
-    fn is_finite_value(self) -> bool {
-        self.is_finite()
-    }
-}
-impl FloatLike for f64 {
-    fn is_finite_value(self) -> bool {
-        self.is_finite()
-    }
 }
 
 impl_float!(f32, "f32", libm::sqrtf, libm::roundf);

@@ -2,10 +2,13 @@
 //! number format `S`, with capacities fixed in the types (no allocator).
 //!
 //! Scenes are read from the course's keyword-block text format with [`Scene::parse`]; see
-//! [`crate::parse`] for the errors. Colours are stored in *channel units*: a scene colour
-//! `c` is kept as `255 c`, so that the pixel value is `round(clamp(colour, 0, 255))` and a
-//! decimal colour such as 0.7 (178.5 channel units) is exact in every fixed format instead
-//! of being rounded to a neighbouring pixel value.
+//! [`crate::parse`] for the errors. Displayed colours (ambient, background) are stored in
+//! *channel units*: a scene colour `c` is kept as `255 c`, computed exactly from the
+//! decimal text, so that the pixel value is `round(clamp(colour, 0, 255))` and a colour
+//! such as 0.7 (178.5 channel units) is exact in every fixed format instead of rounding to
+//! a neighbouring pixel value. A colour whose 255-fold does not fit the format (above
+//! 128.5 in I16F16) is stored as the format's maximum, which displays the same (255).
+//! Diffuse reflectances and emissivities stay plain reals.
 
 use heapless::Vec;
 
@@ -73,13 +76,14 @@ impl<S: Scalar> Camera<S> {
     }
 }
 
-/// A surface material. Colours are in channel units (see the module documentation).
+/// A surface material.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Material<S> {
-    /// Ambient colour.
+    /// Ambient colour, in channel units (see the module documentation).
     pub ambient: Color<S>,
-    /// Diffuse colour.
-    pub diffuse: Color<S>,
+    /// Diffuse reflectance per channel, a plain real as in the scene (it multiplies the
+    /// light's emissivity; the product is brought to channel units when shading).
+    pub diffuse: [S; 3],
 }
 
 /// A point light.

@@ -46,7 +46,8 @@ impl<S: Scalar> Vec3<S> {
         [self.x.to_f64(), self.y.to_f64(), self.z.to_f64()]
     }
 
-    fn to_array(self) -> [S; 3] {
+    /// The components as an array.
+    pub fn to_array(self) -> [S; 3] {
         [self.x, self.y, self.z]
     }
 
@@ -112,30 +113,65 @@ impl<S: Scalar> Vec3<S> {
         Some((w, m))
     }
 
+    /// The direction and the length of `self`, the length split as `scale × scaled_length`
+    /// (the largest absolute component times the length of `self / scale`, which lies in
+    /// [1, √3]) so that neither part overflows even when the length itself would.
+    /// `None` for the zero vector (or one too short for the format to give a direction).
+    ///
+    /// Unit components are clamped to [−1, 1], so multiplying anything by a component of
+    /// a unit vector can never overflow.
+    pub fn normalize(self) -> Option<Normalized<S>> {
+        let (w, scale) = self.scaled()?;
+        let scaled_length = w.dot(w)?.checked_sqrt()?;
+        let one = S::ONE;
+        let minus_one = one.checked_neg()?;
+        let clamp =
+            |c: S| -> Option<S> { Some(c.checked_div(scaled_length)?.min(one).max(minus_one)) };
+        Some(Normalized {
+            unit: Self::new(clamp(w.x)?, clamp(w.y)?, clamp(w.z)?),
+            scale,
+            scaled_length,
+        })
+    }
+
     /// The Euclidean length, `None` when it does not fit the format. The zero vector has
     /// length zero.
     pub fn length(self) -> Option<S> {
-        match self.scaled() {
+        match self.normalize() {
+            Some(n) => n.length(),
             None if self.max_abs() == S::ZERO => Some(S::ZERO),
             None => None,
-            Some((w, m)) => m.checked_mul(w.dot(w)?.checked_sqrt()?),
         }
     }
 
     /// The unit vector along `self`; `None` for the zero vector (or a vector too short
-    /// for the format to give a direction).
-    ///
-    /// Components are clamped to [−1, 1], so multiplying anything by a component of a
-    /// unit vector can never overflow.
+    /// for the format to give a direction). See [`Vec3::normalize`].
     pub fn unit(self) -> Option<Self> {
-        let (w, _) = self.scaled()?;
-        let len = w.dot(w)?.checked_sqrt()?;
-        let clamp = |c: S| -> Option<S> {
-            let one = S::ONE;
-            let minus_one = one.checked_neg()?;
-            Some(c.checked_div(len)?.min(one).max(minus_one))
-        };
-        Some(Self::new(clamp(w.x)?, clamp(w.y)?, clamp(w.z)?))
+        self.normalize().map(|n| n.unit)
+    }
+}
+
+/// A vector split into its direction and its length (see [`Vec3::normalize`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Normalized<S> {
+    /// The unit vector, components in [−1, 1].
+    pub unit: Vec3<S>,
+    /// The largest absolute component of the vector.
+    pub scale: S,
+    /// The length of `vector / scale`, in [1, √3].
+    pub scaled_length: S,
+}
+
+impl<S: Scalar> Normalized<S> {
+    /// The length, `scale × scaled_length`; `None` when it does not fit the format.
+    pub fn length(&self) -> Option<S> {
+        self.scale.checked_mul(self.scaled_length)
+    }
+
+    /// `k / length`, computed as `k / scale / scaled_length` so that a length beyond the
+    /// format's range still gives a (small) result. `None` when the quotient overflows.
+    pub fn divide(&self, k: S) -> Option<S> {
+        k.checked_div(self.scale)?.checked_div(self.scaled_length)
     }
 }
 

@@ -1,22 +1,36 @@
 //! The `render` example's command-line interface, as outside checks use it:
 //! `render [SCENE_FILE] [--format F] [--out FILE.png] [--compare FILE.png]`.
 //!
-//! `cargo test` builds the examples next to the test binaries; these tests run that build.
+//! The example is built once (with the test's own profile) before the first run, so that
+//! `cargo test --test cli` never runs a stale binary.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use std::sync::OnceLock;
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::SimulatorDisplay;
 use fixray::{I16F16, Scene, render_line};
 
-fn render_exe() -> PathBuf {
-    // target/<profile>/deps/cli-<hash> → target/<profile>/examples/render
-    let exe = std::env::current_exe().unwrap();
-    let dir = exe.parent().and_then(Path::parent).unwrap();
-    dir.join("examples")
-        .join(format!("render{}", std::env::consts::EXE_SUFFIX))
+fn render_exe() -> &'static Path {
+    static EXE: OnceLock<PathBuf> = OnceLock::new();
+    EXE.get_or_init(|| {
+        // target/<profile>/deps/cli-<hash> → target/<profile>/examples/render
+        let exe = std::env::current_exe().unwrap();
+        let dir = exe.parent().and_then(Path::parent).unwrap();
+        let mut build = Command::new(env!("CARGO"));
+        build.args(["build", "--quiet", "--example", "render"]);
+        if dir.file_name().is_some_and(|n| n == "release") {
+            build.arg("--release");
+        }
+        assert!(
+            build.status().unwrap().success(),
+            "building the render example"
+        );
+        dir.join("examples")
+            .join(format!("render{}", std::env::consts::EXE_SUFFIX))
+    })
 }
 
 fn run(args: &[&str]) -> Output {
@@ -96,10 +110,18 @@ fn without_a_format_every_format_is_reported() {
     assert!(out.status.success(), "{out:?}");
     let stdout = String::from_utf8(out.stdout).unwrap();
     for format in ["i16f16", "i20f12", "i32f32", "f32", "f64"] {
-        assert!(
-            stdout.lines().any(|l| l.starts_with(format)),
-            "{format} missing from:\n{stdout}"
-        );
+        // A row of figures: the name, then eight numeric columns (an error row would
+        // carry a message instead).
+        let row = stdout
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(format))
+            .unwrap_or_else(|| panic!("{format} missing from:\n{stdout}"));
+        let figures: Vec<&str> = row.split_whitespace().skip(1).collect();
+        assert_eq!(figures.len(), 7, "{row}");
+        for f in figures {
+            let f = f.trim_end_matches('%');
+            assert!(f == "inf" || f.parse::<f64>().is_ok(), "`{f}` in {row}");
+        }
     }
     assert!(png.exists());
 }

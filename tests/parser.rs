@@ -34,7 +34,9 @@ fn the_notes_scene_parses_with_every_feature_of_the_lexer() {
         background 0 0 0.5 precision 0.001";
     let s = Scene::<I16F16>::parse(text).unwrap();
     assert_eq!(s.camera.width, 8);
-    assert_eq!(s.materials[0].diffuse[0].to_f64(), 0.25 * 255.0);
+    // Diffuse reflectances are plain reals; displayed colours are in channel units.
+    assert_eq!(s.materials[0].diffuse[0].to_f64(), 0.25);
+    assert_eq!(s.materials[0].ambient[0].to_f64(), 0.1 * 255.0);
     assert_eq!(s.lights[0].location.y.to_f64(), 25.0);
     assert_eq!(s.background[2].to_f64(), 127.5);
     assert_eq!(s.epsilon, I16F16::from_f64(0.001).unwrap());
@@ -158,14 +160,17 @@ fn number_beyond_the_format() {
     // The same scene fits in I20F12 (±524288) and f32.
     assert!(Scene::<I20F12>::parse(&text).is_ok());
     assert!(Scene::<f32>::parse(&text).is_ok());
-    // Colours are checked in channel units (× 255): 200 → 51000 > 32768.
+    // A colour must fit the format itself ...
     check(
-        &format!("{CAMERA}background 200 0 0"),
+        &format!("{CAMERA}background 40000 0 0"),
         2,
         12,
-        "`200` does not fit in the i16f16 number format (colours are stored × 255, in channel \
-         units)",
+        "`40000` does not fit in the i16f16 number format",
     );
+    // ... but its 255-fold (channel units) may saturate: 200 × 255 = 51000 > 32768 is
+    // stored as I16F16::MAX, which displays as 255 exactly like 51000 would.
+    let s = Scene::<I16F16>::parse(&format!("{CAMERA}background 200 0 0")).unwrap();
+    assert_eq!(s.background[0], I16F16::MAX);
     // Beyond even f64.
     check(
         "precision 1e999",

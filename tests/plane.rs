@@ -72,6 +72,23 @@ fn parallel_within_epsilon<S: Scalar>() {
             assert_eq!(got, Err(Miss::Behind), "{}", S::NAME);
         }
     }
+    // |N·d| exactly equal to the epsilon is not below it: a hit. A non-unit direction makes
+    // N·d exactly −1/64 in every format.
+    let exact = Ray {
+        base: v(0.0, 0.0, 5.0),
+        dir: v(1.0, 0.0, -1.0 / 64.0),
+        kind: RayKind::Secondary,
+    };
+    assert_eq!(
+        plane.normal().dot(exact.dir),
+        Some(S::ZERO.checked_sub(eps).unwrap())
+    );
+    let t = plane.intersect(&exact, eps).unwrap().t.to_f64();
+    assert!(
+        (t - 12.0 * 64.0).abs() <= 64.0 * S::DELTA.to_f64(),
+        "{} t = {t}",
+        S::NAME
+    );
     // Exactly parallel: N·d = 0 is always a miss, even with a zero epsilon (no division
     // by zero, no panic).
     let flat = ray::<S>([0.0, 0.0, 5.0], [1.0, 0.0, 0.0], RayKind::Secondary);

@@ -220,3 +220,73 @@ fn render_line_leaves_pixels_outside_the_image_untouched() {
     render_line(&scene, 4, &mut line); // row 4 of a 4-row image
     assert_eq!(line, [Rgb888::RED; 4]);
 }
+
+/// The colour of the single pixel of a 1×1 scene, in every format.
+fn single_pixel_everywhere(text: &str) -> [Rgb888; 5] {
+    fn one<S: Scalar>(text: &str) -> Rgb888 {
+        let scene = Scene::<S>::parse(text).unwrap();
+        let mut line = [Rgb888::BLACK];
+        render_line(&scene, 0, &mut line);
+        line[0]
+    }
+    [
+        one::<I16F16>(text),
+        one::<I20F12>(text),
+        one::<I32F32>(text),
+        one::<f32>(text),
+        one::<f64>(text),
+    ]
+}
+
+#[test]
+fn diffuse_light_follows_the_formula() {
+    // A wall at z = −5 facing the eye; a light 4 units in front of the hit point, on its
+    // normal: cos = 1, dist = 4. diffuse 0.5 × emissivity 2 × 1 / 4 = 0.25 → 63.75 → 64.
+    let text = "camera c { pixeldim 1 1 worlddim 1 1 viewpoint 0.5 0.5 5 }
+        material m { diffuse 0.5 0.5 0.5 }
+        light l { location 0.5 0.5 -1 emissivity 2 2 2 }
+        plane wall { material m normal 0 0 1 point 0 0 -5 }";
+    assert_eq!(single_pixel_everywhere(text), [Rgb888::new(64, 64, 64); 5]);
+    // Ambient adds: 0.1 × 255 = 25.5, + 63.75 = 89.25 → 89.
+    let text = text.replace(
+        "diffuse 0.5 0.5 0.5",
+        "diffuse 0.5 0.5 0.5 ambient 0.1 0.1 0.1",
+    );
+    assert_eq!(single_pixel_everywhere(&text), [Rgb888::new(89, 89, 89); 5]);
+}
+
+#[test]
+fn a_strong_far_light_is_not_saturated_by_overflow() {
+    // Regression: emissivity × diffuse × 255 used to overflow I16F16 before the division
+    // by the distance and turn a dim pixel white. 200 × 1 × 1 / 1000 = 0.2 → 51.
+    let text = "camera c { pixeldim 1 1 worlddim 1 1 viewpoint 0.5 3 5 }
+        material m { diffuse 1 1 1 }
+        light l { location 0.5 999 -3 emissivity 200 200 200 }
+        plane p { material m normal 0 1 0 point 0 -1 0 }";
+    assert_eq!(single_pixel_everywhere(text), [Rgb888::new(51, 51, 51); 5]);
+}
+
+#[test]
+fn a_light_beyond_the_format_range_still_lights() {
+    // Regression: the distance to this light (≈ 42000) does not fit I16F16; the light was
+    // skipped. cos / dist is computed in two overflow-free divisions instead.
+    // Hit (0.5, −1, −3); light (0.5, 29999, 29997): dist = 30000·√2 ≈ 42426, cos = 1/√2.
+    // 30000 × 0.7071 / 42426 = 0.5 → 127.5: a tie, so only check it is lit, not dark.
+    let text = "camera c { pixeldim 1 1 worlddim 1 1 viewpoint 0.5 3 5 }
+        material m { diffuse 1 1 1 }
+        light l { location 0.5 29999 29997 emissivity 30000 30000 30000 }
+        plane p { material m normal 0 1 0 point 0 -1 0 }";
+    for c in single_pixel_everywhere(text) {
+        assert!((127..=128).contains(&c.r()), "{c:?}");
+    }
+}
+
+#[test]
+fn a_far_eye_does_not_lose_a_plane() {
+    // Regression: N·b ≈ 42426 overflowed I16F16 although t ≈ 30000 and the hit fit; the
+    // plane vanished. D' − N·b is computed in one wide step now.
+    let text = "camera c { pixeldim 1 1 worlddim 32000 32000 viewpoint 30000 30000 5000 }
+        material m { ambient 1 0 0 }
+        plane p { material m normal 1 1 0 point 10000 10000 0 }";
+    assert_eq!(single_pixel_everywhere(text), [Rgb888::RED; 5]);
+}
