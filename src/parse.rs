@@ -486,14 +486,15 @@ impl<'a> Block<'a> {
     }
 }
 
-/// Builds a scene from the parsed pieces.
-struct Parser<'a, S> {
+/// Builds a scene from the parsed pieces, in place (a scene can be kilobytes: on a chip
+/// every copy of it is stack).
+struct Parser<'a, 's, S> {
     lexer: Lexer<'a>,
     camera: Option<Camera<S>>,
     background: Option<Color<S>>,
     epsilon: Option<S>,
     /// The scene under construction (its camera is a placeholder until the end).
-    scene: Scene<S>,
+    scene: &'s mut Scene<S>,
     material_names: Vec<&'a str, MAX_MATERIALS>,
     /// Names of every entity but materials, with their kind, for the uniqueness rule.
     names: Vec<(Entity, &'a str), { MAX_LIGHTS + MAX_OBJECTS + 1 }>,
@@ -501,7 +502,7 @@ struct Parser<'a, S> {
 
 type Result<T> = core::result::Result<T, SceneError>;
 
-impl<'a, S: Scalar> Parser<'a, S> {
+impl<'a, S: Scalar> Parser<'a, '_, S> {
     fn expect(&mut self, what: &'static str) -> Result<Token<'a>> {
         let end = self.lexer.pos;
         self.lexer
@@ -624,7 +625,7 @@ impl<'a, S: Scalar> Parser<'a, S> {
             })
     }
 
-    fn parse(mut self) -> Result<Scene<S>> {
+    fn parse(mut self) -> Result<()> {
         while let Some(t) = self.lexer.next_token() {
             match t.text {
                 "background" => {
@@ -656,11 +657,10 @@ impl<'a, S: Scalar> Parser<'a, S> {
         let camera = self
             .camera
             .ok_or_else(|| self.lexer.pos.error(SceneErrorKind::MissingCamera))?;
-        let mut scene = self.scene;
-        scene.camera = camera;
-        scene.background = self.background.unwrap_or([S::ZERO; 3]);
-        scene.epsilon = self.epsilon.unwrap_or(S::DEFAULT_EPSILON);
-        Ok(scene)
+        self.scene.camera = camera;
+        self.scene.background = self.background.unwrap_or([S::ZERO; 3]);
+        self.scene.epsilon = self.epsilon.unwrap_or(S::DEFAULT_EPSILON);
+        Ok(())
     }
 
     fn entity(&mut self, b: &Block<'a>) -> Result<()> {
@@ -944,16 +944,18 @@ impl<S: Scalar> Scene<S> {
             world_height: S::ONE,
             viewpoint: Vec3::new(S::ZERO, S::ZERO, S::ONE),
         };
+        let mut scene = Scene::new(placeholder);
         Parser {
             lexer: Lexer::new(text),
             camera: None,
             background: None,
             epsilon: None,
-            scene: Scene::new(placeholder),
+            scene: &mut scene,
             material_names: Vec::new(),
             names: Vec::new(),
         }
-        .parse()
+        .parse()?;
+        Ok(scene)
     }
 }
 

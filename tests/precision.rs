@@ -148,8 +148,8 @@ fn comparison<S: Scalar>(text: &str, max_interior_error: u8) -> Comparison {
 ///   and I20F12, 0.1 % for I32F32 and f32.
 /// - The lit `default` scene: diffuse shading varies smoothly, and a pixel differs by one
 ///   level wherever the exact value lies within the shading error of a rounding boundary
-///   (x.5). I16F16 shades to about 0.02 levels (1.6 % of pixels measured), I20F12 to
-///   about 0.3 levels (22 %): budgets 3 % and 30 %.
+///   (x.5). I16F16 shades to about 0.02 levels (1.3 % of pixels measured), I20F12 to
+///   about 0.3 levels (18 %): budgets 3 % and 25 %.
 ///
 /// In every case, away from object boundaries (and where both renders see the same
 /// object) no channel may differ by more than 1 level; for ambient-only scenes by none.
@@ -166,7 +166,7 @@ fn pixel_mismatch_stays_within_budget() {
         ("horizon", "i32f32", 0.001),
         ("horizon", "f32", 0.001),
         ("default", "i16f16", 0.03),
-        ("default", "i20f12", 0.30),
+        ("default", "i20f12", 0.25),
         ("default", "i32f32", 0.001),
         ("default", "f32", 0.001),
     ];
