@@ -9,6 +9,8 @@
 //! - `FIXRAY_FW_FORMATS` (default `i16f16,i20f12,i32f32,f32`) chooses which number
 //!   formats the firmware renders (one `fw_<format>` cfg each), so that flash can be
 //!   measured per format;
+//! - `FIXRAY_FW_SCENES` (default `default`) chooses which scenes of `scenes/` the firmware
+//!   embeds and renders (`$OUT_DIR/fw_scenes.rs`);
 //! - `FIXRAY_FW_PPM=1` makes the firmware also write each frame to the host as a PPM file
 //!   through semihosting (`fw_ppm`).
 
@@ -16,13 +18,16 @@ use std::env;
 use std::fs;
 use std::path::PathBuf;
 
-const FORMATS: [&str; 5] = ["i16f16", "i20f12", "i32f32", "f32", "f64"];
+const FORMATS: [&str; 7] = [
+    "i16f16", "i16f16n", "i20f12", "i32f32", "f32", "f32m", "f64",
+];
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=memory.x");
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_FORMATS");
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_PPM");
+    println!("cargo:rerun-if-env-changed=FIXRAY_FW_SCENES");
     for cfg in ["fw_microbit", "fw_mps2", "fw_ppm"] {
         println!("cargo:rustc-check-cfg=cfg({cfg})");
     }
@@ -55,6 +60,26 @@ fn main() {
         );
         println!("cargo:rustc-cfg=fw_{f}");
     }
+    let scenes = env::var("FIXRAY_FW_SCENES").unwrap_or_else(|_| "default".into());
+    let dir = env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
+    let mut table = String::from(
+        "/// The scenes this firmware renders: (name, text).\nconst SCENES: &[(&str, &str)] = &[\n",
+    );
+    for name in scenes.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+        assert!(
+            name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'),
+            "FIXRAY_FW_SCENES: bad scene name `{name}`"
+        );
+        let path = format!("{dir}/scenes/{name}.scene");
+        assert!(
+            fs::metadata(&path).is_ok(),
+            "FIXRAY_FW_SCENES: no file {path}"
+        );
+        println!("cargo:rerun-if-changed={path}");
+        table.push_str(&format!("    (\"{name}\", include_str!({path:?})),\n"));
+    }
+    table.push_str("];\n");
+    fs::write(out.join("fw_scenes.rs"), table).expect("OUT_DIR is writable");
     if env::var("FIXRAY_FW_PPM").is_ok_and(|v| v == "1") {
         println!("cargo:rustc-cfg=fw_ppm");
     }

@@ -17,7 +17,8 @@
 //! cargo run --release --example firmware --target thumbv6m-none-eabi      # Cortex-M0 (micro:bit)
 //! cargo run --release --example firmware --target thumbv7em-none-eabihf  # Cortex-M4F (MPS2 AN386)
 //! FIXRAY_FW_FORMATS=i16f16 cargo build ...   # only some formats (to measure flash per format)
-//! FIXRAY_FW_PPM=1 cargo run ...              # also write fixray-<core>-<format>.ppm to the host
+//! FIXRAY_FW_SCENES=default,planes cargo ...  # which scenes/ to embed (default: default)
+//! FIXRAY_FW_PPM=1 cargo run ...              # also write fixray-<core>-<scene>-<format>.ppm
 //! ```
 //!
 //! Counting: QEMU does not model the cycle counter, but with `-icount shift=0` each
@@ -48,8 +49,9 @@ mod firmware {
     use fixray::{Scalar, Scene, render_line};
     use panic_semihosting as _;
 
-    /// The default scene, as text: parsed on the chip.
-    const SCENE: &str = include_str!("../scenes/default.scene");
+    // The scenes, as text (parsed on the chip): `SCENES`, chosen at build time by
+    // FIXRAY_FW_SCENES (default: the default scene).
+    include!(concat!(env!("OUT_DIR"), "/fw_scenes.rs"));
 
     /// The line buffer's capacity in pixels (a 320-pixel-wide panel; 960 bytes).
     const MAX_WIDTH: usize = 320;
@@ -117,14 +119,16 @@ mod firmware {
         top - p as usize
     }
 
-    /// Writes one frame to the host as `fixray-<core>-<format>.ppm` (semihosting file I/O).
+    /// Writes one frame to the host as `fixray-<core>-<scene>-<format>.ppm` (semihosting
+    /// file I/O).
     #[cfg(fw_ppm)]
-    fn write_ppm<S: Scalar>(scene: &Scene<S>, line: &mut [Rgb888]) {
+    fn write_ppm<S: Scalar>(name: &str, scene: &Scene<S>, line: &mut [Rgb888]) {
         use core::fmt::Write;
         use cortex_m_semihosting::{nr, syscall};
         use embedded_graphics::pixelcolor::RgbColor;
-        let mut name: heapless::String<48> = heapless::String::new();
-        let _ = write!(name, "fixray-{}-{}.ppm\0", BOARD.0, S::NAME);
+        let scene_name = name;
+        let mut name: heapless::String<64> = heapless::String::new();
+        let _ = write!(name, "fixray-{}-{}-{}.ppm\0", BOARD.0, scene_name, S::NAME);
         // SAFETY: semihosting OPEN with a NUL-terminated name and its length without NUL.
         let fd = unsafe {
             syscall!(
@@ -163,15 +167,28 @@ mod firmware {
         hprintln!("format={} ppm={}", S::NAME, name.trim_end_matches('\0'));
     }
 
-    /// Parses the scene in format `S`, renders one frame and reports it.
+    /// Renders every scene in format `S`.
+    fn frames<S: Scalar>(line: &mut [Rgb888; MAX_WIDTH]) {
+        for (name, text) in SCENES {
+            frame::<S>(name, text, line);
+        }
+    }
+
+    /// Parses one scene in format `S`, renders one frame and reports it.
     #[inline(never)]
-    fn frame<S: Scalar>(line: &mut [Rgb888; MAX_WIDTH]) {
+    fn frame<S: Scalar>(name: &str, text: &str, line: &mut [Rgb888; MAX_WIDTH]) {
         paint_stack();
         let start = instructions();
-        let scene = match Scene::<S>::parse(SCENE) {
+        let scene = match Scene::<S>::parse(text) {
             Ok(s) => s,
             Err(e) => {
-                hprintln!("format={} error=\"scenes/default.scene:{}\"", S::NAME, e);
+                hprintln!(
+                    "format={} scene={} error=\"scenes/{}.scene:{}\"",
+                    S::NAME,
+                    name,
+                    name,
+                    e
+                );
                 return;
             }
         };
@@ -179,8 +196,9 @@ mod firmware {
         let (w, h) = (usize::from(scene.camera.width), scene.camera.height);
         if w > MAX_WIDTH {
             hprintln!(
-                "format={} error=\"width {} > line buffer {}\"",
+                "format={} scene={} error=\"width {} > line buffer {}\"",
                 S::NAME,
+                name,
                 w,
                 MAX_WIDTH
             );
@@ -210,7 +228,7 @@ mod firmware {
         let frame = after - before;
         let tenths = frame * 10 / pixels;
         hprintln!(
-            "format={} size={}x{} hash=0x{:08x} instructions={} per_pixel={}.{} stack={} parse_instructions={} hash_instructions={} core={}",
+            "format={} size={}x{} hash=0x{:08x} instructions={} per_pixel={}.{} stack={} parse_instructions={} hash_instructions={} core={} scene={}",
             S::NAME,
             w,
             h,
@@ -221,10 +239,11 @@ mod firmware {
             stack,
             parsed - start,
             hash_cost,
-            BOARD.0
+            BOARD.0,
+            name
         );
         #[cfg(fw_ppm)]
-        write_ppm(&scene, line);
+        write_ppm(name, &scene, line);
     }
 
     /// Exactly 4000 instructions: 1000 rounds of two `nop`s, a subtract and a branch.
@@ -262,15 +281,19 @@ mod firmware {
 
         let mut line = [Rgb888::new(0, 0, 0); MAX_WIDTH];
         #[cfg(fw_i16f16)]
-        frame::<fixray::I16F16>(&mut line);
+        frames::<fixray::I16F16>(&mut line);
+        #[cfg(fw_i16f16n)]
+        frames::<fixray::variants::I16F16Narrow>(&mut line);
         #[cfg(fw_i20f12)]
-        frame::<fixray::I20F12>(&mut line);
+        frames::<fixray::I20F12>(&mut line);
         #[cfg(fw_i32f32)]
-        frame::<fixray::I32F32>(&mut line);
+        frames::<fixray::I32F32>(&mut line);
         #[cfg(fw_f32)]
-        frame::<f32>(&mut line);
+        frames::<f32>(&mut line);
+        #[cfg(fw_f32m)]
+        frames::<fixray::variants::F32Micro>(&mut line);
         #[cfg(fw_f64)]
-        frame::<f64>(&mut line);
+        frames::<f64>(&mut line);
         debug::exit(debug::EXIT_SUCCESS);
         // Only reached without a semihosting host: sleep.
         loop {

@@ -34,6 +34,7 @@ pub mod parse;
 pub mod render;
 pub mod scalar;
 pub mod scene;
+pub mod variants;
 pub mod vec3;
 
 /// The README's examples, compiled and run as doc tests.

@@ -1,0 +1,123 @@
+//! Builds `examples/firmware.rs` for a Cortex-M target, runs it under QEMU through the
+//! cargo runner (`.cargo/config.toml`), and reads what it reports. Shared by
+//! `tests/firmware.rs` and `examples/accuracy.rs` (included with `#[path]`).
+
+use std::collections::BTreeMap;
+use std::process::Command;
+
+use object::{Object as _, ObjectSection as _};
+
+/// The two cores: Rust target and the name the firmware reports.
+pub const CORES: [(&str, &str); 2] = [
+    ("thumbv6m-none-eabi", "cortex-m0"),
+    ("thumbv7em-none-eabihf", "cortex-m4f"),
+];
+
+/// One `format=...` line of the firmware: its `key=value` fields.
+#[derive(Debug, Clone)]
+pub struct Frame(pub BTreeMap<String, String>);
+
+impl Frame {
+    /// A field as text ("" when absent).
+    pub fn get(&self, key: &str) -> &str {
+        self.0.get(key).map_or("", String::as_str)
+    }
+
+    /// A numeric field (0 when absent or malformed).
+    pub fn number(&self, key: &str) -> u64 {
+        self.get(key).parse().unwrap_or(0)
+    }
+
+    /// The frame hash.
+    pub fn hash(&self) -> u32 {
+        u32::from_str_radix(self.get("hash").trim_start_matches("0x"), 16).unwrap_or(0)
+    }
+
+    /// Pixels in the frame (`size=WxH`).
+    pub fn pixels(&self) -> u64 {
+        self.get("size")
+            .split('x')
+            .map(|n| n.parse::<u64>().unwrap_or(0))
+            .product()
+    }
+}
+
+/// What one firmware build reported, with its size.
+#[derive(Debug, Clone)]
+pub struct Run {
+    /// One entry per rendered frame (scene × format).
+    pub frames: Vec<Frame>,
+    /// Vector table + text + rodata + data (initialisers) in bytes.
+    pub flash: u64,
+    /// data + bss in bytes (the stack is in each frame's `stack`).
+    pub static_ram: u64,
+}
+
+/// Whether `qemu-system-arm` can be started.
+pub fn qemu_available() -> bool {
+    Command::new("qemu-system-arm")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+/// Builds and runs the firmware for `target` with the given formats and scenes (comma
+/// lists, as `FIXRAY_FW_FORMATS` and `FIXRAY_FW_SCENES` take them).
+pub fn run(target: &str, formats: &str, scenes: &str) -> Result<Run, String> {
+    let manifest = env!("CARGO_MANIFEST_DIR");
+    let out = Command::new(env!("CARGO"))
+        .current_dir(manifest)
+        .args([
+            "run",
+            "--quiet",
+            "--release",
+            "--example",
+            "firmware",
+            "--target",
+            target,
+        ])
+        .env("FIXRAY_FW_FORMATS", formats)
+        .env("FIXRAY_FW_SCENES", scenes)
+        .env_remove("FIXRAY_FW_PPM")
+        .output()
+        .map_err(|e| format!("cannot run cargo: {e}"))?;
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    if !out.status.success() {
+        return Err(format!(
+            "firmware for {target} ({formats}; {scenes}) failed: {}\n{stdout}\n{}",
+            out.status,
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    let frames: Vec<Frame> = stdout
+        .lines()
+        .filter(|l| l.starts_with("format="))
+        .map(|l| {
+            Frame(
+                l.split_whitespace()
+                    .filter_map(|kv| kv.split_once('='))
+                    .map(|(k, v)| (k.to_string(), v.to_string()))
+                    .collect(),
+            )
+        })
+        .collect();
+    if let Some(bad) = frames.iter().find(|f| !f.get("error").is_empty()) {
+        return Err(format!("{target}: {:?}", bad.0));
+    }
+    let elf = std::fs::read(format!(
+        "{manifest}/target/{target}/release/examples/firmware"
+    ))
+    .map_err(|e| format!("cannot read the firmware ELF: {e}"))?;
+    let file = object::File::parse(&*elf).map_err(|e| format!("bad ELF: {e}"))?;
+    let size = |names: &[&str]| -> u64 {
+        file.sections()
+            .filter(|s| s.name().is_ok_and(|n| names.contains(&n)))
+            .map(|s| s.size())
+            .sum()
+    };
+    Ok(Run {
+        frames,
+        flash: size(&[".vector_table", ".text", ".rodata", ".data"]),
+        static_ram: size(&[".data", ".bss", ".uninit"]),
+    })
+}

@@ -1,0 +1,152 @@
+//! Variants of the main number formats that differ in one choice, so that the accuracy
+//! report can show what that choice costs:
+//!
+//! - [`F32Micro`]: `f32` with `micromath`'s fast square root (about 45 instructions on a
+//!   Cortex-M0 against about 400 for a correctly rounded one, and a few per cent off).
+//!   The tempting choice on a chip without an FPU; the report shows what it does to the
+//!   picture when it normalises rays.
+//! - [`I16F16Narrow`]: I16F16 with narrow dot products (three products, each rounded
+//!   towards −∞, summed in I16F16) instead of [`Scalar::dot3`]'s wide accumulation. The
+//!   alternative the crate measured and did not keep.
+//!
+//! Both are complete [`Scalar`]s: any scene renders in them.
+//!
+//! ```
+//! use fixray::variants::{F32Micro, I16F16Narrow};
+//! use fixray::{Scalar, Scene};
+//!
+//! let text = "camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }";
+//! assert!(Scene::<F32Micro>::parse(text).is_ok());
+//! assert!(Scene::<I16F16Narrow>::parse(text).is_ok());
+//! assert_eq!(F32Micro::NAME, "f32m");
+//! ```
+
+use micromath::F32Ext;
+
+use crate::decimal::Decimal;
+use crate::{I16F16, Scalar};
+
+/// `f32` with `micromath`'s approximate square root (see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Default)]
+pub struct F32Micro(pub f32);
+
+/// I16F16 with narrow dot products (see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Default)]
+pub struct I16F16Narrow(pub I16F16);
+
+/// Implements every `Scalar` method but the ones given by delegating to the wrapped type.
+macro_rules! delegate {
+    ($t:ident, $inner:ty, $name:literal, { $($own:item)* }) => {
+        impl Scalar for $t {
+            const NAME: &'static str = $name;
+            const ZERO: Self = Self(<$inner as Scalar>::ZERO);
+            const ONE: Self = Self(<$inner as Scalar>::ONE);
+            const MAX: Self = Self(<$inner as Scalar>::MAX);
+            const DELTA: Self = Self(<$inner as Scalar>::DELTA);
+            const DEFAULT_EPSILON: Self = Self(<$inner as Scalar>::DEFAULT_EPSILON);
+
+            fn from_f64(value: f64) -> Option<Self> {
+                <$inner>::from_f64(value).map(Self)
+            }
+            fn from_decimal(value: Decimal) -> Option<Self> {
+                <$inner>::from_decimal(value).map(Self)
+            }
+            fn from_i32(value: i32) -> Option<Self> {
+                <$inner>::from_i32(value).map(Self)
+            }
+            fn to_f64(self) -> f64 {
+                self.0.to_f64()
+            }
+            #[inline]
+            fn checked_add(self, rhs: Self) -> Option<Self> {
+                Scalar::checked_add(self.0, rhs.0).map(Self)
+            }
+            #[inline]
+            fn checked_sub(self, rhs: Self) -> Option<Self> {
+                Scalar::checked_sub(self.0, rhs.0).map(Self)
+            }
+            #[inline]
+            fn checked_mul(self, rhs: Self) -> Option<Self> {
+                Scalar::checked_mul(self.0, rhs.0).map(Self)
+            }
+            #[inline]
+            fn checked_div(self, rhs: Self) -> Option<Self> {
+                Scalar::checked_div(self.0, rhs.0).map(Self)
+            }
+            #[inline]
+            fn abs(self) -> Self {
+                Self(Scalar::abs(self.0))
+            }
+            #[inline]
+            fn mul_ratio(self, num: i32, den: i32) -> Option<Self> {
+                self.0.mul_ratio(num, den).map(Self)
+            }
+            #[inline]
+            fn round_to_i32(self) -> Option<i32> {
+                self.0.round_to_i32()
+            }
+            $($own)*
+        }
+    };
+}
+
+delegate!(F32Micro, f32, "f32m", {
+    #[inline]
+    fn checked_sqrt(self) -> Option<Self> {
+        if self.0 < 0.0 {
+            return None;
+        }
+        // Called through the trait: with std linked, `self.0.sqrt()` would be std's.
+        Some(Self(F32Ext::sqrt(self.0))).filter(|v| v.0.is_finite())
+    }
+    #[inline]
+    fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+        f32::dot3([a[0].0, a[1].0, a[2].0], [b[0].0, b[1].0, b[2].0]).map(Self)
+    }
+    #[inline]
+    fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+        f32::sub_dot3(c.0, [a[0].0, a[1].0, a[2].0], [b[0].0, b[1].0, b[2].0]).map(Self)
+    }
+});
+
+delegate!(I16F16Narrow, I16F16, "i16f16n", {
+    #[inline]
+    fn checked_sqrt(self) -> Option<Self> {
+        Scalar::checked_sqrt(self.0).map(Self)
+    }
+    #[inline]
+    fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+        let p = |i: usize| a[i].0.checked_mul(b[i].0);
+        p(0)?.checked_add(p(1)?)?.checked_add(p(2)?).map(Self)
+    }
+    #[inline]
+    fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+        c.0.checked_sub(Self::dot3(a, b)?.0).map(Self)
+    }
+});
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn micromath_sqrt_is_approximate_and_std_is_not_used() {
+        let two = F32Micro(2.0);
+        let root = two.checked_sqrt().unwrap().0;
+        // micromath documents about 5 % error; it must not be the exact root (which would
+        // mean std's sqrt was called) and must be within its stated bound.
+        assert_ne!(root, 2f32.sqrt());
+        assert!((root - core::f32::consts::SQRT_2).abs() / core::f32::consts::SQRT_2 < 0.06);
+        assert_eq!(F32Micro(-1.0).checked_sqrt(), None);
+    }
+
+    #[test]
+    fn narrow_dot_rounds_each_product() {
+        let third = I16F16Narrow(I16F16::from_f64(1.0 / 3.0).unwrap());
+        let narrow = I16F16Narrow::dot3([third; 3], [third; 3]).unwrap().0;
+        let wide = I16F16::dot3([third.0; 3], [third.0; 3]).unwrap();
+        // Each narrow product is floored: the narrow sum is below the wide one.
+        assert!(narrow < wide);
+        assert!(wide.to_f64() - narrow.to_f64() <= 3.0 * I16F16::DELTA.to_f64());
+    }
+}
