@@ -2,7 +2,7 @@
 //! report can show what that choice costs:
 //!
 //! - [`F32Micro`]: `f32` with `micromath`'s fast square root (about 45 instructions on a
-//!   Cortex-M0 against about 400 for a correctly rounded one, and a few per cent off).
+//!   Cortex-M0 against about 400 for a correctly rounded one, and up to 6.1 % off).
 //!   The tempting choice on a chip without an FPU; the report shows what it does to the
 //!   picture when it normalises rays.
 //! - [`I16F16Narrow`]: I16F16 with narrow dot products (three products, each rounded
@@ -133,10 +133,11 @@ mod tests {
     fn micromath_sqrt_is_approximate_and_std_is_not_used() {
         let two = F32Micro(2.0);
         let root = two.checked_sqrt().unwrap().0;
-        // micromath documents about 5 % error; it must not be the exact root (which would
-        // mean std's sqrt was called) and must be within its stated bound.
-        assert_ne!(root, 2f32.sqrt());
-        assert!((root - core::f32::consts::SQRT_2).abs() / core::f32::consts::SQRT_2 < 0.06);
+        // micromath's bit trick gives 1.5 for √2 (its worst case, 6.1 % high; the crate
+        // documents ~5 % on average). It must not be the exact root: that would mean std's
+        // sqrt had been called instead.
+        assert_eq!(root, 1.5);
+        assert!((root - core::f32::consts::SQRT_2).abs() / core::f32::consts::SQRT_2 < 0.065);
         assert_eq!(F32Micro(-1.0).checked_sqrt(), None);
     }
 
