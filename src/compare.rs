@@ -37,6 +37,10 @@ pub struct Comparison {
     pub max_dt: f64,
     /// Sum of |Δt| over those pixels (for the mean).
     pub sum_dt: f64,
+    /// Largest distance between the two hit points, in world units, over those pixels.
+    pub max_hit_error: f64,
+    /// Sum of those distances (for the mean).
+    pub sum_hit_error: f64,
     /// Number of pixels where both see the same object.
     pub same_object_pixels: u32,
 }
@@ -68,6 +72,14 @@ impl Comparison {
         }
         self.sum_dt / f64::from(self.same_object_pixels)
     }
+
+    /// Mean hit-point distance in world units over pixels where both see the same object.
+    pub fn mean_hit_error(&self) -> f64 {
+        if self.same_object_pixels == 0 {
+            return 0.0;
+        }
+        self.sum_hit_error / f64::from(self.same_object_pixels)
+    }
 }
 
 /// Renders both scenes pixel by pixel and compares them; `on_pixel(column, row, pixel,
@@ -91,6 +103,11 @@ pub fn compare<S: Scalar, R: Scalar>(
             match (hit, ref_hit) {
                 (Some((i, h)), Some((j, g))) if i == j => {
                     let dt = libm::fabs(h.t.to_f64() - g.t.to_f64());
+                    let (p, q) = (h.point.to_f64(), g.point.to_f64());
+                    let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+                    let dist = libm::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                    c.max_hit_error = c.max_hit_error.max(dist);
+                    c.sum_hit_error += dist;
                     c.max_dt = c.max_dt.max(dt);
                     c.sum_dt += dt;
                     c.same_object_pixels += 1;

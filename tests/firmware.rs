@@ -11,6 +11,8 @@
 //! flash size is that format's alone; the report table goes to stdout and to
 //! `target/firmware-report.md`.
 
+// Shared with examples/accuracy.rs, which uses other parts of it.
+#[allow(dead_code)]
 #[path = "../examples/support/qemu.rs"]
 mod qemu;
 
