@@ -154,6 +154,71 @@ impl<S: Scalar> Plane<S> {
     }
 }
 
+/// Units of [`Scalar::ulp`] in the hit-point residual bound ([`Plane::residual_bound`]):
+/// the constant part. For fixed formats the rounding terms are: the wide `D' − N·b`
+/// (½), the division (1 × |N·d| ≤ 1), the hit point's components (√3 in total), and the
+/// rounding of `N·d` (½ per unit of t: the `9t/16` part, ½ × 1/(1 − ½/8) for an epsilon
+/// of at least 8 DELTAs), about 3.3 in all; floats round their three-term dot products
+/// more often, so 8 covers both with margin. `tests/properties.rs` measures the largest
+/// residual against this bound in every format.
+pub const RESIDUAL_ULPS: i32 = 8;
+
+/// Units of [`Scalar::ulp`] that [`Plane::spawn`] adds beyond the residual bound, for the
+/// rounding of the offset base itself (√3 for its components) and of its re-evaluation
+/// (½), with margin.
+pub const SPAWN_MARGIN_ULPS: i32 = 4;
+
+impl<S: Scalar> Plane<S> {
+    /// A bound on how far a hit point computed by [`Plane::intersect`] lies off the plane,
+    /// `|N·p − D'|` with the plane's own stored `N` and `D'`:
+    /// `(9t/16 + RESIDUAL_ULPS) × ulp(m)`, `m = max(1, t, ‖b‖∞, ‖p‖∞, |D'|)`, for an epsilon
+    /// of at least 8 DELTAs (the defaults are 16).
+    ///
+    /// `None` when the bound itself does not fit the format.
+    pub fn residual_bound(&self, ray: &Ray<S>, hit: &Hit<S>) -> Option<S> {
+        let m = S::ONE
+            .max(hit.t)
+            .max(ray.base.max_abs())
+            .max(hit.point.max_abs())
+            .max(self.offset.abs());
+        hit.t
+            .mul_ratio(9, 16)?
+            .checked_add(S::from_i32(RESIDUAL_ULPS)?)?
+            .checked_mul(m.ulp())
+    }
+
+    /// A secondary ray leaving a hit on this plane in direction `dir`: its base is the hit
+    /// point moved along the normal, to the side `dir` points to, by the residual bound
+    /// plus [`SPAWN_MARGIN_ULPS`], so that it can never hit this plane again (pbrt's
+    /// offset by a computed error bound, not a magic number). A `dir` parallel to the
+    /// plane keeps the hit point (such a ray cannot meet the plane).
+    ///
+    /// `None` when the offset base does not fit the format.
+    pub fn spawn(&self, ray: &Ray<S>, hit: &Hit<S>, dir: Vec3<S>) -> Option<Ray<S>> {
+        let side = self.normal.dot(dir)?;
+        let base = if side == S::ZERO {
+            hit.point
+        } else {
+            let m = S::ONE
+                .max(hit.t)
+                .max(ray.base.max_abs())
+                .max(hit.point.max_abs())
+                .max(self.offset.abs());
+            let margin = S::from_i32(SPAWN_MARGIN_ULPS)?.checked_mul(m.ulp())?;
+            let mut off = self.residual_bound(ray, hit)?.checked_add(margin)?;
+            if side < S::ZERO {
+                off = off.checked_neg()?;
+            }
+            hit.point.sum(self.normal.scale(off)?)?
+        };
+        Some(Ray {
+            base,
+            dir,
+            kind: RayKind::Secondary,
+        })
+    }
+}
+
 /// A shape of the scene. Shapes dispatch through this enum (no `dyn`); the renderer draws
 /// planes today, the remaining shapes of the scene format come with the effects work.
 #[derive(Debug, Clone, Copy, PartialEq)]

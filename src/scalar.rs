@@ -102,6 +102,11 @@ pub trait Scalar: Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// Rounds to the nearest integer (ties away from zero); `None` when out of `i32` range.
     fn round_to_i32(self) -> Option<i32>;
 
+    /// The spacing of the format at the magnitude of `self`, or at 1 when `|self| < 1`:
+    /// `DELTA` everywhere for fixed formats, `EPSILON × max(|self|, 1)` for floats. One
+    /// rounding errs by at most this much; error bounds are written in these units.
+    fn ulp(self) -> Self;
+
     /// The larger of two values.
     #[inline]
     fn max(self, other: Self) -> Self {
@@ -206,6 +211,10 @@ macro_rules! impl_fixed {
             fn round_to_i32(self) -> Option<i32> {
                 self.checked_round()?.checked_to_num::<i32>()
             }
+            #[inline]
+            fn ulp(self) -> Self {
+                <$t>::DELTA
+            }
         }
     };
 }
@@ -298,6 +307,11 @@ macro_rules! impl_float {
                 } else {
                     None
                 }
+            }
+            #[inline]
+            fn ulp(self) -> Self {
+                let m = if self < 0.0 { -self } else { self };
+                <$t>::EPSILON * if m > 1.0 { m } else { 1.0 }
             }
         }
     };

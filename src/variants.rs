@@ -85,6 +85,10 @@ macro_rules! delegate {
             fn round_to_i32(self) -> Option<i32> {
                 self.0.round_to_i32()
             }
+            #[inline]
+            fn ulp(self) -> Self {
+                Self(self.0.ulp())
+            }
             $($own)*
         }
     };

@@ -1,0 +1,247 @@
+//! Seeded random rays and planes, checked against f64: the property tests
+//! (`tests/properties.rs`) assert on these statistics and `examples/numerics.rs` writes
+//! them into `docs/numerics.md`. Included with `#[path]` by both.
+
+use fixray::{Hit, Miss, Plane, Ray, RayKind, Scalar, Vec3};
+
+/// SplitMix64: small, fast, and the same sequence on every machine.
+pub struct SplitMix(pub u64);
+
+impl SplitMix {
+    pub fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [lo, hi).
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        let unit = (self.next() >> 11) as f64 / (1u64 << 53) as f64;
+        lo + (hi - lo) * unit
+    }
+
+    fn vector(&mut self, r: f64) -> [f64; 3] {
+        [
+            self.uniform(-r, r),
+            self.uniform(-r, r),
+            self.uniform(-r, r),
+        ]
+    }
+
+    /// A random unit vector (rejection sampling in the unit ball).
+    pub fn unit(&mut self) -> [f64; 3] {
+        loop {
+            let v = self.vector(1.0);
+            let n = dot(v, v).sqrt();
+            if n > 0.1 && n <= 1.0 {
+                return [v[0] / n, v[1] / n, v[2] / n];
+            }
+        }
+    }
+}
+
+pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn unit(a: [f64; 3]) -> [f64; 3] {
+    let n = dot(a, a).sqrt();
+    [a[0] / n, a[1] / n, a[2] / n]
+}
+
+/// Coordinates of points and bases are drawn from [−RANGE, RANGE].
+pub const RANGE: f64 = 100.0;
+
+/// What a run of random cases measured in one format.
+#[derive(Debug, Default, Clone)]
+pub struct Stats {
+    /// Cases drawn.
+    pub cases: u64,
+    /// (a) Hits checked against f64 on the same quantised inputs.
+    pub same_input_hits: u64,
+    /// (a) Largest |Δt| / bound over them, and cases over the bound.
+    pub max_bound_ratio: f64,
+    pub over_bound: u64,
+    /// (a) Largest |Δt| in DELTAs.
+    pub max_dt_deltas: f64,
+    /// (b) Hit/miss decisions that differ from f64 on the exact inputs: inside the
+    /// documented bands (epsilon, range, t ≈ 0) and outside them.
+    pub disagree_in_band: u64,
+    pub disagree_outside_band: u64,
+    /// (c) Secondary rays spawned off a hit, and how many hit the same plane again.
+    pub spawned: u64,
+    pub rehits: u64,
+    /// (c) Largest hit-point residual |N·p − D'| / residual bound.
+    pub max_residual_ratio: f64,
+    /// The first failing case of (a), (b) and (c), for the message.
+    pub first_failure: [Option<String>; 3],
+}
+
+/// The documented bound on |Δt| of one plane test on *given* inputs (the stored unit
+/// normal, offset and unit direction): the arithmetic alone.
+///
+/// Fixed formats: `D' − N·b` and `N·d` each round once (wide, ≤ ½ DELTA), the division
+/// once (≤ 1 DELTA): `|Δt| ≤ (½ + ½ t) DELTA / (|N·d| − ½ DELTA) + DELTA` (the computed
+/// `N·d` in the denominator may be ½ DELTA smaller than the exact one).
+/// Floats: each three-term dot product errs by ≤ 3ε × the sum of its term magnitudes, the
+/// division by ε t: `|Δt| ≤ (3ε(|D'| + Σ|N_i b_i|) + 3ε t) / (|N·d| − 3ε) + ε t`.
+pub fn same_input_bound<S: Scalar>(
+    t: f64,
+    n_dot_d: f64,
+    n: [f64; 3],
+    b: [f64; 3],
+    d_off: f64,
+) -> f64 {
+    let delta = S::DELTA.to_f64();
+    let float = S::from_i32(1000).is_some_and(|k| k.ulp() != S::DELTA);
+    if float {
+        let terms = d_off.abs()
+            + n[0].abs() * b[0].abs()
+            + n[1].abs() * b[1].abs()
+            + n[2].abs() * b[2].abs();
+        (3.0 * delta * terms + 3.0 * delta * t) / (n_dot_d.abs() - 3.0 * delta) + delta * t.max(1.0)
+    } else {
+        (0.5 + 0.5 * t) * delta / (n_dot_d.abs() - 0.5 * delta) + delta
+    }
+}
+
+/// Draws `n` random planes and rays (half of them with |N·d| close to the epsilon) and
+/// checks (a) the arithmetic against f64 on the same inputs, (b) the hit/miss decision
+/// against f64 on the exact inputs, (c) that a secondary ray spawned off a hit never hits
+/// the same plane again.
+pub fn run<S: Scalar>(n: u64, seed: u64) -> Stats {
+    let mut rng = SplitMix(seed);
+    let mut st = Stats::default();
+    let eps = S::DEFAULT_EPSILON;
+    let eps_f = eps.to_f64();
+    let delta = S::DELTA.to_f64();
+    let max = S::MAX.to_f64();
+    let q = |v: [f64; 3]| Vec3::<S>::from_f64(v);
+    for _ in 0..n {
+        st.cases += 1;
+        let normal = rng.vector(1.0);
+        let point = rng.vector(RANGE);
+        let base = rng.vector(RANGE);
+        let nu = unit(normal);
+        // Half the rays graze: N·d within ±50 % of the epsilon, either sign.
+        let dir = if rng.next() & 1 == 0 {
+            rng.unit()
+        } else {
+            let a = eps_f * rng.uniform(0.5, 1.5) * if rng.next() & 1 == 0 { 1.0 } else { -1.0 };
+            let r = rng.unit();
+            let perp = [
+                r[0] - dot(r, nu) * nu[0],
+                r[1] - dot(r, nu) * nu[1],
+                r[2] - dot(r, nu) * nu[2],
+            ];
+            if dot(perp, perp) < 1e-6 {
+                continue;
+            }
+            let p = unit(perp);
+            let s = (1.0 - a * a).sqrt();
+            [
+                a * nu[0] + s * p[0],
+                a * nu[1] + s * p[1],
+                a * nu[2] + s * p[2],
+            ]
+        };
+        let (Some(qn), Some(qp), Some(qb), Some(qd)) =
+            (q(normal), q(point), q(base), q(dir).and_then(Vec3::unit))
+        else {
+            continue;
+        };
+        let Ok(plane) = Plane::new(qn, qp) else {
+            continue;
+        };
+        let ray = Ray {
+            base: qb,
+            dir: qd,
+            kind: RayKind::Secondary,
+        };
+        let got = plane.intersect(&ray, eps);
+
+        // (a) Same inputs: f64 evaluation of the stored N, D', b, d.
+        let (nf, df, bf, off) = (
+            plane.normal().to_f64(),
+            qd.to_f64(),
+            qb.to_f64(),
+            plane.offset().to_f64(),
+        );
+        let nd = dot(nf, df);
+        if let Ok(Hit { t, .. }) = got {
+            let t_ref = (off - dot(nf, bf)) / nd;
+            let bound = same_input_bound::<S>(t_ref.abs(), nd, nf, bf, off);
+            let dt = (t.to_f64() - t_ref).abs();
+            st.same_input_hits += 1;
+            st.max_bound_ratio = st.max_bound_ratio.max(dt / bound);
+            st.max_dt_deltas = st.max_dt_deltas.max(dt / delta);
+            if dt > bound {
+                st.over_bound += 1;
+                st.first_failure[0].get_or_insert(format!(
+                    "(a) |Δt| {dt:e} > bound {bound:e}: t {t_ref}, N·d {nd}"
+                ));
+            }
+        }
+
+        // (b) Exact inputs: the decision of the same test in f64 on the unquantised values.
+        let off_exact = dot(nu, point);
+        let nd_exact = dot(nu, dir);
+        let t_exact = (off_exact - dot(nu, base)) / nd_exact;
+        let exact_hit = nd_exact.abs() >= eps_f && t_exact >= 0.0;
+        let hit_fits = exact_hit && {
+            let p = [
+                base[0] + t_exact * dir[0],
+                base[1] + t_exact * dir[1],
+                base[2] + t_exact * dir[2],
+            ];
+            t_exact < max && p.iter().all(|c| c.abs() < max)
+        };
+        if got.is_ok() != hit_fits {
+            // Documented bands where the two may disagree: |N·d| within 16 ulp of the
+            // epsilon (quantised inputs move N·d by a few DELTAs); t within its error of
+            // 0, where the error of t on exact inputs includes the quantised unit normal
+            // (≤ 2 ulp per component) times the distances ‖P‖₁ + ‖b‖₁; and t or the hit
+            // point within a factor 2 of the format's range.
+            let ulp = S::from_f64(RANGE).map_or(delta, |v| v.ulp().to_f64());
+            let l1 = |v: [f64; 3]| v[0].abs() + v[1].abs() + v[2].abs();
+            let t_band = (4.0 * (l1(point) + l1(base)) + 64.0 * (1.0 + t_exact.abs())) * ulp
+                / nd_exact.abs().max(eps_f);
+            let in_band = (nd_exact.abs() - eps_f).abs() <= 16.0 * delta
+                || t_exact.abs() <= t_band
+                || t_exact.abs() >= max / 2.0
+                || matches!(got, Err(Miss::OutOfRange))
+                || (0..3).any(|i| (base[i] + t_exact * dir[i]).abs() >= max / 2.0);
+            if in_band {
+                st.disagree_in_band += 1;
+            } else {
+                st.disagree_outside_band += 1;
+                st.first_failure[1].get_or_insert(format!(
+                    "(b) {:?} vs exact hit {hit_fits}: N·d {nd_exact}, t {t_exact}",
+                    got
+                ));
+            }
+        }
+
+        // (c) Spawn a secondary ray off the hit in a random direction.
+        if let Ok(hit) = got {
+            let residual = (dot(nf, hit.point.to_f64()) - off).abs();
+            if let Some(bound) = plane.residual_bound(&ray, &hit) {
+                st.max_residual_ratio = st.max_residual_ratio.max(residual / bound.to_f64());
+            }
+            let Some(d2) = q(rng.unit()).and_then(Vec3::unit) else {
+                continue;
+            };
+            if let Some(spawned) = plane.spawn(&ray, &hit, d2) {
+                st.spawned += 1;
+                if let Ok(again) = plane.intersect(&spawned, S::ZERO) {
+                    st.rehits += 1;
+                    st.first_failure[2]
+                        .get_or_insert(format!("(c) re-hit at t {:?} from {:?}", again.t, hit));
+                }
+            }
+        }
+    }
+    st
+}

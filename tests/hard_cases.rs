@@ -1,0 +1,314 @@
+//! The catalogue of hard cases for the plane test, one named test each, in every format.
+//! Each says why it is hard and what the right answer is. (Spheres join this catalogue when
+//! the renderer draws them.)
+
+use fixray::{I16F16, I20F12, I32F32, Miss, Plane, PlaneError, Ray, RayKind, Scalar, Vec3};
+
+fn v<S: Scalar>(x: f64, y: f64, z: f64) -> Vec3<S> {
+    Vec3::from_f64([x, y, z]).unwrap()
+}
+
+/// The notes' plane z = −7 (normal (0, 0, 1)).
+fn floor<S: Scalar>() -> Plane<S> {
+    Plane::new(v(0.0, 0.0, 1.0), v(0.0, 0.0, -7.0)).unwrap()
+}
+
+fn ray<S: Scalar>(base: Vec3<S>, dir: Vec3<S>, kind: RayKind) -> Ray<S> {
+    Ray { base, dir, kind }
+}
+
+macro_rules! every_format {
+    ($check:ident) => {
+        $check::<I16F16>();
+        $check::<I20F12>();
+        $check::<I32F32>();
+        $check::<f32>();
+        $check::<f64>();
+    };
+}
+
+/// |N·d| swept across the epsilon from 8 DELTAs below to 8 above. Hard: the decision turns
+/// on the last bit of N·d. Right answer: `|N·d| < EPS` misses (Parallel), `|N·d| >= EPS`
+/// hits at t = 12/|N·d|. The direction (1, 0, −a) is not unit on purpose: N·d is then
+/// exactly −a in every format, so the sweep tests the rule, not rounding.
+fn sweep_across_epsilon<S: Scalar>() {
+    let plane = floor::<S>();
+    let eps = S::DEFAULT_EPSILON;
+    for k in -8i32..=8 {
+        let a = eps
+            .checked_add(S::DELTA.checked_mul(S::from_i32(k).unwrap()).unwrap())
+            .unwrap();
+        let r = ray(
+            v(0.0, 0.0, 5.0),
+            Vec3::new(S::ONE, S::ZERO, S::ZERO.checked_sub(a).unwrap()),
+            RayKind::Secondary,
+        );
+        let got = plane.intersect(&r, eps);
+        if k < 0 {
+            assert_eq!(got, Err(Miss::Parallel), "{} k = {k}", S::NAME);
+        } else {
+            // t = 12 / a exceeds the range of the fixed formats here: a hit or a
+            // documented out-of-range miss, never parallel.
+            assert!(
+                matches!(got, Ok(_) | Err(Miss::OutOfRange)),
+                "{} k = {k}: {got:?}",
+                S::NAME
+            );
+        }
+    }
+}
+
+#[test]
+fn grazing_rays_swept_across_the_epsilon() {
+    every_format!(sweep_across_epsilon);
+}
+
+/// The base exactly on the plane. Hard: N·b − D' is exactly 0, t = 0. Right answer: a hit
+/// at t = 0, the base itself (it lies on the plane), for any non-parallel direction.
+fn base_on_plane<S: Scalar>() {
+    let r = ray(
+        v::<S>(3.0, -2.0, -7.0),
+        v(0.0, 0.0, -1.0),
+        RayKind::Secondary,
+    );
+    let hit = floor::<S>().intersect(&r, S::DEFAULT_EPSILON).unwrap();
+    assert_eq!(hit.t, S::ZERO);
+    assert_eq!(hit.point, r.base);
+}
+
+#[test]
+fn ray_base_exactly_on_the_plane() {
+    every_format!(base_on_plane);
+}
+
+/// The base k DELTAs above and below the plane, the ray heading down. Hard: |t| is a few
+/// DELTAs, its sign is the whole answer. Right answer (fixed formats, where k DELTAs is
+/// exact): above, a hit at t = k DELTA; below, behind (t = −k DELTA < 0).
+fn base_off_plane<S: Scalar>() {
+    let plane = floor::<S>();
+    let down = v::<S>(0.0, 0.0, -1.0);
+    let seven = S::from_i32(-7).unwrap();
+    for k in 1..=4 {
+        let off = S::DELTA.checked_mul(S::from_i32(k).unwrap()).unwrap();
+        let above = Vec3::new(S::ZERO, S::ZERO, seven.checked_add(off).unwrap());
+        let below = Vec3::new(S::ZERO, S::ZERO, seven.checked_sub(off).unwrap());
+        let hit = plane
+            .intersect(&ray(above, down, RayKind::Secondary), S::DEFAULT_EPSILON)
+            .unwrap();
+        assert_eq!(hit.t, off, "{} k = {k}", S::NAME);
+        assert_eq!(
+            plane.intersect(&ray(below, down, RayKind::Secondary), S::DEFAULT_EPSILON),
+            Err(Miss::Behind),
+            "{} k = {k}",
+            S::NAME
+        );
+    }
+}
+
+#[test]
+fn ray_base_k_deltas_off_the_plane_and_t_just_below_zero() {
+    base_off_plane::<I16F16>();
+    base_off_plane::<I20F12>();
+    base_off_plane::<I32F32>();
+}
+
+/// A plane as far away as the format reaches, and one beyond (grazing). Hard: t and the
+/// hit point sit at the edge of the range. Right answer: the reachable plane is hit with
+/// exact t; the one beyond is a documented `OutOfRange` miss, never a wrapped t.
+fn far_planes<S: Scalar>() {
+    let far = S::MAX.checked_sub(S::from_i32(16).unwrap()).unwrap();
+    let plane = Plane::new(
+        v::<S>(0.0, 0.0, 1.0),
+        Vec3::new(S::ZERO, S::ZERO, far.checked_neg().unwrap()),
+    )
+    .unwrap();
+    let straight = ray(v::<S>(0.0, 0.0, 5.0), v(0.0, 0.0, -1.0), RayKind::Primary);
+    let hit = plane.intersect(&straight, S::DEFAULT_EPSILON).unwrap();
+    assert_eq!(
+        hit.t,
+        far.checked_add(S::from_i32(5).unwrap()).unwrap(),
+        "{}",
+        S::NAME
+    );
+    let slanted = ray(
+        v::<S>(0.0, 0.0, 5.0),
+        v::<S>(1.0, 0.0, -1.0).unit().unwrap(),
+        RayKind::Primary,
+    );
+    assert_eq!(
+        plane.intersect(&slanted, S::DEFAULT_EPSILON),
+        Err(Miss::OutOfRange),
+        "{}",
+        S::NAME
+    );
+}
+
+#[test]
+fn t_at_and_beyond_the_formats_range() {
+    far_planes::<I16F16>();
+    far_planes::<I20F12>();
+    far_planes::<I32F32>();
+}
+
+/// Coordinates near the format's MAX. Hard: N·b alone is near overflow. Right answer: a
+/// plane x = MAX − ½ hit from x = MAX − 1 along +x at t = ½.
+fn near_max<S: Scalar>() {
+    let one = S::ONE;
+    let half = S::from_f64(0.5).unwrap();
+    let x0 = S::MAX.checked_sub(one).unwrap();
+    let plane = Plane::new(
+        v::<S>(1.0, 0.0, 0.0),
+        Vec3::new(x0.checked_add(half).unwrap(), S::ZERO, S::ZERO),
+    )
+    .unwrap();
+    let r = ray(
+        Vec3::new(x0, S::ZERO, S::ZERO),
+        v(1.0, 0.0, 0.0),
+        RayKind::Secondary,
+    );
+    assert_eq!(
+        plane.intersect(&r, S::DEFAULT_EPSILON).unwrap().t,
+        half,
+        "{}",
+        S::NAME
+    );
+    // Heading away from it: behind, no overflow on the way.
+    let away = ray(
+        Vec3::new(x0, S::ZERO, S::ZERO),
+        v(-1.0, 0.0, 0.0),
+        RayKind::Secondary,
+    );
+    assert_eq!(
+        plane.intersect(&away, S::DEFAULT_EPSILON),
+        Err(Miss::Behind),
+        "{}",
+        S::NAME
+    );
+}
+
+#[test]
+fn coordinates_near_the_formats_max() {
+    near_max::<I16F16>();
+    near_max::<I20F12>();
+    near_max::<I32F32>();
+}
+
+/// Coordinates of a few DELTAs, and a normal of one DELTA. Hard: the normal's direction
+/// comes from its last bits; the hit is a few DELTAs from the base. Right answer: the
+/// normal (DELTA, 0, 0) is the unit x axis; the plane x = 3 DELTA is hit from the origin
+/// along +x at t = 3 DELTA exactly.
+fn near_delta<S: Scalar>() {
+    let d = S::DELTA;
+    let three = d.checked_mul(S::from_i32(3).unwrap()).unwrap();
+    let plane = Plane::new(Vec3::new(d, S::ZERO, S::ZERO), Vec3::new(three, d, d)).unwrap();
+    assert_eq!(plane.normal(), v(1.0, 0.0, 0.0), "{}", S::NAME);
+    let r = ray(Vec3::ZERO, v(1.0, 0.0, 0.0), RayKind::Secondary);
+    assert_eq!(
+        plane.intersect(&r, S::DEFAULT_EPSILON).unwrap().t,
+        three,
+        "{}",
+        S::NAME
+    );
+}
+
+#[test]
+fn coordinates_and_normals_near_delta() {
+    near_delta::<I16F16>();
+    near_delta::<I20F12>();
+    near_delta::<I32F32>();
+}
+
+/// Non-unit normals (long and short) and the zero normal. Right answer: the same plane as
+/// the unit normal; zero is refused with `PlaneError::ZeroNormal`.
+fn normals<S: Scalar>() {
+    let r = ray(v::<S>(4.0, 3.0, 5.0), v(0.0, 0.0, -1.0), RayKind::Primary);
+    let unit = floor::<S>().intersect(&r, S::DEFAULT_EPSILON);
+    for n in [1000.0, 0.001] {
+        let p = Plane::new(v::<S>(0.0, 0.0, n), v(0.0, 0.0, -7.0)).unwrap();
+        assert_eq!(
+            p.intersect(&r, S::DEFAULT_EPSILON),
+            unit,
+            "{} n = {n}",
+            S::NAME
+        );
+    }
+    assert_eq!(
+        Plane::new(Vec3::<S>::ZERO, v(0.0, 0.0, -7.0)),
+        Err(PlaneError::ZeroNormal)
+    );
+}
+
+#[test]
+fn non_unit_and_zero_normals() {
+    every_format!(normals);
+}
+
+/// A zero direction. Hard: N·d = 0 exactly; with a zero epsilon the division would be by
+/// zero. Right answer: Parallel with any positive epsilon; a documented OutOfRange (not a
+/// panic) with epsilon 0.
+fn zero_direction<S: Scalar>() {
+    let r = ray(v::<S>(0.0, 0.0, 5.0), Vec3::ZERO, RayKind::Secondary);
+    assert_eq!(
+        floor::<S>().intersect(&r, S::DEFAULT_EPSILON),
+        Err(Miss::Parallel)
+    );
+    assert_eq!(floor::<S>().intersect(&r, S::ZERO), Err(Miss::OutOfRange));
+}
+
+#[test]
+fn a_zero_direction() {
+    every_format!(zero_direction);
+}
+
+/// A plane through the eye. Hard: t = 0 for every ray from the eye. Right answer: primary
+/// rays reject the hit (the eye is in front of the screen), secondary rays hit at t = 0,
+/// rays along the plane are parallel.
+fn through_eye<S: Scalar>() {
+    let eye = v::<S>(4.0, 3.0, 5.0);
+    let plane = Plane::new(v::<S>(0.0, 1.0, 0.0), eye).unwrap();
+    let down = v::<S>(0.0, -1.0, -1.0).unit().unwrap();
+    assert_eq!(
+        plane.intersect(&ray(eye, down, RayKind::Primary), S::DEFAULT_EPSILON),
+        Err(Miss::InFrontOfScreen)
+    );
+    assert_eq!(
+        plane
+            .intersect(&ray(eye, down, RayKind::Secondary), S::DEFAULT_EPSILON)
+            .unwrap()
+            .t,
+        S::ZERO
+    );
+    let along = v::<S>(1.0, 0.0, -1.0).unit().unwrap();
+    assert_eq!(
+        plane.intersect(&ray(eye, along, RayKind::Primary), S::DEFAULT_EPSILON),
+        Err(Miss::Parallel)
+    );
+}
+
+#[test]
+fn a_plane_through_the_eye() {
+    every_format!(through_eye);
+}
+
+/// Hits with z ≈ 0: the screen-plane rule `hit.z > 0` is rejected for primary rays. Hard:
+/// the rule compares against exactly 0. Right answer (fixed formats, exact): a plane at
+/// z = 0 is accepted (z = 0 is not > 0), at z = +DELTA rejected, at z = −DELTA accepted.
+fn screen_rule<S: Scalar>() {
+    let r = ray(v::<S>(1.0, 1.0, 5.0), v(0.0, 0.0, -1.0), RayKind::Primary);
+    for (k, accepted) in [(0, true), (1, false), (-1, true)] {
+        let z = S::DELTA.checked_mul(S::from_i32(k).unwrap()).unwrap();
+        let plane = Plane::new(v::<S>(0.0, 0.0, 1.0), Vec3::new(S::ZERO, S::ZERO, z)).unwrap();
+        let got = plane.intersect(&r, S::DEFAULT_EPSILON);
+        assert_eq!(got.is_ok(), accepted, "{} z = {k} DELTA: {got:?}", S::NAME);
+        if !accepted {
+            assert_eq!(got, Err(Miss::InFrontOfScreen));
+        }
+    }
+}
+
+#[test]
+fn hits_with_z_near_zero_and_the_screen_rule() {
+    screen_rule::<I16F16>();
+    screen_rule::<I20F12>();
+    screen_rule::<I32F32>();
+}
