@@ -104,7 +104,7 @@ fn the_parser_survives_200_000_inputs() {
             }
             1 => (0..rng.next() % 60)
                 .map(|_| {
-                    if rng.next() % 3 == 0 {
+                    if rng.next().is_multiple_of(3) {
                         NUMBERS[(rng.next() % NUMBERS.len() as u64) as usize]
                     } else {
                         TOKENS[(rng.next() % TOKENS.len() as u64) as usize]
@@ -115,7 +115,7 @@ fn the_parser_survives_200_000_inputs() {
             _ => {
                 let mut w = words.clone();
                 let at = (rng.next() % w.len() as u64) as usize;
-                w[at] = if rng.next() % 2 == 0 {
+                w[at] = if rng.next().is_multiple_of(2) {
                     NUMBERS[(rng.next() % NUMBERS.len() as u64) as usize]
                 } else {
                     TOKENS[(rng.next() % TOKENS.len() as u64) as usize]
