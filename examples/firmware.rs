@@ -179,19 +179,17 @@ mod firmware {
     fn frame<S: Scalar>(name: &str, text: &str, line: &mut [Rgb888; MAX_WIDTH]) {
         paint_stack();
         let start = instructions();
-        let scene = match Scene::<S>::parse(text) {
-            Ok(s) => s,
-            Err(e) => {
-                hprintln!(
-                    "format={} scene={} error=\"scenes/{}.scene:{}\"",
-                    S::NAME,
-                    name,
-                    name,
-                    e
-                );
-                return;
-            }
-        };
+        let mut scene = Scene::<S>::empty();
+        if let Err(e) = scene.read(text) {
+            hprintln!(
+                "format={} scene={} error=\"scenes/{}.scene:{}\"",
+                S::NAME,
+                name,
+                name,
+                e
+            );
+            return;
+        }
         let parsed = instructions();
         let (w, h) = (usize::from(scene.camera.width), scene.camera.height);
         if w > MAX_WIDTH {

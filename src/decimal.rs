@@ -151,22 +151,21 @@ impl Decimal {
         }
     }
 
-    /// Compares |value| with `n`.
+    /// Compares |value| with `n` (u64 arithmetic: small code on a 32-bit chip).
     fn cmp_magnitude(&self, n: u64) -> Ordering {
-        let m = u128::from(self.mantissa);
-        let n = u128::from(n);
+        let m = self.mantissa;
         if m == 0 {
             return 0.cmp(&n);
         }
         if self.exponent >= 0 {
             // m × 10^e against n: overflow means far larger.
-            match pow10(self.exponent).and_then(|p| m.checked_mul(p)) {
+            match pow10_u64(self.exponent).and_then(|p| m.checked_mul(p)) {
                 Some(lhs) => lhs.cmp(&n),
                 None => Ordering::Greater,
             }
         } else {
             // m against n × 10^−e: overflow means far smaller.
-            match pow10(self.exponent).and_then(|p| n.checked_mul(p)) {
+            match pow10_u64(self.exponent).and_then(|p| n.checked_mul(p)) {
                 Some(rhs) => m.cmp(&rhs),
                 None => Ordering::Less,
             }
@@ -175,19 +174,20 @@ impl Decimal {
 
     /// The value as an integer, when it is one and fits an `i64`.
     pub fn to_integer(&self) -> Option<i64> {
-        let m = i128::from(self.mantissa);
+        let m = self.mantissa;
         let magnitude = if m == 0 {
             0
         } else if self.exponent >= 0 {
-            m.checked_mul(i128::try_from(pow10(self.exponent)?).ok()?)?
+            m.checked_mul(pow10_u64(self.exponent)?)?
         } else {
-            let p = i128::try_from(pow10(self.exponent)?).ok()?;
-            if m % p != 0 {
+            let p = pow10_u64(self.exponent)?;
+            if !m.is_multiple_of(p) {
                 return None;
             }
             m / p
         };
-        i64::try_from(if self.negative { -magnitude } else { magnitude }).ok()
+        let magnitude = i64::try_from(magnitude).ok()?;
+        Some(if self.negative { -magnitude } else { magnitude })
     }
 
     /// The value times `k`, exactly when the digits allow, else with the least significant
@@ -220,6 +220,11 @@ impl Decimal {
         };
         Some(if self.negative { -magnitude } else { magnitude })
     }
+}
+
+/// 10^|e| for |e| ≤ 19 (the powers that fit a `u64`); callers pick the direction.
+fn pow10_u64(e: i32) -> Option<u64> {
+    10u64.checked_pow(e.unsigned_abs())
 }
 
 /// 10^|e| for |e| ≤ 38 (the powers that fit a `u128`); callers pick the direction.

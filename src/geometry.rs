@@ -72,6 +72,10 @@ pub enum Miss {
     InFrontOfScreen,
     /// `t` or the hit point does not fit the number format.
     OutOfRange,
+    /// The ray passes a sphere by: the discriminant is negative.
+    NoRoot,
+    /// The ray meets a finite plane's plane outside its rectangle.
+    OutsideBounds,
 }
 
 /// Why a plane cannot be built.
@@ -176,15 +180,14 @@ impl<S: Scalar> Plane<S> {
     ///
     /// `None` when the bound itself does not fit the format.
     pub fn residual_bound(&self, ray: &Ray<S>, hit: &Hit<S>) -> Option<S> {
-        let m = S::ONE
-            .max(hit.t)
-            .max(ray.base.max_abs())
+        residual(hit.t, self.magnitude(ray, hit))
+    }
+
+    fn magnitude(&self, ray: &Ray<S>, hit: &Hit<S>) -> S {
+        ray.base
+            .max_abs()
             .max(hit.point.max_abs())
-            .max(self.offset.abs());
-        hit.t
-            .mul_ratio(9, 16)?
-            .checked_add(S::from_i32(RESIDUAL_ULPS)?)?
-            .checked_mul(m.ulp())
+            .max(self.offset.abs())
     }
 
     /// A secondary ray leaving a hit on this plane in direction `dir`: its base is the hit
@@ -195,22 +198,14 @@ impl<S: Scalar> Plane<S> {
     ///
     /// `None` when the offset base does not fit the format.
     pub fn spawn(&self, ray: &Ray<S>, hit: &Hit<S>, dir: Vec3<S>) -> Option<Ray<S>> {
-        let side = self.normal.dot(dir)?;
-        let base = if side == S::ZERO {
-            hit.point
-        } else {
-            let m = S::ONE
-                .max(hit.t)
-                .max(ray.base.max_abs())
-                .max(hit.point.max_abs())
-                .max(self.offset.abs());
-            let margin = S::from_i32(SPAWN_MARGIN_ULPS)?.checked_mul(m.ulp())?;
-            let mut off = self.residual_bound(ray, hit)?.checked_add(margin)?;
-            if side < S::ZERO {
-                off = off.checked_neg()?;
-            }
-            hit.point.sum(self.normal.scale(off)?)?
-        };
+        let m = self.magnitude(ray, hit);
+        let base = offset_base(
+            hit.point,
+            self.normal,
+            dir,
+            self.residual_bound(ray, hit)?,
+            m,
+        )?;
         Some(Ray {
             base,
             dir,
@@ -219,16 +214,280 @@ impl<S: Scalar> Plane<S> {
     }
 }
 
-/// A shape of the scene. Shapes dispatch through this enum (no `dyn`); the renderer draws
-/// planes today, the remaining shapes of the scene format come with the effects work.
+/// The residual bound of [`Plane::residual_bound`] for a hit at distance `t` among values
+/// of magnitude up to `m`: `(9t/16 + RESIDUAL_ULPS) × ulp(max(1, t, m))`.
+fn residual<S: Scalar>(t: S, m: S) -> Option<S> {
+    let m = S::ONE.max(t).max(m);
+    t.mul_ratio(9, 16)?
+        .checked_add(S::from_i32(RESIDUAL_ULPS)?)?
+        .checked_mul(m.ulp())
+}
+
+/// Moves `point` along the unit `normal`, to the side `dir` points to, by `bound` plus
+/// [`SPAWN_MARGIN_ULPS`] (at magnitude `m`): the base of a secondary ray that cannot
+/// meet the surface it leaves. A `dir` tangent to the surface keeps the point.
+fn offset_base<S: Scalar>(
+    point: Vec3<S>,
+    normal: Vec3<S>,
+    dir: Vec3<S>,
+    bound: S,
+    m: S,
+) -> Option<Vec3<S>> {
+    let side = normal.dot(dir)?;
+    if side == S::ZERO {
+        return Some(point);
+    }
+    let margin = S::from_i32(SPAWN_MARGIN_ULPS)?.checked_mul(S::ONE.max(m).ulp())?;
+    let mut off = bound.checked_add(margin)?;
+    if side < S::ZERO {
+        off = off.checked_neg()?;
+    }
+    point.sum(normal.scale(off)?)
+}
+
+/// Why a sphere cannot be built.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SphereError {
+    /// The radius is not positive.
+    NonPositiveRadius,
+    /// `radius²` does not fit the number format.
+    RadiusOutOfRange,
+}
+
+/// A sphere.
+///
+/// The intersection uses the numerically careful form (as in pbrt and *Ray Tracing Gems*
+/// ch. 7): the discriminant is `r² − |oc − (oc·d)d|²` (the squared distance of the centre
+/// from the ray's line subtracted from r², which does not cancel catastrophically for
+/// far or grazing rays), and the two roots are `q = −(b + sign(b)√Δ)` and `c/q`, so
+/// neither is the difference of two nearly equal numbers. Tangency is decided by the sign
+/// of the discriminant (the precision epsilon belongs to the plane tests).
+///
+/// ```
+/// use fixray::{I16F16, Ray, RayKind, Scalar, Sphere, Vec3};
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// let s = Sphere::new(v(0.0, 0.0, -10.0), I16F16::from_i32(2).unwrap()).unwrap();
+/// let ray = Ray { base: v(0.0, 0.0, 5.0), dir: v(0.0, 0.0, -1.0), kind: RayKind::Primary };
+/// assert_eq!(s.intersect(&ray).unwrap().t.to_f64(), 13.0);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sphere<S> {
+    center: Vec3<S>,
+    radius: S,
+    radius_sq: S,
+}
+
+impl<S: Scalar> Sphere<S> {
+    /// A sphere of radius `radius` (> 0) around `center`.
+    ///
+    /// # Errors
+    /// [`SphereError`] when the radius is not positive or its square does not fit.
+    pub fn new(center: Vec3<S>, radius: S) -> Result<Self, SphereError> {
+        if radius <= S::ZERO {
+            return Err(SphereError::NonPositiveRadius);
+        }
+        let radius_sq = radius
+            .checked_mul(radius)
+            .ok_or(SphereError::RadiusOutOfRange)?;
+        Ok(Self {
+            center,
+            radius,
+            radius_sq,
+        })
+    }
+
+    /// The centre.
+    pub fn center(&self) -> Vec3<S> {
+        self.center
+    }
+
+    /// The radius.
+    pub fn radius(&self) -> S {
+        self.radius
+    }
+
+    /// Intersects a ray (unit direction): the smallest root `t >= 0`, the far root when the
+    /// base is inside; no real root is [`Miss::NoRoot`]; the primary-ray screen rule
+    /// applies as for planes.
+    ///
+    /// # Errors
+    /// The [`Miss`] reason when the ray does not hit.
+    pub fn intersect(&self, ray: &Ray<S>) -> Result<Hit<S>, Miss> {
+        let oc = ray.base.diff(self.center).ok_or(Miss::OutOfRange)?;
+        let b = oc.dot(ray.dir).ok_or(Miss::OutOfRange)?;
+        let perp = ray
+            .dir
+            .scale(b)
+            .and_then(|p| oc.diff(p))
+            .ok_or(Miss::OutOfRange)?;
+        let disc = S::sub_dot3(self.radius_sq, perp.to_array(), perp.to_array())
+            .ok_or(Miss::OutOfRange)?;
+        if disc < S::ZERO {
+            return Err(Miss::NoRoot);
+        }
+        let root = disc.checked_sqrt().ok_or(Miss::OutOfRange)?;
+        // c = |oc|² − r², in one wide step.
+        let c = S::sub_dot3(self.radius_sq, oc.to_array(), oc.to_array())
+            .and_then(S::checked_neg)
+            .ok_or(Miss::OutOfRange)?;
+        let q = if b >= S::ZERO {
+            b.checked_add(root).and_then(S::checked_neg)
+        } else {
+            root.checked_sub(b)
+        }
+        .ok_or(Miss::OutOfRange)?;
+        let (t0, t1) = if q == S::ZERO {
+            (S::ZERO, S::ZERO)
+        } else {
+            (q, c.checked_div(q).ok_or(Miss::OutOfRange)?)
+        };
+        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+        let t = if near >= S::ZERO {
+            near
+        } else if far >= S::ZERO {
+            far
+        } else {
+            return Err(Miss::Behind);
+        };
+        let point = ray
+            .dir
+            .scale(t)
+            .and_then(|td| ray.base.sum(td))
+            .ok_or(Miss::OutOfRange)?;
+        if ray.kind == RayKind::Primary && point.z > S::ZERO {
+            return Err(Miss::InFrontOfScreen);
+        }
+        Ok(Hit { t, point })
+    }
+
+    /// The outward unit normal at a point on the surface.
+    pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
+        point.diff(self.center)?.unit()
+    }
+
+    fn magnitude(&self, ray: &Ray<S>, hit: &Hit<S>) -> S {
+        ray.base
+            .max_abs()
+            .max(hit.point.max_abs())
+            .max(self.center.max_abs())
+            .max(self.radius)
+    }
+}
+
+/// Why a tiled or finite plane cannot be built.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FrameError {
+    /// The plane itself cannot be built.
+    Plane(PlaneError),
+    /// `xdir` has no component in the plane (zero, or parallel to the normal).
+    XdirInvalid,
+    /// A tile or side length is not positive.
+    NonPositiveSize,
+}
+
+/// A plane with coordinates: the corner `point`, `u` = unit(xdir projected into the plane),
+/// `v` = unit(N × u), and two lengths along them. Tiled planes (tile size) and finite
+/// planes (side lengths) are built on it. The plane coordinates of a point `p` are
+/// `a = (p − point)·u`, `b = (p − point)·v`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlaneFrame<S> {
+    plane: Plane<S>,
+    corner: Vec3<S>,
+    u: Vec3<S>,
+    v: Vec3<S>,
+    size: [S; 2],
+}
+
+impl<S: Scalar> PlaneFrame<S> {
+    /// Builds the frame.
+    ///
+    /// # Errors
+    /// [`FrameError`] for a zero normal, an offset out of range, an `xdir` with no
+    /// component in the plane, or a non-positive size.
+    pub fn new(
+        normal: Vec3<S>,
+        point: Vec3<S>,
+        xdir: Vec3<S>,
+        size: [S; 2],
+    ) -> Result<Self, FrameError> {
+        let plane = Plane::new(normal, point).map_err(FrameError::Plane)?;
+        if size[0] <= S::ZERO || size[1] <= S::ZERO {
+            return Err(FrameError::NonPositiveSize);
+        }
+        let n = plane.normal();
+        let along = n.dot(xdir).ok_or(FrameError::XdirInvalid)?;
+        let u = n
+            .scale(along)
+            .and_then(|p| xdir.diff(p))
+            .and_then(Vec3::unit)
+            .ok_or(FrameError::XdirInvalid)?;
+        let v = n
+            .cross(u)
+            .and_then(Vec3::unit)
+            .ok_or(FrameError::XdirInvalid)?;
+        Ok(Self {
+            plane,
+            corner: point,
+            u,
+            v,
+            size,
+        })
+    }
+
+    /// The underlying infinite plane.
+    pub fn plane(&self) -> &Plane<S> {
+        &self.plane
+    }
+
+    /// The tile or side lengths along `u` and `v`.
+    pub fn size(&self) -> [S; 2] {
+        self.size
+    }
+
+    /// The plane coordinates `(a, b)` of a point.
+    pub fn coords(&self, p: Vec3<S>) -> Option<(S, S)> {
+        let q = p.diff(self.corner)?;
+        Some((q.dot(self.u)?, q.dot(self.v)?))
+    }
+
+    /// Whether a point lies on the checkerboard's odd squares:
+    /// `floor(a / W) + floor(b / H)` odd.
+    pub fn odd_tile(&self, p: Vec3<S>) -> Option<bool> {
+        let (a, b) = self.coords(p)?;
+        let i = a.checked_div(self.size[0])?.floor_to_i32()?;
+        let j = b.checked_div(self.size[1])?.floor_to_i32()?;
+        Some((i.wrapping_add(j)) & 1 == 1)
+    }
+
+    /// Whether a point lies inside the rectangle `0 <= a <= W`, `0 <= b <= H`.
+    pub fn contains(&self, p: Vec3<S>) -> bool {
+        self.coords(p).is_some_and(|(a, b)| {
+            a >= S::ZERO && a <= self.size[0] && b >= S::ZERO && b <= self.size[1]
+        })
+    }
+}
+
+/// A shape of the scene. Shapes dispatch through this enum (no `dyn`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Shape<S> {
     /// An infinite plane.
     Plane(Plane<S>),
+    /// A sphere.
+    Sphere(Sphere<S>),
+    /// An infinite plane tiled in a checkerboard of the object's material and `alt`.
+    Tiled {
+        /// The plane and its tile coordinates.
+        frame: PlaneFrame<S>,
+        /// The material of the odd tiles (index into the scene's materials).
+        alt: u8,
+    },
+    /// A finite rectangle of a plane.
+    Finite(PlaneFrame<S>),
 }
 
 impl<S: Scalar> Shape<S> {
-    /// Intersects a ray with the shape.
+    /// Intersects a ray with the shape (`epsilon` is the plane tests' precision epsilon).
     ///
     /// # Errors
     /// The [`Miss`] reason when the ray does not hit.
@@ -236,14 +495,46 @@ impl<S: Scalar> Shape<S> {
     pub fn intersect(&self, ray: &Ray<S>, epsilon: S) -> Result<Hit<S>, Miss> {
         match self {
             Shape::Plane(p) => p.intersect(ray, epsilon),
+            Shape::Sphere(s) => s.intersect(ray),
+            Shape::Tiled { frame, .. } => frame.plane.intersect(ray, epsilon),
+            Shape::Finite(frame) => {
+                let hit = frame.plane.intersect(ray, epsilon)?;
+                if frame.contains(hit.point) {
+                    Ok(hit)
+                } else {
+                    Err(Miss::OutsideBounds)
+                }
+            }
         }
     }
 
     /// The unit surface normal at a hit point (before facing it towards the ray).
     #[inline]
-    pub fn normal_at(&self, _point: Vec3<S>) -> Vec3<S> {
+    pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
         match self {
-            Shape::Plane(p) => p.normal(),
+            Shape::Plane(p) => Some(p.normal()),
+            Shape::Sphere(s) => s.normal_at(point),
+            Shape::Tiled { frame, .. } | Shape::Finite(frame) => Some(frame.plane.normal()),
+        }
+    }
+
+    /// A secondary ray leaving `hit` in direction `dir`, based off the surface by its
+    /// computed error bound so that it cannot meet the surface it leaves
+    /// ([`Plane::spawn`]; for spheres the same bound along the sphere's normal).
+    pub fn spawn(&self, ray: &Ray<S>, hit: &Hit<S>, dir: Vec3<S>) -> Option<Ray<S>> {
+        match self {
+            Shape::Plane(p) => p.spawn(ray, hit, dir),
+            Shape::Tiled { frame, .. } | Shape::Finite(frame) => frame.plane.spawn(ray, hit, dir),
+            Shape::Sphere(s) => {
+                let m = s.magnitude(ray, hit);
+                let bound = residual(hit.t, m)?;
+                let base = offset_base(hit.point, s.normal_at(hit.point)?, dir, bound, m)?;
+                Some(Ray {
+                    base,
+                    dir,
+                    kind: RayKind::Secondary,
+                })
+            }
         }
     }
 }

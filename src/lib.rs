@@ -42,9 +42,14 @@ pub mod vec3;
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
 
-pub use geometry::{Hit, Miss, Plane, PlaneError, Ray, RayKind, Shape};
+pub use geometry::{
+    FrameError, Hit, Miss, Plane, PlaneError, PlaneFrame, Ray, RayKind, Shape, Sphere, SphereError,
+};
 pub use parse::{SceneError, SceneErrorKind};
-pub use render::{Traced, pixel, render, render_line, trace, trace_pixel};
+pub use render::{
+    Counters, Traced, pixel, render, render_counted, render_line, render_line_counted, trace,
+    trace_pixel,
+};
 pub use scalar::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};
-pub use scene::{Camera, Color, Light, Material, Object, Scene};
+pub use scene::{Camera, Color, Cone, Light, Material, Object, Plan, Scene};
 pub use vec3::{Normalized, Vec3};

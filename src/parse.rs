@@ -26,8 +26,12 @@ use heapless::{String, Vec};
 use core::cmp::Ordering;
 
 use crate::decimal::Decimal;
+use crate::scene::Cone;
 use crate::scene::{MAX_LIGHTS, MAX_MATERIALS, MAX_OBJECTS, MAX_PIXELDIM};
-use crate::{Camera, Color, Light, Material, Plane, PlaneError, Scalar, Scene, Vec3};
+use crate::{
+    Camera, Color, FrameError, Light, Material, Plane, PlaneError, PlaneFrame, Scalar, Scene,
+    Shape, Sphere, Vec3,
+};
 
 /// Longest token quoted in an error message; longer ones are cut and end in `…`.
 pub const MAX_QUOTED: usize = 24;
@@ -118,8 +122,14 @@ pub enum SceneErrorKind {
         /// The capacity ([`MAX_MATERIALS`], [`MAX_LIGHTS`], [`MAX_OBJECTS`]).
         capacity: usize,
     },
-    /// A valid entity or attribute that the renderer cannot draw yet.
-    NotSupported(&'static str),
+    /// A valid entity or attribute whose stage this build leaves out (a firmware built
+    /// without one of the cargo features `lighting`, `spheres`, `reflection`).
+    NotBuiltIn {
+        /// What the scene asks for.
+        what: &'static str,
+        /// The cargo feature that builds it in.
+        feature: &'static str,
+    },
 }
 
 impl fmt::Display for SceneError {
@@ -168,7 +178,10 @@ impl fmt::Display for SceneErrorKind {
             K::TooMany { what, capacity } => {
                 write!(f, "too many {what} (this build holds {capacity})")
             }
-            K::NotSupported(what) => write!(f, "{what} not supported yet"),
+            K::NotBuiltIn { what, feature } => write!(
+                f,
+                "{what} not built into this program (cargo feature `{feature}`)"
+            ),
         }
     }
 }
@@ -212,7 +225,9 @@ impl<'a> Lexer<'a> {
     }
 
     fn advance(&mut self, c: char) {
-        self.rest = &self.rest[c.len_utf8()..];
+        // `c` is the first char of `rest`: the cut is on a char boundary (`get` keeps the
+        // impossible panic path, and its formatting code, out of the firmware).
+        self.rest = self.rest.get(c.len_utf8()..).unwrap_or("");
         if c == '\n' {
             self.pos.line = self.pos.line.saturating_add(1);
             self.pos.column = 1;
@@ -252,7 +267,7 @@ impl<'a> Lexer<'a> {
         }
         let len = start.len() - self.rest.len();
         Some(Token {
-            text: &start[..len],
+            text: start.get(..len).unwrap_or(""),
             pos,
         })
     }
@@ -660,11 +675,11 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
         self.scene.camera = camera;
         self.scene.background = self.background.unwrap_or([S::ZERO; 3]);
         self.scene.epsilon = self.epsilon.unwrap_or(S::DEFAULT_EPSILON);
+        self.scene.replan();
         Ok(())
     }
 
     fn entity(&mut self, b: &Block<'a>) -> Result<()> {
-        let not_supported = |what| Err(b.error(SceneErrorKind::NotSupported(what)));
         match b.entity {
             Entity::Camera => {
                 if self.camera.is_some() {
@@ -695,11 +710,24 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
                     .map_err(|_| full())?;
                 self.material_names.push(b.name.text).map_err(|_| full())?;
             }
-            Entity::Light => {
+            Entity::Light | Entity::Spotlight => {
+                if !cfg!(feature = "lighting") {
+                    return Err(b.error(SceneErrorKind::NotBuiltIn {
+                        what: "lights are",
+                        feature: "lighting",
+                    }));
+                }
                 self.register(b)?;
+                let location = vector(b.required("location")?)?;
+                let cone = if b.entity == Entity::Spotlight {
+                    Some(cone::<S>(b, location)?)
+                } else {
+                    None
+                };
                 let light = Light {
-                    location: vector(b.required("location")?)?,
+                    location,
                     emissivity: non_negative3(b.required("emissivity")?, "emissivity")?,
+                    cone,
                 };
                 self.scene.lights.push(light).map_err(|_| {
                     b.error(SceneErrorKind::TooMany {
@@ -712,66 +740,123 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
                 self.register(b)?;
                 let material = self.material_index(b, "material")?;
                 let normal = b.required("normal")?;
-                let plane = Plane::new(vector(normal)?, vector(b.required("point")?)?).map_err(
-                    |e| match e {
-                        PlaneError::ZeroNormal => normal.pos.error(SceneErrorKind::ZeroNormal),
-                        PlaneError::OffsetOutOfRange => {
-                            b.error(SceneErrorKind::DerivedDoesNotFit {
-                                what: "the plane's offset N·point",
-                                format: S::NAME,
-                            })
-                        }
-                    },
-                )?;
-                self.scene.push_plane(plane, material).map_err(|_| {
-                    b.error(SceneErrorKind::TooMany {
-                        what: "objects",
-                        capacity: MAX_OBJECTS,
-                    })
-                })?;
-            }
-            // The entities below are checked completely, then refused: the renderer
-            // does not draw them yet.
-            Entity::Spotlight => {
-                self.register(b)?;
-                vector::<S>(b.required("location")?)?;
-                non_negative3::<S>(b.required("emissivity")?, "emissivity")?;
-                vector::<S>(b.required("point")?)?;
-                let theta = &b.required("theta")?.nums[0];
-                let ok = |d: &Decimal| positive_value(d) && d.cmp_int(90) != Ordering::Greater;
-                in_domain(theta, ok, "theta", "in (0, 90]")?;
-                return not_supported("spotlight is");
+                let plane = Plane::new(vector(normal)?, vector(b.required("point")?)?)
+                    .map_err(|e| plane_error::<S>(b, normal, e))?;
+                self.push(b, Shape::Plane(plane), material)?;
             }
             Entity::Sphere => {
+                if !cfg!(feature = "spheres") {
+                    return Err(b.error(SceneErrorKind::NotBuiltIn {
+                        what: "spheres are",
+                        feature: "spheres",
+                    }));
+                }
                 self.register(b)?;
-                self.material_index(b, "material")?;
-                vector::<S>(b.required("center")?)?;
-                positive::<S>(&b.required("radius")?.nums[0], "radius")?;
-                return not_supported("sphere is");
+                let material = self.material_index(b, "material")?;
+                let center = vector::<S>(b.required("center")?)?;
+                let radius = positive::<S>(&b.required("radius")?.nums[0], "radius")?;
+                let sphere = Sphere::new(center, radius).map_err(|_| {
+                    b.error(SceneErrorKind::DerivedDoesNotFit {
+                        what: "the sphere's radius²",
+                        format: S::NAME,
+                    })
+                })?;
+                self.push(b, Shape::Sphere(sphere), material)?;
             }
             Entity::TiledPlane | Entity::FPlane => {
                 self.register(b)?;
-                self.material_index(b, "material")?;
-                let (dims, what) = if b.entity == Entity::FPlane {
-                    ("dimensions", "fplane is")
+                let material = self.material_index(b, "material")?;
+                let dims = if b.entity == Entity::FPlane {
+                    "dimensions"
                 } else {
-                    self.material_index(b, "altmaterial")?;
-                    ("dimension", "tiled_plane is")
+                    "dimension"
                 };
                 let normal = b.required("normal")?;
-                if vector::<S>(normal)?.unit().is_none() {
-                    return Err(normal.pos.error(SceneErrorKind::ZeroNormal));
-                }
-                vector::<S>(b.required("point")?)?;
-                vector::<S>(b.required("xdir")?)?;
+                let xdir = b.required("xdir")?;
                 let d = b.required(dims)?;
-                positive::<S>(&d.nums[0], dims)?;
-                positive::<S>(&d.nums[1], dims)?;
-                return not_supported(what);
+                let size = [
+                    positive::<S>(&d.nums[0], dims)?,
+                    positive::<S>(&d.nums[1], dims)?,
+                ];
+                let frame = PlaneFrame::new(vector(normal)?, vector(b.required("point")?)?, vector(xdir)?, size)
+                    .map_err(|e| match e {
+                        FrameError::Plane(e) => plane_error::<S>(b, normal, e),
+                        FrameError::XdirInvalid | FrameError::NonPositiveSize => {
+                            xdir.pos.error(SceneErrorKind::OutOfDomain {
+                                attribute: "xdir",
+                                rule: "a direction with a component in the plane (not along the normal)",
+                            })
+                        }
+                    })?;
+                let shape = if b.entity == Entity::FPlane {
+                    Shape::Finite(frame)
+                } else {
+                    Shape::Tiled {
+                        frame,
+                        alt: self.material_index(b, "altmaterial")?,
+                    }
+                };
+                self.push(b, shape, material)?;
             }
         }
         Ok(())
     }
+
+    fn push(&mut self, b: &Block<'a>, shape: Shape<S>, material: u8) -> Result<()> {
+        self.scene
+            .objects
+            .push(crate::Object { shape, material })
+            .map_err(|_| {
+                b.error(SceneErrorKind::TooMany {
+                    what: "objects",
+                    capacity: MAX_OBJECTS,
+                })
+            })
+    }
+}
+
+fn plane_error<S: Scalar>(b: &Block<'_>, normal: &Value<'_>, e: PlaneError) -> SceneError {
+    match e {
+        PlaneError::ZeroNormal => normal.pos.error(SceneErrorKind::ZeroNormal),
+        PlaneError::OffsetOutOfRange => b.error(SceneErrorKind::DerivedDoesNotFit {
+            what: "the plane's offset N·point",
+            format: S::NAME,
+        }),
+    }
+}
+
+/// A spotlight's cone: the unit axis towards `point` and cos θ (θ in degrees, (0, 90]).
+fn cone<S: Scalar>(b: &Block<'_>, location: Vec3<S>) -> Result<Cone<S>> {
+    let point = b.required("point")?;
+    let axis = vector::<S>(point)?
+        .diff(location)
+        .and_then(Vec3::unit)
+        .ok_or_else(|| {
+            point.pos.error(SceneErrorKind::OutOfDomain {
+                attribute: "point",
+                rule: "a point other than the spotlight's location",
+            })
+        })?;
+    let theta = &b.required("theta")?.nums[0];
+    let ok = |d: &Decimal| positive_value(d) && d.cmp_int(90) != Ordering::Greater;
+    in_domain(theta, ok, "theta", "in (0, 90]")?;
+    // θ π / 180 in the format, π from its decimal digits (no float on the way).
+    let pi = Decimal {
+        negative: false,
+        mantissa: 3_141_592_653_589_793_238,
+        exponent: -18,
+    };
+    let cos_theta = S::from_decimal(pi)
+        .and_then(|pi| convert::<S>(theta, 1).ok()?.checked_mul(pi))
+        .and_then(|x| x.checked_div(S::from_i32(180)?))
+        .and_then(S::cos)
+        .ok_or_else(|| {
+            theta.pos.error(SceneErrorKind::DerivedDoesNotFit {
+                what: "cos θ",
+                format: S::NAME,
+            })
+        })?;
+    Ok(Cone { axis, cos_theta })
 }
 
 /// Converts a number into the format, times `scale` (exact, in decimal).
@@ -882,39 +967,40 @@ fn camera<S: Scalar>(b: &Block<'_>) -> Result<Camera<S>> {
 }
 
 fn material_of<S: Scalar>(b: &Block<'_>) -> Result<Material<S>> {
-    let zero = [S::ZERO; 3];
-    let ambient = b
-        .get("ambient")
-        .map(|v| channel_colour(&v.nums, "ambient"))
-        .transpose()?;
-    let diffuse = b
-        .get("diffuse")
-        .map(|v| non_negative3(v, "diffuse"))
-        .transpose()?;
+    let mut m = Material::new();
+    if let Some(v) = b.get("ambient") {
+        m.ambient = channel_colour(&v.nums, "ambient")?;
+    }
+    if let Some(v) = b.get("diffuse") {
+        m.diffuse = non_negative3(v, "diffuse")?;
+    }
     if let Some(v) = b.get("specular") {
         in_domain(&v.nums[0], non_negative_value, "specular", ">= 0")?;
-        if !v.nums[0].value.is_zero() {
-            return Err(v.pos.error(SceneErrorKind::NotSupported("specular is")));
+        m.specular = convert(&v.nums[0], 1)?;
+        if m.specular > S::ZERO && !cfg!(feature = "lighting") {
+            return Err(v.pos.error(SceneErrorKind::NotBuiltIn {
+                what: "specular is",
+                feature: "lighting",
+            }));
         }
     }
     if let Some(v) = b.get("shininess") {
-        // Shininess only shapes a specular glint; without specular it changes nothing.
         let ok = |d: &Decimal| d.cmp_int(1) != Ordering::Less;
         in_domain(&v.nums[0], ok, "shininess", ">= 1")?;
+        m.shininess = convert(&v.nums[0], 1)?;
     }
     if let Some(v) = b.get("reflective") {
         let ok = |d: &Decimal| non_negative_value(d) && d.cmp_int(1) != Ordering::Greater;
         in_domain(&v.nums[0], ok, "reflective", "in [0, 1]")?;
-        if !v.nums[0].value.is_zero() {
-            return Err(v
-                .pos
-                .error(SceneErrorKind::NotSupported("reflective material is")));
+        m.reflective = convert(&v.nums[0], 1)?;
+        if m.reflective > S::ZERO && !cfg!(feature = "reflection") {
+            return Err(v.pos.error(SceneErrorKind::NotBuiltIn {
+                what: "reflective materials are",
+                feature: "reflection",
+            }));
         }
     }
-    Ok(Material {
-        ambient: ambient.unwrap_or(zero),
-        diffuse: diffuse.unwrap_or(zero),
-    })
+    Ok(m)
 }
 
 /// The precision epsilon: a real > 0 that must stay > 0 in the format.
@@ -931,31 +1017,74 @@ fn precision<S: Scalar>(n: &Number<'_>) -> Result<S> {
     }
 }
 
+fn placeholder_camera<S: Scalar>() -> Camera<S> {
+    Camera {
+        width: 1,
+        height: 1,
+        world_width: S::ONE,
+        world_height: S::ONE,
+        viewpoint: Vec3::new(S::ZERO, S::ZERO, S::ONE),
+    }
+}
+
 impl<S: Scalar> Scene<S> {
     /// Reads a scene in the keyword-block format of `scene-format.md`.
     ///
     /// # Errors
     /// A [`SceneError`] with the line and column of the first problem.
     pub fn parse(text: &str) -> core::result::Result<Self, SceneError> {
-        let placeholder = Camera {
-            width: 1,
-            height: 1,
-            world_width: S::ONE,
-            world_height: S::ONE,
-            viewpoint: Vec3::new(S::ZERO, S::ZERO, S::ONE),
-        };
-        let mut scene = Scene::new(placeholder);
-        Parser {
+        let mut scene = Scene::empty();
+        scene.read(text)?;
+        Ok(scene)
+    }
+
+    /// A scene with nothing in it and a 1×1 placeholder camera, to [`Scene::read`] into.
+    pub fn empty() -> Self {
+        Scene::new(placeholder_camera())
+    }
+
+    /// Empties the scene in place (no temporary scene on the stack).
+    pub fn clear(&mut self) {
+        self.camera = placeholder_camera();
+        self.materials.clear();
+        self.lights.clear();
+        self.objects.clear();
+        self.background = [S::ZERO; 3];
+        self.epsilon = S::DEFAULT_EPSILON;
+        self.plan = crate::Plan::default();
+    }
+
+    /// Reads a scene text into `self`, in place: [`Scene::parse`] without moving the scene
+    /// (a `Scene<I32F32>` is 6 KB; on a chip with 16 KB of RAM every copy counts).
+    ///
+    /// # Errors
+    /// A [`SceneError`] with the line and column of the first problem; the scene is then
+    /// left empty.
+    ///
+    /// ```
+    /// use fixray::{Scene, I16F16};
+    ///
+    /// let mut scene = Scene::<I16F16>::empty();
+    /// scene.read("camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }").unwrap();
+    /// assert_eq!(scene.camera.width, 4);
+    /// ```
+    #[inline(never)]
+    pub fn read(&mut self, text: &str) -> core::result::Result<(), SceneError> {
+        self.clear();
+        let result = Parser {
             lexer: Lexer::new(text),
             camera: None,
             background: None,
             epsilon: None,
-            scene: &mut scene,
+            scene: self,
             material_names: Vec::new(),
             names: Vec::new(),
         }
-        .parse()?;
-        Ok(scene)
+        .parse();
+        if result.is_err() {
+            self.clear();
+        }
+        result
     }
 }
 

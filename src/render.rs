@@ -17,7 +17,120 @@ use embedded_graphics_core::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics_core::prelude::{DrawTarget, Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
 
-use crate::{Color, Hit, Object, Ray, RayKind, Scalar, Scene, Vec3};
+use crate::scene::Plan;
+use crate::{Color, Hit, Object, Ray, Scalar, Scene, Shape, Vec3};
+
+/// How deep mirror reflections go: a ray reflected this many times sees no further
+/// reflection (its own colour only).
+pub const MAX_REFLECTION_DEPTH: u8 = 4;
+
+/// Rays and stage evaluations of a frame (or line), counted when the crate is built with
+/// the `stats` feature (otherwise every count stays 0 and costs nothing).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Counters {
+    /// Primary rays traced.
+    pub primary_rays: u32,
+    /// Shadow rays traced.
+    pub shadow_rays: u32,
+    /// Reflected rays traced.
+    pub reflection_rays: u32,
+    /// Diffuse terms evaluated (per light per hit).
+    pub diffuse: u32,
+    /// Specular terms evaluated (per light per hit).
+    pub specular: u32,
+    /// Spotlight cone tests.
+    pub cone_tests: u32,
+    /// Checkerboard tile lookups.
+    pub tile_lookups: u32,
+}
+
+#[inline(always)]
+fn count(field: &mut u32) {
+    if cfg!(feature = "stats") {
+        *field = field.wrapping_add(1);
+    }
+}
+
+/// A set of shading stages, fixed at compile time: the renderer is instantiated once per
+/// set, and a stage that is `false` is not in that loop at all (no per-pixel test). The
+/// plan of a scene picks the set ([`shading_for`]). Each stage is also compiled out of
+/// every set when its cargo feature (`lighting`, `reflection`) is off.
+pub trait Stages {
+    /// Diffuse lighting.
+    const LIGHTING: bool;
+    /// Shadow rays.
+    const SHADOWS: bool;
+    /// Specular glints.
+    const SPECULAR: bool;
+    /// Spotlight cones.
+    const CONES: bool;
+    /// Mirror reflection.
+    const REFLECTION: bool;
+}
+
+/// Ambient only: pure geometry.
+pub struct AmbientOnly;
+/// Diffuse point lights, nothing between them and the surface.
+pub struct Diffuse;
+/// Diffuse point lights with shadow rays.
+pub struct DiffuseShadows;
+/// Everything the scene format has.
+pub struct Full;
+
+impl Stages for AmbientOnly {
+    const LIGHTING: bool = false;
+    const SHADOWS: bool = false;
+    const SPECULAR: bool = false;
+    const CONES: bool = false;
+    const REFLECTION: bool = false;
+}
+impl Stages for Diffuse {
+    const LIGHTING: bool = cfg!(feature = "lighting");
+    const SHADOWS: bool = false;
+    const SPECULAR: bool = false;
+    const CONES: bool = false;
+    const REFLECTION: bool = false;
+}
+impl Stages for DiffuseShadows {
+    const LIGHTING: bool = cfg!(feature = "lighting");
+    const SHADOWS: bool = cfg!(feature = "lighting");
+    const SPECULAR: bool = false;
+    const CONES: bool = false;
+    const REFLECTION: bool = false;
+}
+impl Stages for Full {
+    const LIGHTING: bool = cfg!(feature = "lighting");
+    const SHADOWS: bool = cfg!(feature = "lighting");
+    const SPECULAR: bool = cfg!(feature = "lighting");
+    const CONES: bool = cfg!(feature = "lighting");
+    const REFLECTION: bool = cfg!(feature = "reflection");
+}
+
+/// Which compiled stage set a plan needs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Shading {
+    /// [`AmbientOnly`].
+    AmbientOnly,
+    /// [`Diffuse`].
+    Diffuse,
+    /// [`DiffuseShadows`].
+    DiffuseShadows,
+    /// [`Full`].
+    Full,
+}
+
+/// The smallest stage set that covers a plan.
+pub fn shading_for(plan: &Plan) -> Shading {
+    if plan.reflection || plan.specular || plan.spotlights {
+        Shading::Full
+    } else if plan.lighting && plan.shadows {
+        Shading::DiffuseShadows
+    } else if plan.lighting {
+        Shading::Diffuse
+    } else {
+        Shading::AmbientOnly
+    }
+}
 
 /// The nearest accepted hit of a ray among the scene's objects, with the object's index.
 pub fn nearest_hit<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Option<(usize, Hit<S>)> {
@@ -32,19 +145,15 @@ pub fn nearest_hit<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Option<(usize, 
     best
 }
 
-/// Whether an object other than `except` lies on the segment from `ray.base` to
-/// `ray.base + dist·ray.dir` (a shadow test: the first hit is enough).
-///
-/// A plane cannot shadow its own points, so the object the ray leaves is skipped instead
-/// of offsetting the base by a tolerance; hits at `t = 0` (the ray starts on another
-/// object, at a crease) do not count either.
-pub fn occludes<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, dist: S, except: usize) -> bool {
-    scene.objects.iter().enumerate().any(|(i, object)| {
-        i != except
-            && object
-                .shape
-                .intersect(ray, scene.epsilon)
-                .is_ok_and(|hit| hit.t > S::ZERO && hit.t < dist)
+/// Whether any object lies on the segment from `ray.base` to `ray.base + dist·ray.dir`
+/// (a shadow test: the first hit is enough). Shadow rays start off the surface they leave
+/// by its computed error bound ([`Shape::spawn`]), so that surface cannot shadow itself.
+pub fn occludes<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, dist: S) -> bool {
+    scene.objects.iter().any(|object| {
+        object
+            .shape
+            .intersect(ray, scene.epsilon)
+            .is_ok_and(|hit| hit.t < dist)
     })
 }
 
@@ -54,60 +163,190 @@ fn add_sat<S: Scalar>(a: S, b: S) -> S {
     a.checked_add(b).unwrap_or(S::MAX)
 }
 
-/// The colour of a hit on `objects[index]`, lit by the scene's lights, in channel units.
+/// `k × Σ` style product chain that saturates: a term too large for the format is far
+/// brighter than 255.
+fn term<S: Scalar>(factors: [S; 3]) -> S {
+    factors
+        .iter()
+        .skip(1)
+        .try_fold(factors[0], |acc, f| acc.checked_mul(*f))
+        .unwrap_or(S::MAX)
+}
+
+/// The material index an object shows at a point (a tiled plane's odd squares show its
+/// alternate material).
+fn material_at<S: Scalar>(object: &Object<S>, point: Vec3<S>, counters: &mut Counters) -> u8 {
+    match object.shape {
+        Shape::Tiled { frame, alt } => {
+            count(&mut counters.tile_lookups);
+            if frame.odd_tile(point) == Some(true) {
+                alt
+            } else {
+                object.material
+            }
+        }
+        _ => object.material,
+    }
+}
+
+/// The colour of a hit on `objects[index]` in channel units, with the stages of `T`.
 ///
-/// Per light: `255 × diffuse × emissivity × cos / dist`, evaluated as
-/// `emissivity × cos` (≤ emissivity, cos ≤ 1), divided by the distance in its two
-/// overflow-free parts ([`crate::Normalized::divide`]), times the diffuse reflectance,
-/// times 255. A product that overflows is far above 255 and saturates; a light exactly at
-/// the hit point gives no direction and lights nothing there.
-pub fn shade<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, index: usize, hit: &Hit<S>) -> Color<S> {
-    let Some(object): Option<&Object<S>> = scene.objects.get(index) else {
+/// Per light: `255 × (diffuse × emissivity × cos + specular × emissivity × (N·H)^shininess)
+/// / dist`, evaluated in overflow-free steps (the distance divides in its two parts,
+/// [`crate::Normalized::divide`]); a light exactly at the hit point gives no direction and
+/// lights nothing there. A reflective material mixes `(1 − K)` of that with `K` of what
+/// the mirrored ray sees, to [`MAX_REFLECTION_DEPTH`].
+fn shade_with<S: Scalar, T: Stages>(
+    scene: &Scene<S>,
+    ray: &Ray<S>,
+    index: usize,
+    hit: &Hit<S>,
+    depth: u8,
+    counters: &mut Counters,
+) -> Color<S> {
+    let Some(object) = scene.objects.get(index) else {
         return scene.background;
     };
-    let Some(material) = scene.materials.get(usize::from(object.material)) else {
+    let Some(material) = scene
+        .materials
+        .get(usize::from(material_at(object, hit.point, counters)))
+    else {
         return [S::ZERO; 3];
     };
     let mut color = material.ambient;
-    if scene.lights.is_empty() || material.diffuse == [S::ZERO; 3] {
+    let lit = T::LIGHTING && !scene.lights.is_empty();
+    let mirror = T::REFLECTION && material.reflective > S::ZERO && depth < MAX_REFLECTION_DEPTH;
+    if !lit && !mirror {
         return color;
     }
-    let channel_max = S::from_i32(255).unwrap_or(S::MAX);
+    let Some(surface_normal) = object.shape.normal_at(hit.point) else {
+        return color;
+    };
     // The normal facing the incoming ray.
-    let mut normal = object.shape.normal_at(hit.point);
-    if normal.dot(ray.dir).is_some_and(|d| d > S::ZERO) {
-        normal = Vec3::ZERO.diff(normal).unwrap_or(normal);
-    }
-    for light in &scene.lights {
-        let Some(to_light) = light.location.diff(hit.point).and_then(Vec3::normalize) else {
-            continue;
-        };
-        let Some(cos) = normal.dot(to_light.unit).filter(|c| *c > S::ZERO) else {
-            continue;
-        };
-        let shadow_ray = Ray {
-            base: hit.point,
-            dir: to_light.unit,
-            kind: RayKind::Secondary,
-        };
-        // The distance itself may not fit (a far light): then nothing lies beyond it.
-        let dist = to_light.length().unwrap_or(S::MAX);
-        if occludes(scene, &shadow_ray, dist, index) {
-            continue;
-        }
-        for ((c, diffuse), emissivity) in
-            color.iter_mut().zip(material.diffuse).zip(light.emissivity)
-        {
-            let term = emissivity
-                .checked_mul(cos)
-                .and_then(|ec| to_light.divide(ec))
-                .and_then(|irradiance| irradiance.checked_mul(diffuse))
-                .and_then(|k| k.checked_mul(channel_max))
+    let facing = if surface_normal.dot(ray.dir).is_some_and(|d| d > S::ZERO) {
+        surface_normal.checked_neg().unwrap_or(surface_normal)
+    } else {
+        surface_normal
+    };
+    let channel_max = S::from_i32(255).unwrap_or(S::MAX);
+    let specular = T::SPECULAR && material.specular > S::ZERO;
+    if lit && (material.diffuse != [S::ZERO; 3] || specular) {
+        for light in &scene.lights {
+            let Some(to_light) = light.location.diff(hit.point).and_then(Vec3::normalize) else {
+                continue;
+            };
+            let l = to_light.unit;
+            let Some(cos) = facing.dot(l).filter(|c| *c > S::ZERO) else {
+                continue;
+            };
+            if T::CONES
+                && let Some(cone) = light.cone
+            {
+                count(&mut counters.cone_tests);
+                // The angle between the axis and the direction light → point.
+                let inside = l
+                    .checked_neg()
+                    .and_then(|from_light| from_light.dot(cone.axis))
+                    .is_some_and(|c| c >= cone.cos_theta);
+                if !inside {
+                    continue;
+                }
+            }
+            if T::SHADOWS {
+                count(&mut counters.shadow_rays);
+                let shadow = object.shape.spawn(ray, hit, l);
+                // The distance itself may not fit (a far light): nothing lies beyond it.
+                let dist = to_light.length().unwrap_or(S::MAX);
+                if shadow.is_some_and(|r| occludes(scene, &r, dist)) {
+                    continue;
+                }
+            }
+            count(&mut counters.diffuse);
+            // 255 cos / dist and 255 (N·H)^shininess / dist, without forming dist; scaled
+            // to channel units first so that the quotient keeps the format's relative
+            // precision (cos / dist alone is small: in I20F12 it would keep 10 bits).
+            let diffuse_falloff = cos
+                .checked_mul(channel_max)
+                .and_then(|k| to_light.divide(k))
                 .unwrap_or(S::MAX);
-            *c = add_sat(*c, term);
+            let glint = if specular {
+                count(&mut counters.specular);
+                ray.dir
+                    .checked_neg()
+                    .and_then(|v| l.sum(v))
+                    .and_then(Vec3::unit)
+                    .and_then(|h| facing.dot(h))
+                    .filter(|nh| *nh > S::ZERO)
+                    .and_then(|nh| nh.pow_unit(material.shininess))
+                    .and_then(|p| p.checked_mul(channel_max))
+                    .and_then(|k| to_light.divide(k))
+                    .unwrap_or(S::ZERO)
+            } else {
+                S::ZERO
+            };
+            for ((c, diffuse), emissivity) in
+                color.iter_mut().zip(material.diffuse).zip(light.emissivity)
+            {
+                *c = add_sat(*c, term([emissivity, diffuse, diffuse_falloff]));
+                if specular {
+                    *c = add_sat(*c, term([emissivity, material.specular, glint]));
+                }
+            }
+        }
+    }
+    if mirror {
+        count(&mut counters.reflection_rays);
+        // r = d − 2 (N·d) N
+        let reflected = surface_normal
+            .dot(ray.dir)
+            .and_then(|nd| nd.checked_add(nd))
+            .and_then(|two_nd| surface_normal.scale(two_nd))
+            .and_then(|n2| ray.dir.diff(n2))
+            .and_then(Vec3::unit)
+            .and_then(|r| object.shape.spawn(ray, hit, r));
+        let seen = match reflected {
+            Some(r) => trace_with::<S, T>(scene, &r, depth + 1, counters).color,
+            None => scene.background,
+        };
+        let k = material.reflective;
+        let own = S::ONE.checked_sub(k).unwrap_or(S::ZERO);
+        for (c, s) in color.iter_mut().zip(seen) {
+            *c = add_sat(
+                c.checked_mul(own).unwrap_or(S::MAX),
+                s.checked_mul(k).unwrap_or(S::MAX),
+            );
         }
     }
     color
+}
+
+/// Traces a ray with the stages of `T`.
+fn trace_with<S: Scalar, T: Stages>(
+    scene: &Scene<S>,
+    ray: &Ray<S>,
+    depth: u8,
+    counters: &mut Counters,
+) -> Traced<S> {
+    let hit = nearest_hit(scene, ray);
+    let color = match &hit {
+        Some((i, h)) => shade_with::<S, T>(scene, ray, *i, h, depth, counters),
+        None => scene.background,
+    };
+    Traced { hit, color }
+}
+
+/// The colour of a hit on `objects[index]`, lit by the scene's lights, in channel units
+/// (the stages the scene's plan needs).
+pub fn shade<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, index: usize, hit: &Hit<S>) -> Color<S> {
+    let counters = &mut Counters::default();
+    match shading_for(&scene.plan) {
+        Shading::AmbientOnly => shade_with::<S, AmbientOnly>(scene, ray, index, hit, 0, counters),
+        Shading::Diffuse => shade_with::<S, Diffuse>(scene, ray, index, hit, 0, counters),
+        Shading::DiffuseShadows => {
+            shade_with::<S, DiffuseShadows>(scene, ray, index, hit, 0, counters)
+        }
+        Shading::Full => shade_with::<S, Full>(scene, ray, index, hit, 0, counters),
+    }
 }
 
 /// Converts a colour in channel units to a pixel: `round(clamp(c, 0, 255))` per channel,
@@ -132,25 +371,21 @@ pub struct Traced<S> {
     pub color: Color<S>,
 }
 
-/// Traces one ray: its nearest hit and colour.
+/// Traces one ray: its nearest hit and colour, with the stages the scene's plan needs.
 pub fn trace<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Traced<S> {
-    let hit = nearest_hit(scene, ray);
-    let color = match &hit {
-        Some((i, h)) => shade(scene, ray, *i, h),
-        None => scene.background,
-    };
-    Traced { hit, color }
+    let counters = &mut Counters::default();
+    match shading_for(&scene.plan) {
+        Shading::AmbientOnly => trace_with::<S, AmbientOnly>(scene, ray, 0, counters),
+        Shading::Diffuse => trace_with::<S, Diffuse>(scene, ray, 0, counters),
+        Shading::DiffuseShadows => trace_with::<S, DiffuseShadows>(scene, ray, 0, counters),
+        Shading::Full => trace_with::<S, Full>(scene, ray, 0, counters),
+    }
 }
 
 /// Traces the primary ray of pixel (`column`, `row`), row 0 at the top. A ray that cannot
 /// be formed in the format (see [`crate::Camera::primary_ray`]) sees the background.
 pub fn trace_pixel<S: Scalar>(scene: &Scene<S>, column: u16, row: u16) -> Traced<S> {
-    trace_at(scene, column, scene.camera.screen_y(row))
-}
-
-/// Traces pixel `column` of the scanline whose screen y is `y` (computed once per row).
-fn trace_at<S: Scalar>(scene: &Scene<S>, column: u16, y: Option<S>) -> Traced<S> {
-    match y.and_then(|y| scene.camera.primary_ray_at(column, y)) {
+    match scene.camera.primary_ray(column, row) {
         Some(ray) => trace(scene, &ray),
         None => Traced {
             hit: None,
@@ -164,14 +399,67 @@ pub fn pixel<S: Scalar>(scene: &Scene<S>, column: u16, row: u16) -> Rgb888 {
     to_rgb888(trace_pixel(scene, column, row).color)
 }
 
-/// Iterates over the pixels of scanline `row`, tracing each one when it is asked for.
-fn scanline<S: Scalar, C: From<Rgb888>>(
-    scene: &Scene<S>,
+/// The pixels of a scanline traced with the stage set `T`, one per step, as the caller
+/// (a `fill_contiguous` or a line buffer) pulls them.
+fn scanline_with<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
+    scene: &'a Scene<S>,
     row: u16,
     columns: core::ops::Range<u16>,
-) -> impl Iterator<Item = C> + '_ {
+    counters: &'a mut Counters,
+) -> impl Iterator<Item = C> + 'a {
     let y = scene.camera.screen_y(row);
-    columns.map(move |column| C::from(to_rgb888(trace_at(scene, column, y).color)))
+    columns.map(move |column| {
+        count(&mut counters.primary_rays);
+        let color = match y.and_then(|y| scene.camera.primary_ray_at(column, y)) {
+            Some(ray) => trace_with::<S, T>(scene, &ray, 0, counters).color,
+            None => scene.background,
+        };
+        C::from(to_rgb888(color))
+    })
+}
+
+/// Calls `$f::<S, Stage set>(args)` for the stage set the scene's plan needs: the plan is
+/// looked at once per call, never per pixel.
+macro_rules! with_stages {
+    ($scene:expr, $f:ident::<$s:ty>($($arg:expr),*)) => {
+        match shading_for(&$scene.plan) {
+            Shading::AmbientOnly => $f::<$s, AmbientOnly, _>($($arg),*),
+            Shading::Diffuse => $f::<$s, Diffuse, _>($($arg),*),
+            Shading::DiffuseShadows => $f::<$s, DiffuseShadows, _>($($arg),*),
+            Shading::Full => $f::<$s, Full, _>($($arg),*),
+        }
+    };
+}
+
+/// Renders scanline `row` with an explicit stage set `T` instead of the one the scene's
+/// plan picks: for benchmarks (what a stage costs) and for firmware that knows its scenes
+/// in advance. Stages the scene needs but `T` lacks are simply not drawn.
+pub fn render_line_stages<S: Scalar, T: Stages, C: From<Rgb888>>(
+    scene: &Scene<S>,
+    row: u16,
+    line: &mut [C],
+    counters: &mut Counters,
+) {
+    if row < scene.camera.height {
+        line_with::<S, T, C>(scene, row, line, counters);
+    }
+}
+
+fn line_with<S: Scalar, T: Stages, C: From<Rgb888>>(
+    scene: &Scene<S>,
+    row: u16,
+    line: &mut [C],
+    counters: &mut Counters,
+) {
+    let width = u16::try_from(line.len())
+        .unwrap_or(u16::MAX)
+        .min(scene.camera.width);
+    for (slot, c) in line
+        .iter_mut()
+        .zip(scanline_with::<S, T, C>(scene, row, 0..width, counters))
+    {
+        *slot = c;
+    }
 }
 
 /// Renders scanline `row` into `line`: pixel `i` of `line` is column `i`. Columns beyond
@@ -191,15 +479,21 @@ fn scanline<S: Scalar, C: From<Rgb888>>(
 /// assert_eq!(line, [Rgb565::new(0, 0, 31); 4]);
 /// ```
 pub fn render_line<S: Scalar, C: From<Rgb888>>(scene: &Scene<S>, row: u16, line: &mut [C]) {
+    render_line_counted(scene, row, line, &mut Counters::default());
+}
+
+/// [`render_line`], adding the line's rays and stage evaluations to `counters` (counted
+/// with the `stats` feature; without it they stay 0).
+pub fn render_line_counted<S: Scalar, C: From<Rgb888>>(
+    scene: &Scene<S>,
+    row: u16,
+    line: &mut [C],
+    counters: &mut Counters,
+) {
     if row >= scene.camera.height {
         return;
     }
-    let width = u16::try_from(line.len())
-        .unwrap_or(u16::MAX)
-        .min(scene.camera.width);
-    for (slot, color) in line.iter_mut().zip(scanline(scene, row, 0..width)) {
-        *slot = color;
-    }
+    with_stages!(scene, line_with::<S>(scene, row, line, counters));
 }
 
 /// Renders the scene into `target`, one `fill_contiguous` call per scanline, top to bottom.
@@ -228,6 +522,38 @@ where
     D: DrawTarget,
     D::Color: PixelColor + From<Rgb888>,
 {
+    render_counted(scene, target, &mut Counters::default())
+}
+
+/// [`render`], adding the frame's rays and stage evaluations to `counters` (counted with
+/// the `stats` feature; without it they stay 0).
+///
+/// # Errors
+/// The target's own error, from the first scanline it refused.
+pub fn render_counted<S, D>(
+    scene: &Scene<S>,
+    target: &mut D,
+    counters: &mut Counters,
+) -> Result<(), D::Error>
+where
+    S: Scalar,
+    D: DrawTarget,
+    D::Color: PixelColor + From<Rgb888>,
+{
+    with_stages!(scene, frame_with::<S>(scene, target, counters))
+}
+
+fn frame_with<S, T, D>(
+    scene: &Scene<S>,
+    target: &mut D,
+    counters: &mut Counters,
+) -> Result<(), D::Error>
+where
+    S: Scalar,
+    T: Stages,
+    D: DrawTarget,
+    D::Color: PixelColor + From<Rgb888>,
+{
     let full = Rectangle::new(
         Point::zero(),
         Size::new(
@@ -247,7 +573,10 @@ where
             Point::new(area.top_left.x, i32::from(row)),
             Size::new(area.size.width, 1),
         );
-        target.fill_contiguous(&line, scanline(scene, row, x0..x1 + 1))?;
+        target.fill_contiguous(
+            &line,
+            scanline_with::<S, T, D::Color>(scene, row, x0..x1 + 1, counters),
+        )?;
     }
     Ok(())
 }

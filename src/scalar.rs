@@ -102,6 +102,21 @@ pub trait Scalar: Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// Rounds to the nearest integer (ties away from zero); `None` when out of `i32` range.
     fn round_to_i32(self) -> Option<i32>;
 
+    /// Rounds towards −∞ to an integer; `None` when out of `i32` range.
+    fn floor_to_i32(self) -> Option<i32>;
+
+    /// `self^exponent` for `self` in [0, 1] and `exponent >= 1` (the specular term).
+    /// Floats use `libm`'s `pow`. Fixed formats raise to the integer part by repeated
+    /// squaring (exact up to rounding: integer shininess is exact) and take the fraction
+    /// f as the interpolation `x^f ≈ 1 − f + f·x` (error below 0.03 for x ≥ ½, which is
+    /// where a specular glint is visible; it vanishes for integer exponents).
+    fn pow_unit(self, exponent: Self) -> Option<Self>;
+
+    /// The cosine of an angle in radians, |angle| ≤ π (spotlight cones). Floats use
+    /// `libm`; fixed formats sum the Taylor series to x¹⁴/14! (truncation error below
+    /// 1e-8 on [−π/2, π/2], under one DELTA of every fixed format here).
+    fn cos(self) -> Option<Self>;
+
     /// The spacing of the format at the magnitude of `self`, or at 1 when `|self| < 1`:
     /// `DELTA` everywhere for fixed formats, `EPSILON × max(|self|, 1)` for floats. One
     /// rounding errs by at most this much; error bounds are written in these units.
@@ -215,6 +230,16 @@ macro_rules! impl_fixed {
             fn ulp(self) -> Self {
                 <$t>::DELTA
             }
+            #[inline]
+            fn floor_to_i32(self) -> Option<i32> {
+                self.checked_floor()?.checked_to_num::<i32>()
+            }
+            fn pow_unit(self, exponent: Self) -> Option<Self> {
+                pow_unit_series(self, exponent)
+            }
+            fn cos(self) -> Option<Self> {
+                cos_series(self)
+            }
         }
     };
 }
@@ -224,7 +249,7 @@ impl_fixed!(I20F12, "i20f12", fixed::types::I40F24, i32, i64);
 impl_fixed!(I32F32, "i32f32", fixed::types::I64F64, i64, i128);
 
 macro_rules! impl_float {
-    ($t:ty, $name:literal, $sqrt:path, $round:path) => {
+    ($t:ty, $name:literal, $sqrt:path, $round:path, $floor:path, $pow:path, $cos:path) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
             const ZERO: Self = 0.0;
@@ -308,6 +333,22 @@ macro_rules! impl_float {
                     None
                 }
             }
+            fn pow_unit(self, exponent: Self) -> Option<Self> {
+                Some($pow(self, exponent)).filter(|v| v.is_finite())
+            }
+            fn cos(self) -> Option<Self> {
+                Some($cos(self)).filter(|v| v.is_finite())
+            }
+            #[inline]
+            fn floor_to_i32(self) -> Option<i32> {
+                let r = $floor(self);
+                if (-2_147_483_648.0..2_147_483_648.0).contains(&r) {
+                    #[allow(clippy::cast_possible_truncation)]
+                    Some(r as i32)
+                } else {
+                    None
+                }
+            }
             #[inline]
             fn ulp(self) -> Self {
                 let m = if self < 0.0 { -self } else { self };
@@ -317,8 +358,55 @@ macro_rules! impl_float {
     };
 }
 
-impl_float!(f32, "f32", libm::sqrtf, libm::roundf);
-impl_float!(f64, "f64", libm::sqrt, libm::round);
+impl_float!(
+    f32,
+    "f32",
+    libm::sqrtf,
+    libm::roundf,
+    libm::floorf,
+    libm::powf,
+    libm::cosf
+);
+impl_float!(
+    f64,
+    "f64",
+    libm::sqrt,
+    libm::round,
+    libm::floor,
+    libm::pow,
+    libm::cos
+);
+
+/// `x^e` for x in [0, 1], e ≥ 1, with the formats' own arithmetic (see [`Scalar::pow_unit`]).
+pub fn pow_unit_series<S: Scalar>(x: S, e: S) -> Option<S> {
+    let x = x.max(S::ZERO).min(S::ONE);
+    let k = e.floor_to_i32()?.max(0);
+    let f = e.checked_sub(S::from_i32(k)?)?;
+    // x^k by repeated squaring; x ≤ 1, so nothing grows.
+    let (mut result, mut base, mut n) = (S::ONE, x, k);
+    while n > 0 {
+        if n & 1 == 1 {
+            result = result.checked_mul(base)?;
+        }
+        base = base.checked_mul(base)?;
+        n >>= 1;
+    }
+    // x^f ≈ 1 − f + f·x.
+    let frac = S::ONE.checked_sub(f)?.checked_add(f.checked_mul(x)?)?;
+    result.checked_mul(frac)
+}
+
+/// cos x by its Taylor series to x¹⁴/14! (see [`Scalar::cos`]).
+pub fn cos_series<S: Scalar>(x: S) -> Option<S> {
+    let x2 = x.checked_mul(x)?;
+    // Horner form of Σ (−1)^k x^2k / (2k)!, k = 0..=7, from the inside out:
+    // 1 − x²/2 (1 − x²/12 (1 − x²/30 (1 − x²/56 (1 − x²/90 (1 − x²/132 (1 − x²/182))))))
+    let mut acc = S::ONE;
+    for d in [182, 132, 90, 56, 30, 12, 2] {
+        acc = S::ONE.checked_sub(x2.checked_mul(acc)?.checked_div(S::from_i32(d)?)?)?;
+    }
+    Some(acc)
+}
 
 #[cfg(test)]
 mod tests {

@@ -84,15 +84,77 @@ pub struct Material<S> {
     /// Diffuse reflectance per channel, a plain real as in the scene (it multiplies the
     /// light's emissivity; the product is brought to channel units when shading).
     pub diffuse: [S; 3],
+    /// Specular reflectance (0: no glint).
+    pub specular: S,
+    /// Specular exponent, ≥ 1.
+    pub shininess: S,
+    /// Mirror share K in [0, 1] (0: not reflective).
+    pub reflective: S,
 }
 
-/// A point light.
+impl<S: Scalar> Material<S> {
+    /// A material with every attribute at the scene format's default (black, matte).
+    pub fn new() -> Self {
+        Self {
+            ambient: [S::ZERO; 3],
+            diffuse: [S::ZERO; 3],
+            specular: S::ZERO,
+            shininess: S::ONE,
+            reflective: S::ZERO,
+        }
+    }
+}
+
+impl<S: Scalar> Default for Material<S> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// A spotlight's cone: it lights a point only when the angle between its axis and the
+/// direction to the point is at most θ, i.e. `(point − location)·axis ≥ cos θ × |…|`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cone<S> {
+    /// Unit vector from the light towards the point it is aimed at.
+    pub axis: Vec3<S>,
+    /// cos θ.
+    pub cos_theta: S,
+}
+
+/// A point light, or a spotlight when it has a cone.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Light<S> {
     /// Position.
     pub location: Vec3<S>,
     /// Emissivity per channel (plain reals, not channel units).
     pub emissivity: Color<S>,
+    /// The spotlight's cone; `None` for a point light.
+    pub cone: Option<Cone<S>>,
+}
+
+/// Which stages of shading a scene needs, worked out once when the scene is built
+/// ([`Scene::plan`]). The renderer picks a shading loop compiled for the stages planned
+/// and nothing else: a scene without lights never evaluates lighting, one without
+/// specular materials never computes a half vector, and so on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Plan {
+    /// Any light at all (diffuse term).
+    pub lighting: bool,
+    /// Shadow rays: lights and something that can stand between a point and a light
+    /// (two objects, or any sphere).
+    pub shadows: bool,
+    /// Some material has a specular glint (and there are lights).
+    pub specular: bool,
+    /// Some light is a spotlight.
+    pub spotlights: bool,
+    /// Some material is reflective.
+    pub reflection: bool,
+    /// Some object is a tiled plane.
+    pub tiles: bool,
+    /// Some object is a finite plane.
+    pub finite_planes: bool,
+    /// Some object is a sphere.
+    pub spheres: bool,
 }
 
 /// A shape with its material.
@@ -133,6 +195,9 @@ pub struct Scene<S> {
     /// The precision epsilon of every intersection test in this scene: the scene's
     /// `precision`, or [`Scalar::DEFAULT_EPSILON`].
     pub epsilon: S,
+    /// The stages this scene needs; kept up to date by [`Scene::parse`] and the `push_`
+    /// methods. After changing the public vectors directly, call [`Scene::replan`].
+    pub plan: Plan,
 }
 
 impl<S: Scalar> Scene<S> {
@@ -145,7 +210,44 @@ impl<S: Scalar> Scene<S> {
             objects: Vec::new(),
             background: [S::ZERO; 3],
             epsilon: S::DEFAULT_EPSILON,
+            plan: Plan::default(),
         }
+    }
+
+    /// Works out the [`Plan`] from the scene's contents (called by the parser and the
+    /// `push_` methods).
+    pub fn replan(&mut self) {
+        let material = |i: u8| self.materials.get(usize::from(i));
+        let lighting = !self.lights.is_empty();
+        let spheres = self
+            .objects
+            .iter()
+            .any(|o| matches!(o.shape, Shape::Sphere(_)));
+        let used = |f: &dyn Fn(&Material<S>) -> bool| {
+            self.objects.iter().any(|o| {
+                let alt = match o.shape {
+                    Shape::Tiled { alt, .. } => material(alt).is_some_and(f),
+                    _ => false,
+                };
+                material(o.material).is_some_and(f) || alt
+            })
+        };
+        self.plan = Plan {
+            lighting,
+            shadows: lighting && (self.objects.len() > 1 || spheres),
+            specular: lighting && used(&|m| m.specular > S::ZERO),
+            spotlights: self.lights.iter().any(|l| l.cone.is_some()),
+            reflection: used(&|m| m.reflective > S::ZERO),
+            tiles: self
+                .objects
+                .iter()
+                .any(|o| matches!(o.shape, Shape::Tiled { .. })),
+            finite_planes: self
+                .objects
+                .iter()
+                .any(|o| matches!(o.shape, Shape::Finite(_))),
+            spheres,
+        };
     }
 
     /// Adds a plane object; hands the object back when the scene is full.
@@ -153,10 +255,20 @@ impl<S: Scalar> Scene<S> {
     /// # Errors
     /// The object, when [`MAX_OBJECTS`] are already there.
     pub fn push_plane(&mut self, plane: Plane<S>, material: u8) -> Result<(), Object<S>> {
-        self.objects.push(Object {
+        self.push_object(Object {
             shape: Shape::Plane(plane),
             material,
         })
+    }
+
+    /// Adds any object; hands it back when the scene is full.
+    ///
+    /// # Errors
+    /// The object, when [`MAX_OBJECTS`] are already there.
+    pub fn push_object(&mut self, object: Object<S>) -> Result<(), Object<S>> {
+        self.objects.push(object)?;
+        self.replan();
+        Ok(())
     }
 }
 
@@ -174,7 +286,7 @@ mod tests {
             core::mem::size_of::<Scene<I32F32>>(),
             core::mem::size_of::<Scene<f32>>()
         );
-        assert_eq!(core::mem::size_of::<Scene<I16F16>>(), 1280);
-        assert_eq!(core::mem::size_of::<Scene<I32F32>>(), 2536);
+        assert_eq!(core::mem::size_of::<Scene<I16F16>>(), 3176);
+        assert_eq!(core::mem::size_of::<Scene<I32F32>>(), 6320);
     }
 }

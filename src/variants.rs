@@ -89,6 +89,16 @@ macro_rules! delegate {
             fn ulp(self) -> Self {
                 Self(self.0.ulp())
             }
+            #[inline]
+            fn floor_to_i32(self) -> Option<i32> {
+                self.0.floor_to_i32()
+            }
+            fn pow_unit(self, exponent: Self) -> Option<Self> {
+                Scalar::pow_unit(self.0, exponent.0).map(Self)
+            }
+            fn cos(self) -> Option<Self> {
+                Scalar::cos(self.0).map(Self)
+            }
             $($own)*
         }
     };

@@ -87,6 +87,23 @@ impl<S: Scalar> Vec3<S> {
         ))
     }
 
+    /// The cross product `self × other`.
+    #[inline]
+    pub fn cross(self, other: Self) -> Option<Self> {
+        let term = |a: S, b: S, c: S, d: S| a.checked_mul(b)?.checked_sub(c.checked_mul(d)?);
+        Some(Self::new(
+            term(self.y, other.z, self.z, other.y)?,
+            term(self.z, other.x, self.x, other.z)?,
+            term(self.x, other.y, self.y, other.x)?,
+        ))
+    }
+
+    /// `−self`.
+    #[inline]
+    pub fn checked_neg(self) -> Option<Self> {
+        Vec3::ZERO.diff(self)
+    }
+
     /// The largest absolute component (the ∞-norm).
     #[inline]
     pub fn max_abs(self) -> S {

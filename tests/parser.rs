@@ -358,26 +358,33 @@ fn too_many() {
 }
 
 #[test]
-fn entities_not_drawn_yet_are_refused_after_being_checked() {
+fn every_entity_of_the_format_is_read_and_checked() {
     let m = format!("{CAMERA}material m {{}}\nmaterial n {{}}\n");
-    check(
-        &format!("{m}sphere s {{ material m center 0 0 -5 radius 1 }}"),
-        4,
-        1,
-        "sphere is not supported yet",
+    let ok = |text: &str| Scene::<I16F16>::parse(text).unwrap();
+    let s = ok(&format!(
+        "{m}sphere s {{ material m center 0 0 -5 radius 1 }}
+         spotlight l {{ location 0 5 0 emissivity 1 1 1 point 0 0 -5 theta 30 }}
+         tiled_plane t {{ material m altmaterial n normal 0 1 0 point 0 0 0 xdir 1 0 0 dimension 1 1 }}
+         fplane f {{ material m normal 0 0 1 point 0 0 -9 xdir 1 0 0 dimensions 2 1 }}
+         material shiny {{ specular 0.5 shininess 20 reflective 0.25 }}"
+    ));
+    assert_eq!(
+        (s.objects.len(), s.lights.len(), s.materials.len()),
+        (3, 1, 3)
     );
-    // ... but a broken sphere gets its own error first.
+    // cos 30° = 0.866025…, from the Taylor series in I16F16.
+    let cone = s.lights[0].cone.unwrap();
+    assert!((cone.cos_theta.to_f64() - 0.866_025_4).abs() < 4.0 * I16F16::DELTA.to_f64());
+    assert_eq!(s.materials[2].shininess.to_f64(), 20.0);
+    let plan = s.plan;
+    assert!(plan.spheres && plan.tiles && plan.finite_planes && plan.spotlights);
+    assert!(plan.lighting && plan.shadows && !plan.specular && !plan.reflection);
+
     check(
         &format!("{m}sphere s {{ material m center 0 0 -5 radius -1 }}"),
         4,
         44,
         "`radius` must be > 0",
-    );
-    check(
-        &format!("{m}spotlight s {{ location 0 5 0 emissivity 1 1 1 point 0 0 -5 theta 30 }}"),
-        4,
-        1,
-        "spotlight is not supported yet",
     );
     check(
         &format!("{m}spotlight s {{ location 0 5 0 emissivity 1 1 1 point 0 0 -5 theta 95 }}"),
@@ -386,13 +393,10 @@ fn entities_not_drawn_yet_are_refused_after_being_checked() {
         "`theta` must be in (0, 90]",
     );
     check(
-        &format!(
-            "{m}tiled_plane t {{ material m altmaterial n normal 0 1 0 point 0 0 0 \
-             xdir 1 0 0 dimension 1 1 }}"
-        ),
+        &format!("{m}spotlight s {{ location 0 5 0 emissivity 1 1 1 point 0 5 0 theta 30 }}"),
         4,
-        1,
-        "tiled_plane is not supported yet",
+        47,
+        "`point` must be a point other than the spotlight's location",
     );
     check(
         &format!(
@@ -410,22 +414,16 @@ fn entities_not_drawn_yet_are_refused_after_being_checked() {
         "`dimensions` must be > 0",
     );
     check(
-        &format!("{m}fplane f {{ material m normal 0 1 0 point 0 0 0 xdir 1 0 0 dimensions 2 1 }}"),
+        &format!("{m}fplane f {{ material m normal 0 1 0 point 0 0 0 xdir 0 2 0 dimensions 2 1 }}"),
         4,
-        1,
-        "fplane is not supported yet",
+        48,
+        "`xdir` must be a direction with a component in the plane (not along the normal)",
     );
     check(
-        &format!("{CAMERA}material m {{ specular 0.5 }}"),
+        &format!("{CAMERA}material m {{ specular -1 }}"),
         2,
-        14,
-        "specular is not supported yet",
-    );
-    check(
-        &format!("{CAMERA}material m {{ reflective 0.5 }}"),
-        2,
-        14,
-        "reflective material is not supported yet",
+        23,
+        "`specular` must be >= 0",
     );
 }
 

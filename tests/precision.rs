@@ -18,6 +18,7 @@ const SCENES: [(&str, &str); 3] = [
 fn plane_of<S: Scalar>(scene: &Scene<S>, i: usize) -> Plane<S> {
     match scene.objects[i].shape {
         Shape::Plane(p) => p,
+        _ => panic!("the planes scenes hold planes only"),
     }
 }
 

@@ -276,8 +276,11 @@ fn a_light_beyond_the_format_range_still_lights() {
         material m { diffuse 1 1 1 }
         light l { location 0.5 29999 29997 emissivity 30000 30000 30000 }
         plane p { material m normal 0 1 0 point 0 -1 0 }";
-    for c in single_pixel_everywhere(text) {
-        assert!((127..=128).contains(&c.r()), "{c:?}");
+    // I20F12 keeps only a few bits of 255·cos/dist ≈ 0.0043 (17 DELTAs): lit, but up to
+    // 10 % off; the other formats are within a level of the tie.
+    for (i, c) in single_pixel_everywhere(text).iter().enumerate() {
+        let range = if i == 1 { 115..=140 } else { 127..=128 };
+        assert!(range.contains(&c.r()), "format {i}: {c:?}");
     }
 }
 
