@@ -10,7 +10,10 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
-use fixray::{I16F16, I20F12, I32F32, Plane, Ray, RayKind, Scalar, Scene, Vec3, render_line};
+use fixray::render::{AmbientOnly, render_line_stages};
+use fixray::{
+    Counters, I16F16, I20F12, I32F32, Plane, Ray, RayKind, Scalar, Scene, Vec3, render_line,
+};
 
 const DEFAULT: &str = include_str!("../scenes/default.scene");
 
@@ -63,7 +66,34 @@ fn bench_dot<S: Scalar>(c: &mut Criterion) {
     });
 }
 
+/// The full renderer (plan picks the stages) against the ambient-only stage set called
+/// directly (every other stage compiled out) on the ambient-only planes scene: the plan
+/// must cost nothing (within 5 %).
+fn bench_plan(c: &mut Criterion) {
+    let scene = Scene::<I16F16>::parse(include_str!("../scenes/planes.scene")).unwrap();
+    let mut line = vec![Rgb888::BLACK; usize::from(scene.camera.width)];
+    let mut group = c.benchmark_group("ambient-only planes scene");
+    group.bench_function("full renderer (planned)", |b| {
+        b.iter(|| frame(black_box(&scene), &mut line));
+    });
+    group.bench_function("stages compiled out", |b| {
+        b.iter(|| {
+            let mut counters = Counters::default();
+            for row in 0..scene.camera.height {
+                render_line_stages::<_, AmbientOnly, _>(
+                    black_box(&scene),
+                    row,
+                    &mut line,
+                    &mut counters,
+                );
+            }
+        });
+    });
+    group.finish();
+}
+
 fn benches(c: &mut Criterion) {
+    bench_plan(c);
     bench_format::<I16F16>(c);
     bench_format::<I20F12>(c);
     bench_format::<I32F32>(c);

@@ -327,21 +327,23 @@ impl<S: Scalar> Sphere<S> {
             return Err(Miss::NoRoot);
         }
         let root = disc.checked_sqrt().ok_or(Miss::OutOfRange)?;
-        // c = |oc|² − r², in one wide step.
-        let c = S::sub_dot3(self.radius_sq, oc.to_array(), oc.to_array())
-            .and_then(S::checked_neg)
-            .ok_or(Miss::OutOfRange)?;
         let q = if b >= S::ZERO {
             b.checked_add(root).and_then(S::checked_neg)
         } else {
             root.checked_sub(b)
         }
         .ok_or(Miss::OutOfRange)?;
-        let (t0, t1) = if q == S::ZERO {
-            (S::ZERO, S::ZERO)
-        } else {
-            (q, c.checked_div(q).ok_or(Miss::OutOfRange)?)
-        };
+        // The other root is c/q with c = |oc|² − r² (one wide step): exact where the two
+        // roots nearly cancel (the base near the surface, c ≈ 0). For a far sphere c can
+        // exceed the format while t fits; then |oc| ≫ r and −b ∓ √Δ does not cancel.
+        let c = S::sub_dot3(self.radius_sq, oc.to_array(), oc.to_array()).and_then(S::checked_neg);
+        let other = match c {
+            Some(c) if q != S::ZERO => c.checked_div(q),
+            _ if b < S::ZERO => S::ZERO.checked_sub(b).and_then(|nb| nb.checked_sub(root)),
+            _ => root.checked_sub(b),
+        }
+        .ok_or(Miss::OutOfRange)?;
+        let (t0, t1) = (q, other);
         let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
         let t = if near >= S::ZERO {
             near

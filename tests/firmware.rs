@@ -95,3 +95,68 @@ fn firmware_frames_match_the_host_bit_for_bit() {
     .unwrap();
     assert!(mismatches.is_empty(), "{mismatches:#?}");
 }
+
+/// What absent effects cost: every effect scene's instructions per pixel on the Cortex-M4F
+/// (I16F16), the flash of the firmware per set of cargo features (planes and ambient
+/// only, then with lighting, spheres, everything), and the ambient-only scene rendered by
+/// the full renderer against the same scene with every other stage compiled out: at most
+/// 5 % more instructions (instruction counts are deterministic).
+#[test]
+#[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
+fn absent_effects_cost_nothing_on_the_chip() {
+    assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
+    let target = "thumbv7em-none-eabihf";
+    let scenes = "default,planes,horizon,spheres,tiles,specular,spotlight,mirror";
+    let mut report = String::from(
+        "| scene (Cortex-M4F) | i16f16 instructions/pixel | f32 instructions/pixel |\n|---|---|---|\n",
+    );
+    let i16 = qemu::run(target, "i16f16", scenes).unwrap();
+    let f32 = qemu::run(target, "f32", scenes).unwrap();
+    for (a, b) in i16.frames.iter().zip(&f32.frames) {
+        writeln!(
+            report,
+            "| {} | {} | {} |",
+            a.get("scene"),
+            a.get("per_pixel"),
+            b.get("per_pixel")
+        )
+        .unwrap();
+    }
+    report.push_str("\n| cargo features | flash bytes (M0, i16f16) | planes scene instructions (M0) |\n|---|---|---|\n");
+    let mut flash = Vec::new();
+    for features in [Some(""), Some("lighting"), Some("lighting,spheres"), None] {
+        let run =
+            qemu::run_with_features("thumbv6m-none-eabi", "i16f16", "planes", features).unwrap();
+        let name = features.map_or("all (default)", |f| {
+            if f.is_empty() {
+                "none: planes + ambient"
+            } else {
+                f
+            }
+        });
+        writeln!(
+            report,
+            "| {name} | {} | {} |",
+            run.flash,
+            run.frames[0].get("instructions")
+        )
+        .unwrap();
+        flash.push((run.flash, run.frames[0].number("instructions")));
+    }
+    println!("{report}");
+    std::fs::write(
+        concat!(env!("CARGO_MANIFEST_DIR"), "/target/effects-report.md"),
+        &report,
+    )
+    .unwrap();
+    let (bare, full) = (flash[0], flash[3]);
+    // The planes + ambient firmware carries no lighting, sphere or reflection code.
+    assert!(
+        bare.0 < flash[1].0 && flash[1].0 < flash[2].0 && flash[2].0 <= full.0,
+        "{flash:?}"
+    );
+    // The full renderer on an ambient-only scene: within 5 % of the compiled-out one.
+    let ratio = full.1 as f64 / bare.1 as f64;
+    println!("ambient-only scene, full renderer / stages compiled out: {ratio:.4}");
+    assert!(ratio <= 1.05, "{ratio}");
+}

@@ -312,3 +312,142 @@ fn hits_with_z_near_zero_and_the_screen_rule() {
     screen_rule::<I20F12>();
     screen_rule::<I32F32>();
 }
+
+fn sphere<S: Scalar>(c: [f64; 3], r: f64) -> fixray::Sphere<S> {
+    fixray::Sphere::new(v(c[0], c[1], c[2]), S::from_f64(r).unwrap()).unwrap()
+}
+
+/// Rays tangent to a sphere, and k DELTAs inside or outside tangency. Hard: the
+/// discriminant is 0 (or a few DELTAs²). Right answer: exactly tangent hits at the touching
+/// point (t = 15); passing outside by a DELTA misses (`NoRoot`); inside hits. In the
+/// fixed formats every quantity here is exact.
+fn tangent<S: Scalar>() {
+    let s = sphere::<S>([0.0, 0.0, -10.0], 2.0);
+    let down = v::<S>(0.0, 0.0, -1.0);
+    let two = S::from_i32(2).unwrap();
+    let hit = s
+        .intersect(&ray(v(2.0, 0.0, 5.0), down, RayKind::Primary))
+        .unwrap();
+    assert_eq!(
+        (hit.t.to_f64(), hit.point.to_f64()),
+        (15.0, [2.0, 0.0, -10.0]),
+        "{}",
+        S::NAME
+    );
+    let outside = Vec3::new(
+        two.checked_add(S::DELTA).unwrap(),
+        S::ZERO,
+        S::from_i32(5).unwrap(),
+    );
+    assert_eq!(
+        s.intersect(&ray(outside, down, RayKind::Primary)),
+        Err(Miss::NoRoot),
+        "{}",
+        S::NAME
+    );
+    let inside = Vec3::new(
+        two.checked_sub(S::DELTA).unwrap(),
+        S::ZERO,
+        S::from_i32(5).unwrap(),
+    );
+    assert!(
+        s.intersect(&ray(inside, down, RayKind::Primary)).is_ok(),
+        "{}",
+        S::NAME
+    );
+}
+
+#[test]
+fn rays_tangent_to_a_sphere() {
+    tangent::<I16F16>();
+    tangent::<I20F12>();
+    tangent::<I32F32>();
+}
+
+/// The base inside the sphere. Hard: one root is negative; the near root must not be
+/// taken. Right answer: the far root, t = r from the centre, in every direction.
+fn inside<S: Scalar>() {
+    let s = sphere::<S>([1.0, 2.0, -10.0], 3.0);
+    for dir in [
+        [1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [1.0, 1.0, 1.0],
+    ] {
+        let d = v::<S>(dir[0], dir[1], dir[2]).unit().unwrap();
+        let hit = s
+            .intersect(&ray(v(1.0, 2.0, -10.0), d, RayKind::Secondary))
+            .unwrap();
+        assert!(
+            (hit.t.to_f64() - 3.0).abs() <= 8.0 * S::DELTA.to_f64(),
+            "{} {dir:?}: {:?}",
+            S::NAME,
+            hit.t
+        );
+    }
+}
+
+#[test]
+fn a_ray_base_inside_the_sphere() {
+    every_format!(inside);
+}
+
+/// The cancellation-prone discriminant: a small sphere 20 000 units away. Hard: the
+/// textbook b² − c subtracts two numbers of about 4·10⁸ to find 0.25, far beyond I16F16's
+/// range and its precision; c itself does not fit I16F16. Right answer: t = 20004.5 (the
+/// near surface), within a few DELTAs × t, from r² − |oc − (oc·d)d|² and −b − √Δ.
+fn far_small_sphere<S: Scalar>() {
+    let s = sphere::<S>([0.0, 0.0, -20000.0], 0.5);
+    let hit = s
+        .intersect(&ray(v(0.0, 0.0, 5.0), v(0.0, 0.0, -1.0), RayKind::Primary))
+        .unwrap();
+    assert!(
+        (hit.t.to_f64() - 20004.5).abs() <= 1e-3,
+        "{}: {:?}",
+        S::NAME,
+        hit.t
+    );
+    // Slightly off-axis: disc = 0.25 − 0.3² = 0.16, t = 20005 − 0.4 = 20004.6.
+    let hit = s
+        .intersect(&ray(v(0.3, 0.0, 5.0), v(0.0, 0.0, -1.0), RayKind::Primary))
+        .unwrap();
+    assert!(
+        (hit.t.to_f64() - 20004.6).abs() <= 1e-3,
+        "{}: {:?}",
+        S::NAME,
+        hit.t
+    );
+}
+
+#[test]
+fn the_cancellation_prone_discriminant() {
+    far_small_sphere::<I16F16>();
+    far_small_sphere::<I20F12>();
+    far_small_sphere::<I32F32>();
+    far_small_sphere::<f32>();
+    far_small_sphere::<f64>();
+}
+
+/// A ray starting a DELTA outside the surface, heading in. Hard: the near root is a
+/// DELTA, the difference of two numbers near 4; c/q keeps it to one rounding. Right
+/// answer: a hit at t = 1 DELTA (the exact root is DELTA·(1 − DELTA/4)); the division
+/// rounds towards zero, so 0 is within the bound too, a negative t (behind) is not.
+fn base_on_the_surface<S: Scalar>() {
+    let s = sphere::<S>([0.0, 0.0, -10.0], 2.0);
+    let z = S::from_i32(-8).unwrap().checked_add(S::DELTA).unwrap();
+    let hit = s
+        .intersect(&ray(
+            Vec3::new(S::ZERO, S::ZERO, z),
+            v(0.0, 0.0, -1.0),
+            RayKind::Secondary,
+        ))
+        .unwrap();
+    assert!(hit.t >= S::ZERO && hit.t <= S::DELTA, "{}: {:?}", S::NAME, hit.t);
+}
+
+#[test]
+fn a_ray_starting_a_delta_off_the_sphere() {
+    base_on_the_surface::<I16F16>();
+    base_on_the_surface::<I20F12>();
+    base_on_the_surface::<I32F32>();
+}

@@ -62,20 +62,35 @@ pub fn qemu_available() -> bool {
 }
 
 /// Builds and runs the firmware for `target` with the given formats and scenes (comma
-/// lists, as `FIXRAY_FW_FORMATS` and `FIXRAY_FW_SCENES` take them).
+/// lists, as `FIXRAY_FW_FORMATS` and `FIXRAY_FW_SCENES` take them) and the crate's
+/// default features.
 pub fn run(target: &str, formats: &str, scenes: &str) -> Result<Run, String> {
+    run_with_features(target, formats, scenes, None)
+}
+
+/// [`run`] with `--no-default-features --features <features>` when `features` is given.
+pub fn run_with_features(
+    target: &str,
+    formats: &str,
+    scenes: &str,
+    features: Option<&str>,
+) -> Result<Run, String> {
     let manifest = env!("CARGO_MANIFEST_DIR");
+    let mut args = vec![
+        "run",
+        "--quiet",
+        "--release",
+        "--example",
+        "firmware",
+        "--target",
+        target,
+    ];
+    if let Some(f) = features {
+        args.extend(["--no-default-features", "--features", f]);
+    }
     let out = Command::new(env!("CARGO"))
         .current_dir(manifest)
-        .args([
-            "run",
-            "--quiet",
-            "--release",
-            "--example",
-            "firmware",
-            "--target",
-            target,
-        ])
+        .args(&args)
         .env("FIXRAY_FW_FORMATS", formats)
         .env("FIXRAY_FW_SCENES", scenes)
         .env_remove("FIXRAY_FW_PPM")
