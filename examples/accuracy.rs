@@ -33,8 +33,8 @@ use fixray::compare::{Comparison, compare};
 use fixray::variants::{F32Micro, I16F16Narrow};
 use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render_line, trace_pixel};
 
-/// The scenes: name, what it is, text.
-const SCENES: [(&str, &str, &str); 3] = [
+/// The scenes: name, what it is, text. The grazing scene is third (the epsilon sweep).
+const SCENES: [(&str, &str, &str); 8] = [
     (
         "default",
         "the default scene: five planes, ambient + one light with shadows",
@@ -49,6 +49,31 @@ const SCENES: [(&str, &str, &str); 3] = [
         "horizon",
         "grazing: an infinite floor to the horizon, ambient only",
         include_str!("../scenes/horizon.scene"),
+    ),
+    (
+        "spheres",
+        "spheres on a floor, one light with shadows",
+        include_str!("../scenes/spheres.scene"),
+    ),
+    (
+        "tiles",
+        "a tiled checkerboard floor and a finite plane, ambient only",
+        include_str!("../scenes/tiles.scene"),
+    ),
+    (
+        "specular",
+        "specular glints (shininess 4 and 40)",
+        include_str!("../scenes/specular.scene"),
+    ),
+    (
+        "spotlight",
+        "a spotlight's cone beside a point light",
+        include_str!("../scenes/spotlight.scene"),
+    ),
+    (
+        "mirror",
+        "reflection: a mirror sphere and a half-mirror floor",
+        include_str!("../scenes/mirror.scene"),
     ),
 ];
 
@@ -315,7 +340,7 @@ fn main() {
         .collect();
 
     // Epsilon sweep on the grazing scene.
-    let horizon = SCENES[2].2;
+    let horizon = SCENES[2].2; // the grazing scene
     let sweeps: Vec<(&str, Vec<Sweep>)> = FORMATS
         .iter()
         .map(|(f, _)| (*f, with_format(f, &mut SweepEpsilon(horizon))))
