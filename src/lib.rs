@@ -28,6 +28,7 @@
 
 pub mod compare;
 pub mod decimal;
+pub mod fast;
 pub mod geometry;
 pub mod hash;
 pub mod parse;

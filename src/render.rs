@@ -17,6 +17,7 @@ use embedded_graphics_core::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics_core::prelude::{DrawTarget, Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
 
+use crate::fast::{Primary, Row};
 use crate::scene::Plan;
 use crate::{Color, Hit, Object, Ray, Scalar, Scene, Shape, Vec3};
 
@@ -400,22 +401,62 @@ pub fn pixel<S: Scalar>(scene: &Scene<S>, column: u16, row: u16) -> Rgb888 {
 }
 
 /// The pixels of a scanline traced with the stage set `T`, one per step, as the caller
-/// (a `fill_contiguous` or a line buffer) pulls them.
+/// (a `fill_contiguous` or a line buffer) pulls them. With a fast-path frame (`primary`,
+/// plane scenes without specular or reflection) primary rays take [`crate::fast`];
+/// otherwise, and for any pixel the fast path hands back, the reference path.
 fn scanline_with<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
     scene: &'a Scene<S>,
+    primary: Option<&'a Primary<S>>,
     row: u16,
     columns: core::ops::Range<u16>,
     counters: &'a mut Counters,
 ) -> impl Iterator<Item = C> + 'a {
     let y = scene.camera.screen_y(row);
+    let mut state: Option<Row<S>> = None;
     columns.map(move |column| {
         count(&mut counters.primary_rays);
-        let color = match y.and_then(|y| scene.camera.primary_ray_at(column, y)) {
-            Some(ray) => trace_with::<S, T>(scene, &ray, 0, counters).color,
-            None => scene.background,
+        let fast = primary.and_then(|p| {
+            match state.as_mut() {
+                Some(r)
+                    if Primary::column(r).checked_add(1) == Some(column)
+                        && column % crate::fast::RESYNC_PIXELS != 0 =>
+                {
+                    p.advance(r)?
+                }
+                _ => state = Some(p.row(scene, row, column)?),
+            }
+            p.nearest(scene, state.as_ref()?).ok()
+        });
+        let color = match fast {
+            Some(Some(h)) => {
+                let ray = Ray {
+                    base: scene.camera.viewpoint,
+                    dir: h.dir,
+                    kind: crate::RayKind::Primary,
+                };
+                let hit = Hit {
+                    t: h.t_bound,
+                    point: h.point,
+                };
+                shade_with::<S, T>(scene, &ray, h.index, &hit, 0, counters)
+            }
+            Some(None) => scene.background,
+            None => match y.and_then(|y| scene.camera.primary_ray_at(column, y)) {
+                Some(ray) => trace_with::<S, T>(scene, &ray, 0, counters).color,
+                None => scene.background,
+            },
         };
         C::from(to_rgb888(color))
     })
+}
+
+/// The fast-path frame for stage set `T`: only where the unnormalised primary direction is
+/// all shading needs (no specular half vector, no mirror direction).
+fn primary_for<S: Scalar, T: Stages>(scene: &Scene<S>) -> Option<Primary<S>> {
+    if T::SPECULAR || T::REFLECTION {
+        return None;
+    }
+    Primary::new(scene)
 }
 
 /// Calls `$f::<S, Stage set>(args)` for the stage set the scene's plan needs: the plan is
@@ -454,10 +495,9 @@ fn line_with<S: Scalar, T: Stages, C: From<Rgb888>>(
     let width = u16::try_from(line.len())
         .unwrap_or(u16::MAX)
         .min(scene.camera.width);
-    for (slot, c) in line
-        .iter_mut()
-        .zip(scanline_with::<S, T, C>(scene, row, 0..width, counters))
-    {
+    let primary = primary_for::<S, T>(scene);
+    let pixels = scanline_with::<S, T, C>(scene, primary.as_ref(), row, 0..width, counters);
+    for (slot, c) in line.iter_mut().zip(pixels) {
         *slot = c;
     }
 }
@@ -568,6 +608,8 @@ where
     // Both corners lie inside `full`, whose coordinates fit u16.
     let to_u16 = |v: i32| u16::try_from(v).unwrap_or(0);
     let (x0, x1) = (to_u16(area.top_left.x), to_u16(bottom_right.x));
+    // What is constant for the frame is computed once.
+    let primary = primary_for::<S, T>(scene);
     for row in to_u16(area.top_left.y)..=to_u16(bottom_right.y) {
         let line = Rectangle::new(
             Point::new(area.top_left.x, i32::from(row)),
@@ -575,7 +617,7 @@ where
         );
         target.fill_contiguous(
             &line,
-            scanline_with::<S, T, D::Color>(scene, row, x0..x1 + 1, counters),
+            scanline_with::<S, T, D::Color>(scene, primary.as_ref(), row, x0..x1 + 1, counters),
         )?;
     }
     Ok(())

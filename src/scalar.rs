@@ -90,6 +90,11 @@ pub trait Scalar: Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// 3 `DELTA`s for three narrow products. `None` when the sum does not fit.
     fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self>;
 
+    /// Compares the products `a·b` and `c·d` exactly (in the double-width format for the
+    /// fixed formats, in f64 for f32): the division-free comparison of two quotients
+    /// `a/d` and `c/b` with positive denominators.
+    fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> core::cmp::Ordering;
+
     /// `c − a·b`, rounded once like [`Scalar::dot3`]: `None` only when the result does not
     /// fit (`a·b` alone may exceed the range, as for `D' − N·b` with a far eye).
     fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self>;
@@ -205,6 +210,10 @@ macro_rules! impl_fixed {
                 <$t>::checked_from_num(sum.checked_add(half)?)
             }
             #[inline]
+            fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> core::cmp::Ordering {
+                a.wide_mul(b).cmp(&c.wide_mul(d))
+            }
+            #[inline]
             fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
                 let diff = <$wide>::from_num(c)
                     .checked_sub(a[0].wide_mul(b[0]))?
@@ -315,6 +324,12 @@ macro_rules! impl_float {
             #[inline]
             fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
                 Some(c - (a[0] * b[0] + a[1] * b[1] + a[2] * b[2])).filter(|v| v.is_finite())
+            }
+            #[inline]
+            fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> core::cmp::Ordering {
+                // f32 products are exact in f64; f64 products round (to 1 ulp).
+                let (l, r) = (f64::from(a) * f64::from(b), f64::from(c) * f64::from(d));
+                l.partial_cmp(&r).unwrap_or(core::cmp::Ordering::Equal)
             }
             #[inline]
             fn mul_ratio(self, num: i32, den: i32) -> Option<Self> {

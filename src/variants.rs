@@ -86,6 +86,10 @@ macro_rules! delegate {
                 self.0.round_to_i32()
             }
             #[inline]
+            fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> core::cmp::Ordering {
+                <$inner>::cmp_products(a.0, b.0, c.0, d.0)
+            }
+            #[inline]
             fn ulp(self) -> Self {
                 Self(self.0.ulp())
             }

@@ -442,7 +442,12 @@ fn base_on_the_surface<S: Scalar>() {
             RayKind::Secondary,
         ))
         .unwrap();
-    assert!(hit.t >= S::ZERO && hit.t <= S::DELTA, "{}: {:?}", S::NAME, hit.t);
+    assert!(
+        hit.t >= S::ZERO && hit.t <= S::DELTA,
+        "{}: {:?}",
+        S::NAME,
+        hit.t
+    );
 }
 
 #[test]

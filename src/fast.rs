@@ -1,0 +1,193 @@
+//! Fast primary rays for scenes of planes (infinite, tiled and finite).
+//!
+//! The reference path ([`crate::render::trace_pixel`]) normalises every primary ray and
+//! divides once per plane. Here, per frame, `num = D' − N·eye` is computed once per plane
+//! (the eye is every primary ray's base), and per pixel the ray's direction is left
+//! unnormalised, `D = screen point − eye` (its x stepped along the scanline), so that a
+//! pixel costs one wide dot product `N·D` per plane and no normalisation. The plane test
+//! of `scene-format.md` is then evaluated in an equivalent form without dividing:
+//!
+//! - parallel, `|N·d| < EPS` with `d = D/|D|`  ⇔  `(N·D)² < EPS·(EPS·|D|²)`;
+//! - behind, `t < 0`  ⇔  `num` and `N·D` of opposite signs;
+//! - in front of the screen, `hit.z > 0`  ⇔  `t' = num/(N·D) < 1` (the screen point is at
+//!   `t' = 1` exactly, since `D` ends on the screen)  ⇔  `|num| < |N·D|`;
+//! - nearest: `t'_i < t'_j`  ⇔  `|num_i|·|N·D_j| < |num_j|·|N·D_i|` (exact products,
+//!   [`crate::Scalar::cmp_products`]).
+//!
+//! Only the winning plane is divided (`t' = num/N·D`, hit = eye + t'·D), and a finite
+//! plane's bounds are checked on its own hit. Results are those of the definition up to
+//! rounding: pixels can differ only where two planes meet, at the epsilon and at the
+//! screen (`tests/fast.rs` compares every pixel with the reference path). A pixel whose
+//! winner does not fit the format falls back to the reference path, so range misses are
+//! exactly the reference's.
+
+use heapless::Vec;
+
+use crate::scene::MAX_OBJECTS;
+use crate::{Scalar, Scene, Shape, Vec3};
+
+/// A plane term of the fast path: which object, its normal, and `num = D' − N·eye`.
+#[derive(Debug, Clone, Copy)]
+struct Term<S> {
+    index: usize,
+    normal: Vec3<S>,
+    num: S,
+}
+
+/// How many pixels a scanline steps `D.x` by addition before restarting from the exact
+/// screen coordinate (one `mul_ratio`, a 64-bit division): the trade between the drift of
+/// the stepped coordinate (≤ ½ DELTA per step) and the cost of the exact one.
+pub const RESYNC_PIXELS: u16 = 8;
+
+/// The per-frame part of the fast path; `None` from [`Primary::new`] when the scene is not
+/// made of planes only or a per-frame quantity does not fit the format.
+#[derive(Debug, Clone)]
+pub struct Primary<S> {
+    terms: Vec<Term<S>, MAX_OBJECTS>,
+    /// Screen x step between pixel centres, `WX / W`.
+    step_x: S,
+    /// `−eye.z`, the z of every `D`.
+    dz: S,
+}
+
+/// What the fast path found at one pixel.
+#[derive(Debug, Clone, Copy)]
+pub struct FastHit<S> {
+    /// The object.
+    pub index: usize,
+    /// The hit point.
+    pub point: Vec3<S>,
+    /// An upper bound on the world distance `t` (for secondary-ray offsets).
+    pub t_bound: S,
+    /// The unnormalised ray direction `D`.
+    pub dir: Vec3<S>,
+}
+
+/// The per-scanline part: `N·D` of every term at the current pixel, and `D`.
+#[derive(Debug, Clone)]
+pub struct Row<S> {
+    nd: Vec<S, MAX_OBJECTS>,
+    dir: Vec3<S>,
+    column: u16,
+}
+
+impl<S: Scalar> Primary<S> {
+    /// Prepares a frame, or `None` when the fast path does not apply (a sphere, or a
+    /// quantity out of range): the caller then uses the reference path.
+    pub fn new(scene: &Scene<S>) -> Option<Self> {
+        let eye = scene.camera.viewpoint;
+        let step_x = scene
+            .camera
+            .world_width
+            .mul_ratio(1, i32::from(scene.camera.width))?;
+        let mut terms = Vec::new();
+        for (index, object) in scene.objects.iter().enumerate() {
+            let plane = match &object.shape {
+                Shape::Plane(p) => p,
+                Shape::Tiled { frame, .. } | Shape::Finite(frame) => frame.plane(),
+                Shape::Sphere(_) => return None,
+            };
+            let normal = plane.normal();
+            let num = S::sub_dot3(plane.offset(), normal.to_array(), eye.to_array())?;
+            terms.push(Term { index, normal, num }).ok()?;
+        }
+        Some(Self {
+            terms,
+            step_x,
+            dz: S::ZERO.checked_sub(eye.z)?,
+        })
+    }
+
+    /// Starts scanline `row` at column `column`.
+    pub fn row(&self, scene: &Scene<S>, row: u16, column: u16) -> Option<Row<S>> {
+        let eye = scene.camera.viewpoint;
+        let y = scene.camera.screen_y(row)?;
+        let x = scene
+            .camera
+            .world_width
+            .mul_ratio(2 * i32::from(column) + 1, 2 * i32::from(scene.camera.width))?;
+        let dir = Vec3::new(x.checked_sub(eye.x)?, y.checked_sub(eye.y)?, self.dz);
+        let mut nd = Vec::new();
+        for term in &self.terms {
+            nd.push(term.normal.dot(dir)?).ok()?;
+        }
+        Some(Row { nd, dir, column })
+    }
+
+    /// The column the row is at.
+    pub fn column(row: &Row<S>) -> u16 {
+        row.column
+    }
+
+    /// Moves a scanline to its next pixel: `D.x` grows by the pixel step (rounded once
+    /// per frame; callers restart the row from the exact screen x every
+    /// [`RESYNC_PIXELS`] pixels, so the drift stays below `RESYNC_PIXELS / 2` DELTAs), and
+    /// `N·D` is recomputed from `D` (one wide dot product: consistent with `D`, so the hit
+    /// point lies on the ray through that screen point).
+    pub fn advance(&self, row: &mut Row<S>) -> Option<()> {
+        row.dir.x = row.dir.x.checked_add(self.step_x)?;
+        for (nd, term) in row.nd.iter_mut().zip(&self.terms) {
+            *nd = term.normal.dot(row.dir)?;
+        }
+        row.column = row.column.checked_add(1)?;
+        Some(())
+    }
+
+    /// The nearest accepted plane at the row's current pixel: `Ok(None)` for the
+    /// background, `Err(())` when the reference path must decide (the winner does not fit
+    /// the format).
+    #[allow(clippy::result_unit_err)]
+    pub fn nearest(&self, scene: &Scene<S>, row: &Row<S>) -> Result<Option<FastHit<S>>, ()> {
+        let eps = scene.epsilon;
+        let d = row.dir;
+        let eps_d2 = d.dot(d).and_then(|d2| eps.checked_mul(d2)).ok_or(())?;
+        // The best so far: (term, N·D, |num|, |N·D|).
+        let mut best: Option<(&Term<S>, S, S, S)> = None;
+        for (term, &nd) in self.terms.iter().zip(&row.nd) {
+            // Parallel within the epsilon (also catches N·D = 0).
+            if S::cmp_products(nd, nd, eps, eps_d2).is_lt() || nd == S::ZERO {
+                continue;
+            }
+            // Behind: t' < 0. (num = 0 puts the hit at the eye: in front of the screen.)
+            if (term.num > S::ZERO) != (nd > S::ZERO) || term.num == S::ZERO {
+                continue;
+            }
+            let (num_abs, nd_abs) = (term.num.abs(), nd.abs());
+            // In front of the screen: t' < 1.
+            if num_abs < nd_abs {
+                continue;
+            }
+            if let Some((_, _, b_num, b_nd)) = best
+                && !S::cmp_products(num_abs, b_nd, b_num, nd_abs).is_lt()
+            {
+                continue;
+            }
+            if let Shape::Finite(frame) = &scene.objects[term.index].shape {
+                let point = self.point(scene, term, nd, d).ok_or(())?;
+                if !frame.contains(point.0) {
+                    continue;
+                }
+            }
+            best = Some((term, nd, num_abs, nd_abs));
+        }
+        let Some((term, nd, _, _)) = best else {
+            return Ok(None);
+        };
+        let (point, t_bound) = self.point(scene, term, nd, d).ok_or(())?;
+        Ok(Some(FastHit {
+            index: term.index,
+            point,
+            t_bound,
+            dir: d,
+        }))
+    }
+
+    /// The hit point `eye + t'·D` of a term and a bound on its world distance.
+    fn point(&self, scene: &Scene<S>, term: &Term<S>, nd: S, d: Vec3<S>) -> Option<(Vec3<S>, S)> {
+        let t = term.num.checked_div(nd)?;
+        let point = scene.camera.viewpoint.sum(d.scale(t)?)?;
+        // |D| ≤ √3 |D|∞ < 2 |D|∞: the world distance t'·|D| is below t'·2|D|∞.
+        let t_bound = t.checked_mul(d.max_abs().checked_add(d.max_abs())?)?;
+        Some((point, t_bound))
+    }
+}
