@@ -90,9 +90,9 @@ pub trait Scalar: Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// 3 `DELTA`s for three narrow products. `None` when the sum does not fit.
     fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self>;
 
-    /// Compares the products `a·b` and `c·d` exactly (in the double-width format for the
-    /// fixed formats, in f64 for f32): the division-free comparison of two quotients
-    /// `a/d` and `c/b` with positive denominators.
+    /// Compares the products `a·b` and `c·d`: exactly in the fixed formats (double-width
+    /// products), to the format's own rounding in floats. The division-free comparison of
+    /// two quotients `a/d` and `c/b` with positive denominators.
     fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> core::cmp::Ordering;
 
     /// `c − a·b`, rounded once like [`Scalar::dot3`]: `None` only when the result does not
@@ -327,9 +327,11 @@ macro_rules! impl_float {
             }
             #[inline]
             fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> core::cmp::Ordering {
-                // f32 products are exact in f64; f64 products round (to 1 ulp).
-                let (l, r) = (f64::from(a) * f64::from(b), f64::from(c) * f64::from(d));
-                l.partial_cmp(&r).unwrap_or(core::cmp::Ordering::Equal)
+                // In the format itself: each product rounds once (½ ulp). Widening f32 to
+                // f64 would be exact but is soft-float on an FPU that has only f32.
+                (a * b)
+                    .partial_cmp(&(c * d))
+                    .unwrap_or(core::cmp::Ordering::Equal)
             }
             #[inline]
             fn mul_ratio(self, num: i32, den: i32) -> Option<Self> {
