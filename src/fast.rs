@@ -26,12 +26,21 @@ use heapless::Vec;
 use crate::scene::MAX_OBJECTS;
 use crate::{Scalar, Scene, Shape, Vec3};
 
-/// A plane term of the fast path: which object, its normal, and `num = D' − N·eye`.
+/// A plane term of the fast path: which object and `num = D' − N·eye` (the normal is read
+/// from the scene: on a 16 KB chip a copy of every normal is RAM the stack needs).
 #[derive(Debug, Clone, Copy)]
 struct Term<S> {
-    index: usize,
-    normal: Vec3<S>,
+    index: u8,
     num: S,
+}
+
+/// The unit normal of a plane-like shape.
+fn normal_of<S: Scalar>(scene: &Scene<S>, index: u8) -> Option<Vec3<S>> {
+    match &scene.objects.get(usize::from(index))?.shape {
+        Shape::Plane(p) => Some(p.normal()),
+        Shape::Tiled { frame, .. } | Shape::Finite(frame) => Some(frame.plane().normal()),
+        Shape::Sphere(_) => None,
+    }
 }
 
 /// How many pixels a scanline steps `D.x` by addition before restarting from the exact
@@ -87,9 +96,9 @@ impl<S: Scalar> Primary<S> {
                 Shape::Tiled { frame, .. } | Shape::Finite(frame) => frame.plane(),
                 Shape::Sphere(_) => return None,
             };
-            let normal = plane.normal();
-            let num = S::sub_dot3(plane.offset(), normal.to_array(), eye.to_array())?;
-            terms.push(Term { index, normal, num }).ok()?;
+            let num = S::sub_dot3(plane.offset(), plane.normal().to_array(), eye.to_array())?;
+            let index = u8::try_from(index).ok()?;
+            terms.push(Term { index, num }).ok()?;
         }
         Some(Self {
             terms,
@@ -109,7 +118,7 @@ impl<S: Scalar> Primary<S> {
         let dir = Vec3::new(x.checked_sub(eye.x)?, y.checked_sub(eye.y)?, self.dz);
         let mut nd = Vec::new();
         for term in &self.terms {
-            nd.push(term.normal.dot(dir)?).ok()?;
+            nd.push(normal_of(scene, term.index)?.dot(dir)?).ok()?;
         }
         Some(Row { nd, dir, column })
     }
@@ -124,10 +133,10 @@ impl<S: Scalar> Primary<S> {
     /// [`RESYNC_PIXELS`] pixels, so the drift stays below `RESYNC_PIXELS / 2` DELTAs), and
     /// `N·D` is recomputed from `D` (one wide dot product: consistent with `D`, so the hit
     /// point lies on the ray through that screen point).
-    pub fn advance(&self, row: &mut Row<S>) -> Option<()> {
+    pub fn advance(&self, scene: &Scene<S>, row: &mut Row<S>) -> Option<()> {
         row.dir.x = row.dir.x.checked_add(self.step_x)?;
         for (nd, term) in row.nd.iter_mut().zip(&self.terms) {
-            *nd = term.normal.dot(row.dir)?;
+            *nd = normal_of(scene, term.index)?.dot(row.dir)?;
         }
         row.column = row.column.checked_add(1)?;
         Some(())
@@ -162,7 +171,9 @@ impl<S: Scalar> Primary<S> {
             {
                 continue;
             }
-            if let Shape::Finite(frame) = &scene.objects[term.index].shape {
+            if let Some(Shape::Finite(frame)) =
+                scene.objects.get(usize::from(term.index)).map(|o| &o.shape)
+            {
                 let point = self.point(scene, term, nd, d).ok_or(())?;
                 if !frame.contains(point.0) {
                     continue;
@@ -175,7 +186,7 @@ impl<S: Scalar> Primary<S> {
         };
         let (point, t_bound) = self.point(scene, term, nd, d).ok_or(())?;
         Ok(Some(FastHit {
-            index: term.index,
+            index: usize::from(term.index),
             point,
             t_bound,
             dir: d,

@@ -421,7 +421,7 @@ fn scanline_with<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                     if Primary::column(r).checked_add(1) == Some(column)
                         && column % crate::fast::RESYNC_PIXELS != 0 =>
                 {
-                    p.advance(r)?
+                    p.advance(scene, r)?
                 }
                 _ => state = Some(p.row(scene, row, column)?),
             }
