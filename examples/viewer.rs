@@ -1,0 +1,354 @@
+//! `viewer`: fly through a scene in a simulated display window, switch number formats
+//! live and see the error against f64. Needs the `window` feature (SDL2: `libsdl2-dev`).
+//!
+//! ```text
+//! cargo run --release --example viewer --features window [SCENE_FILE] [options]
+//! ```
+//!
+//! Keys: arrows / WASD move the eye (left, right, up, down), Q / E move it nearer and
+//! farther; 1–5 switch the format (I16F16, I20F12, I32F32, f32, f64); H toggles the
+//! error heat map against f64; P saves a screenshot (`fixray-screenshot-N.png`); Esc quits.
+//! The window title names the format; the status line at the bottom shows the format,
+//! the frame time and the share of pixels that differ from f64 (the simulator's window
+//! cannot change its title after it opens).
+//!
+//! Options:
+//! - `--display WxH-rgb888 | WxH-rgb565 | WxH-binary`: a real panel's size and colour
+//!   depth (`binary`: black and white with ordered dithering, as on a 128×64 OLED);
+//!   default: the scene's pixeldim, Rgb888.
+//! - `--scale N`: window pixels per display pixel (default 3).
+//! - `--frames N`: quit after N frames (for scripts and CI).
+//! - `--fly`: move the eye forward by itself every frame (a fly-through).
+//! - `--record DIR`: save every frame as `DIR/frame-NNNN.png` (a PNG sequence).
+//! - `--screenshot FILE`: save the last frame to FILE on quitting.
+
+fn main() {
+    if let Err(e) = window::run() {
+        eprintln!("viewer: {e}");
+        std::process::exit(1);
+    }
+}
+
+mod window {
+    use std::time::Instant;
+
+    use embedded_graphics::mono_font::{MonoTextStyle, ascii::FONT_6X10};
+    use embedded_graphics::pixelcolor::{BinaryColor, Rgb565, Rgb888, RgbColor};
+    use embedded_graphics::prelude::*;
+    use embedded_graphics::primitives::{PrimitiveStyle, Rectangle};
+    use embedded_graphics::text::Text;
+    use embedded_graphics_simulator::sdl2::Keycode;
+    use embedded_graphics_simulator::{
+        OutputSettings, OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
+    };
+    use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, Vec3, render_line};
+
+    const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
+    const FORMATS: [&str; 5] = ["i16f16", "i20f12", "i32f32", "f32", "f64"];
+    /// Height of the status line under the picture.
+    const STATUS: u32 = 12;
+
+    #[derive(Clone, Copy, PartialEq)]
+    enum Depth {
+        Rgb888,
+        Rgb565,
+        Binary,
+    }
+
+    struct Options {
+        scene: Option<String>,
+        display: Option<(u16, u16, Depth)>,
+        scale: u32,
+        frames: Option<u32>,
+        fly: bool,
+        record: Option<String>,
+        screenshot: Option<String>,
+    }
+
+    fn options() -> Result<Options, String> {
+        let mut o = Options {
+            scene: None,
+            display: None,
+            scale: 3,
+            frames: None,
+            fly: false,
+            record: None,
+            screenshot: None,
+        };
+        let mut args = std::env::args().skip(1);
+        while let Some(a) = args.next() {
+            let mut value = |f: &str| args.next().ok_or(format!("{f} needs a value"));
+            match a.as_str() {
+                "--display" => {
+                    let v = value("--display")?;
+                    let (size, depth) = v.split_once('-').ok_or("--display WxH-DEPTH")?;
+                    let (w, h) = size.split_once('x').ok_or("--display WxH-DEPTH")?;
+                    let depth = match depth {
+                        "rgb888" => Depth::Rgb888,
+                        "rgb565" => Depth::Rgb565,
+                        "binary" => Depth::Binary,
+                        d => return Err(format!("unknown colour depth `{d}`")),
+                    };
+                    let dim = |s: &str| s.parse::<u16>().ok().filter(|v| (1..=4096).contains(v));
+                    o.display = Some((
+                        dim(w).ok_or("bad width")?,
+                        dim(h).ok_or("bad height")?,
+                        depth,
+                    ));
+                }
+                "--scale" => o.scale = value("--scale")?.parse().map_err(|_| "bad --scale")?,
+                "--frames" => {
+                    o.frames = Some(value("--frames")?.parse().map_err(|_| "bad --frames")?)
+                }
+                "--fly" => o.fly = true,
+                "--record" => o.record = Some(value("--record")?),
+                "--screenshot" => o.screenshot = Some(value("--screenshot")?),
+                s if s.starts_with("--") => return Err(format!("unknown option `{s}`")),
+                s => o.scene = Some(s.to_string()),
+            }
+        }
+        Ok(o)
+    }
+
+    /// The eye's offset from the scene's own viewpoint, in world units.
+    #[derive(Default, Clone, Copy)]
+    struct Eye {
+        dx: f64,
+        dy: f64,
+        dz: f64,
+    }
+
+    /// One rendered frame: pixels (Rgb888), time, and the share differing from f64.
+    struct Frame {
+        pixels: Vec<Rgb888>,
+        reference: Vec<Rgb888>,
+        ms: f64,
+        differ: f64,
+    }
+
+    fn scene_for<S: Scalar>(
+        text: &str,
+        eye: Eye,
+        size: Option<(u16, u16)>,
+    ) -> Result<Scene<S>, String> {
+        let mut scene = Scene::<S>::parse(text).map_err(|e| e.to_string())?;
+        let v = scene.camera.viewpoint.to_f64();
+        scene.camera.viewpoint =
+            Vec3::from_f64([v[0] + eye.dx, v[1] + eye.dy, (v[2] + eye.dz).max(0.1)])
+                .ok_or("the eye left the format's range")?;
+        if let Some((w, h)) = size {
+            scene.camera.width = w;
+            scene.camera.height = h;
+        }
+        Ok(scene)
+    }
+
+    fn render_all<S: Scalar>(scene: &Scene<S>) -> Vec<Rgb888> {
+        let w = usize::from(scene.camera.width);
+        let mut pixels = vec![Rgb888::BLACK; w * usize::from(scene.camera.height)];
+        for (row, line) in pixels.chunks_mut(w).enumerate() {
+            render_line(scene, row as u16, line);
+        }
+        pixels
+    }
+
+    fn frame_in<S: Scalar>(
+        text: &str,
+        eye: Eye,
+        size: Option<(u16, u16)>,
+    ) -> Result<Frame, String> {
+        let scene = scene_for::<S>(text, eye, size)?;
+        let start = Instant::now();
+        let pixels = render_all(&scene);
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        let reference = render_all(&scene_for::<f64>(text, eye, size)?);
+        let differ = pixels
+            .iter()
+            .zip(&reference)
+            .filter(|(a, b)| a != b)
+            .count() as f64
+            / pixels.len().max(1) as f64;
+        Ok(Frame {
+            pixels,
+            reference,
+            ms,
+            differ,
+        })
+    }
+
+    fn frame(
+        format: &str,
+        text: &str,
+        eye: Eye,
+        size: Option<(u16, u16)>,
+    ) -> Result<Frame, String> {
+        match format {
+            "i16f16" => frame_in::<I16F16>(text, eye, size),
+            "i20f12" => frame_in::<I20F12>(text, eye, size),
+            "i32f32" => frame_in::<I32F32>(text, eye, size),
+            "f32" => frame_in::<f32>(text, eye, size),
+            _ => frame_in::<f64>(text, eye, size),
+        }
+    }
+
+    /// Blue → yellow → red for a channel error of 1 → 255 (log scale); black for none.
+    fn heat(a: Rgb888, b: Rgb888) -> Rgb888 {
+        let e = a
+            .r()
+            .abs_diff(b.r())
+            .max(a.g().abs_diff(b.g()))
+            .max(a.b().abs_diff(b.b()));
+        if e == 0 {
+            return Rgb888::BLACK;
+        }
+        let t = f64::from(e).log2() / 8.0;
+        let lerp = |x: f64, y: f64, s: f64| (x + (y - x) * s).round() as u8;
+        if t < 0.5 {
+            let s = t / 0.5;
+            Rgb888::new(
+                lerp(40.0, 255.0, s),
+                lerp(60.0, 230.0, s),
+                lerp(255.0, 0.0, s),
+            )
+        } else {
+            Rgb888::new(255, lerp(230.0, 0.0, (t - 0.5) / 0.5), 0)
+        }
+    }
+
+    /// 4×4 Bayer thresholds for ordered dithering to black and white.
+    const BAYER: [[u16; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+
+    /// Draws the frame as the chosen panel would show it, then back to Rgb888 for the
+    /// window (so one window type serves every depth).
+    fn to_panel(p: Rgb888, x: usize, y: usize, depth: Depth) -> Rgb888 {
+        match depth {
+            Depth::Rgb888 => p,
+            Depth::Rgb565 => Rgb888::from(Rgb565::from(p)),
+            Depth::Binary => {
+                let luma =
+                    (u16::from(p.r()) * 77 + u16::from(p.g()) * 150 + u16::from(p.b()) * 29) >> 8;
+                let threshold = BAYER[y % 4][x % 4] * 16 + 8;
+                if luma > threshold {
+                    BinaryColor::On.into()
+                } else {
+                    BinaryColor::Off.into()
+                }
+            }
+        }
+    }
+
+    fn save(display: &SimulatorDisplay<Rgb888>, path: &str) -> Result<(), String> {
+        display
+            .to_rgb_output_image(&OutputSettings::default())
+            .save_png(path)
+            .map_err(|e| format!("cannot write {path}: {e}"))
+    }
+
+    pub fn run() -> Result<(), String> {
+        let o = options()?;
+        let text = match &o.scene {
+            Some(path) => std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?,
+            None => DEFAULT_SCENE.to_string(),
+        };
+        let probe = Scene::<f64>::parse(&text).map_err(|e| {
+            format!(
+                "{}:{e}",
+                o.scene.as_deref().unwrap_or("scenes/default.scene")
+            )
+        })?;
+        let (w, h, depth) =
+            o.display
+                .unwrap_or((probe.camera.width, probe.camera.height, Depth::Rgb888));
+        let size = o.display.map(|(w, h, _)| (w, h));
+        let mut display =
+            SimulatorDisplay::<Rgb888>::new(Size::new(u32::from(w), u32::from(h) + STATUS));
+        let settings = OutputSettingsBuilder::new().scale(o.scale).build();
+        let mut format = 0usize;
+        let mut window = Window::new(&format!("fixray: {}", FORMATS[format]), &settings);
+        let (mut eye, mut show_heat, mut n, mut shots) = (Eye::default(), false, 0u32, 0u32);
+        if let Some(dir) = &o.record {
+            std::fs::create_dir_all(dir).map_err(|e| format!("{dir}: {e}"))?;
+        }
+        loop {
+            let f = frame(FORMATS[format], &text, eye, size)?;
+            let wu = usize::from(w);
+            for (i, (p, r)) in f.pixels.iter().zip(&f.reference).enumerate() {
+                let (x, y) = (i % wu, i / wu);
+                let c = if show_heat {
+                    heat(*p, *r)
+                } else {
+                    to_panel(*p, x, y, depth)
+                };
+                display
+                    .draw_iter([Pixel(Point::new(x as i32, y as i32), c)])
+                    .ok();
+            }
+            let status = format!(
+                "{} {:.1} ms {:.2}% differ{}",
+                FORMATS[format],
+                f.ms,
+                100.0 * f.differ,
+                if show_heat { " [heat]" } else { "" }
+            );
+            Rectangle::new(Point::new(0, i32::from(h)), Size::new(u32::from(w), STATUS))
+                .into_styled(PrimitiveStyle::with_fill(Rgb888::new(30, 30, 30)))
+                .draw(&mut display)
+                .ok();
+            Text::new(
+                &status,
+                Point::new(1, i32::from(h) + 9),
+                MonoTextStyle::new(&FONT_6X10, Rgb888::WHITE),
+            )
+            .draw(&mut display)
+            .ok();
+            println!("{status}");
+            window.update(&display);
+            if let Some(dir) = &o.record {
+                save(&display, &format!("{dir}/frame-{n:04}.png"))?;
+            }
+            n += 1;
+            if o.fly {
+                eye.dz -= 0.25;
+            }
+            let mut quit = o.frames.is_some_and(|max| n >= max);
+            let mut new_format = None;
+            for event in window.events() {
+                match event {
+                    SimulatorEvent::Quit => quit = true,
+                    SimulatorEvent::KeyDown { keycode, .. } => match keycode {
+                        Keycode::Escape => quit = true,
+                        Keycode::Left | Keycode::A => eye.dx -= 0.25,
+                        Keycode::Right | Keycode::D => eye.dx += 0.25,
+                        Keycode::Up | Keycode::W => eye.dy += 0.25,
+                        Keycode::Down | Keycode::S => eye.dy -= 0.25,
+                        Keycode::Q => eye.dz -= 0.25,
+                        Keycode::E => eye.dz += 0.25,
+                        Keycode::H => show_heat = !show_heat,
+                        Keycode::P => {
+                            shots += 1;
+                            save(&display, &format!("fixray-screenshot-{shots}.png"))?;
+                        }
+                        Keycode::Num1 => new_format = Some(0),
+                        Keycode::Num2 => new_format = Some(1),
+                        Keycode::Num3 => new_format = Some(2),
+                        Keycode::Num4 => new_format = Some(3),
+                        Keycode::Num5 => new_format = Some(4),
+                        _ => {}
+                    },
+                    _ => {}
+                }
+            }
+            if let Some(k) = new_format.filter(|k| *k != format) {
+                format = k;
+                // The title is fixed when a window opens: a new one carries the new format.
+                window = Window::new(&format!("fixray: {}", FORMATS[format]), &settings);
+            }
+            if quit {
+                if let Some(path) = &o.screenshot {
+                    save(&display, path)?;
+                }
+                return Ok(());
+            }
+        }
+    }
+}

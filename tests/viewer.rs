@@ -1,0 +1,55 @@
+//! The viewer runs headless under Xvfb for a few frames of a fly-through and its
+//! screenshot is a picture, not a blank window. Needs the `window` feature (SDL2) and
+//! `xvfb-run`; `.ci/run` installs both and runs `cargo test --features window --test viewer`.
+#![cfg(feature = "window")]
+
+use std::path::Path;
+use std::process::Command;
+
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+use embedded_graphics::prelude::*;
+use embedded_graphics_simulator::SimulatorDisplay;
+
+#[test]
+fn the_viewer_draws_the_scene_headless() {
+    let exe = std::env::current_exe().unwrap();
+    let dir = exe.parent().and_then(Path::parent).unwrap();
+    let viewer = dir.join("examples").join("viewer");
+    let out = std::env::temp_dir().join(format!("fixray-viewer-{}", std::process::id()));
+    std::fs::create_dir_all(&out).unwrap();
+    let shot = out.join("shot.png");
+    let record = out.join("frames");
+    let run = Command::new("xvfb-run")
+        .arg("-a")
+        .arg(&viewer)
+        .args(["--frames", "3", "--fly", "--screenshot"])
+        .arg(&shot)
+        .arg("--record")
+        .arg(&record)
+        .output()
+        .expect("xvfb-run and the viewer example (cargo test --features window builds it)");
+    assert!(run.status.success(), "{run:?}");
+    // One status line per frame: format, frame time, differing share.
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert_eq!(
+        stdout.lines().filter(|l| l.starts_with("i16f16 ")).count(),
+        3,
+        "{stdout}"
+    );
+    // Three recorded frames, and a screenshot that is a picture.
+    assert_eq!(std::fs::read_dir(&record).unwrap().count(), 3);
+    let image = SimulatorDisplay::<Rgb888>::load_png(&shot).unwrap();
+    let size = image.size();
+    let mut colours = std::collections::BTreeSet::new();
+    for y in 0..size.height as i32 {
+        for x in 0..size.width as i32 {
+            let c = image.get_pixel(Point::new(x, y));
+            colours.insert((c.r(), c.g(), c.b()));
+        }
+    }
+    assert!(
+        colours.len() > 100,
+        "a blank or flat screenshot: {} colours",
+        colours.len()
+    );
+}
