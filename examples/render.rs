@@ -21,7 +21,7 @@ use std::time::{Duration, Instant};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
-use fixray::compare::{Comparison, compare};
+use fixray::compare::{Comparison, compare, heat_color};
 use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, SceneError, render_line};
 
 /// The built-in default scene, compiled in.
@@ -143,37 +143,12 @@ fn time_frames<S: Scalar>(scene: &Scene<S>) -> (Image, Duration) {
     (image, times[times.len() / 2])
 }
 
-/// Blue → yellow → red for a channel error of 1 → 255 (log scale); black for none.
-fn heat_color(error: u8) -> Rgb888 {
-    if error == 0 {
-        return Rgb888::BLACK;
-    }
-    let t = f64::from(error).log2() / 8.0; // 0 for 1, ~1 for 255
-    let lerp = |a: f64, b: f64, s: f64| (a + (b - a) * s).round() as u8;
-    if t < 0.5 {
-        let s = t / 0.5;
-        Rgb888::new(
-            lerp(40.0, 255.0, s),
-            lerp(60.0, 230.0, s),
-            lerp(255.0, 0.0, s),
-        )
-    } else {
-        let s = (t - 0.5) / 0.5;
-        Rgb888::new(255, lerp(230.0, 0.0, s), 0)
-    }
-}
-
 fn run<S: Scalar>(text: &str, reference: &Scene<f64>) -> Result<Run, SceneError> {
     let scene = Scene::<S>::parse(text)?;
     let (image, frame) = time_frames(&scene);
     let mut heat = Vec::with_capacity(image.pixels.len());
     let comparison = compare(&scene, reference, |_, _, px, ref_px| {
-        let e = px
-            .r()
-            .abs_diff(ref_px.r())
-            .max(px.g().abs_diff(ref_px.g()))
-            .max(px.b().abs_diff(ref_px.b()));
-        heat.push(heat_color(e));
+        heat.push(heat_color(px, ref_px));
     });
     Ok(Run {
         image,

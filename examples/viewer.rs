@@ -41,6 +41,7 @@ mod window {
     use embedded_graphics_simulator::{
         OutputSettings, OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
     };
+    use fixray::compare::heat_color;
     use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, Vec3, render_line};
 
     const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
@@ -191,30 +192,6 @@ mod window {
         }
     }
 
-    /// Blue → yellow → red for a channel error of 1 → 255 (log scale); black for none.
-    fn heat(a: Rgb888, b: Rgb888) -> Rgb888 {
-        let e = a
-            .r()
-            .abs_diff(b.r())
-            .max(a.g().abs_diff(b.g()))
-            .max(a.b().abs_diff(b.b()));
-        if e == 0 {
-            return Rgb888::BLACK;
-        }
-        let t = f64::from(e).log2() / 8.0;
-        let lerp = |x: f64, y: f64, s: f64| (x + (y - x) * s).round() as u8;
-        if t < 0.5 {
-            let s = t / 0.5;
-            Rgb888::new(
-                lerp(40.0, 255.0, s),
-                lerp(60.0, 230.0, s),
-                lerp(255.0, 0.0, s),
-            )
-        } else {
-            Rgb888::new(255, lerp(230.0, 0.0, (t - 0.5) / 0.5), 0)
-        }
-    }
-
     /// 4×4 Bayer thresholds for ordered dithering to black and white.
     const BAYER: [[u16; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
 
@@ -275,7 +252,7 @@ mod window {
             for (i, (p, r)) in f.pixels.iter().zip(&f.reference).enumerate() {
                 let (x, y) = (i % wu, i / wu);
                 let c = if show_heat {
-                    heat(*p, *r)
+                    heat_color(*p, *r)
                 } else {
                     to_panel(*p, x, y, depth)
                 };

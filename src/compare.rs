@@ -82,6 +82,34 @@ impl Comparison {
     }
 }
 
+/// The colour of a heat map of the error between two pixels: black where they are equal,
+/// then blue → yellow → red for a largest channel error of 1 → 255 levels (log scale).
+pub fn heat_color(pixel: Rgb888, reference: Rgb888) -> Rgb888 {
+    let error = pixel
+        .r()
+        .abs_diff(reference.r())
+        .max(pixel.g().abs_diff(reference.g()))
+        .max(pixel.b().abs_diff(reference.b()));
+    if error == 0 {
+        return Rgb888::BLACK;
+    }
+    // 0 for 1 level, 1 for 256 levels, in sixteenths (integer arithmetic, no float).
+    let t = (u8::BITS - error.leading_zeros()) * 2 - 2;
+    let lerp = |a: u32, b: u32, s: u32, n: u32| -> u8 {
+        let v = if b >= a {
+            a + (b - a) * s / n
+        } else {
+            a - (a - b) * s / n
+        };
+        u8::try_from(v).unwrap_or(u8::MAX)
+    };
+    if t < 8 {
+        Rgb888::new(lerp(40, 255, t, 8), lerp(60, 230, t, 8), lerp(255, 0, t, 8))
+    } else {
+        Rgb888::new(255, lerp(230, 0, t - 8, 8), 0)
+    }
+}
+
 /// Renders both scenes pixel by pixel and compares them; `on_pixel(column, row, pixel,
 /// reference_pixel)` sees every pair (for a heat map), row by row.
 pub fn compare<S: Scalar, R: Scalar>(

@@ -52,6 +52,26 @@ pub struct Ray<S> {
     pub kind: RayKind,
 }
 
+impl<S: Scalar> Ray<S> {
+    /// The hit at distance `t` (≥ 0): the point `base + t·dir`, `OutOfRange` when it does
+    /// not fit, and the primary-ray screen rule (`z > 0` is in front of the screen).
+    ///
+    /// # Errors
+    /// [`Miss::OutOfRange`] or [`Miss::InFrontOfScreen`].
+    #[inline]
+    pub fn hit_at(&self, t: S) -> Result<Hit<S>, Miss> {
+        let point = self
+            .dir
+            .scale(t)
+            .and_then(|td| self.base.sum(td))
+            .ok_or(Miss::OutOfRange)?;
+        if self.kind == RayKind::Primary && point.z > S::ZERO {
+            return Err(Miss::InFrontOfScreen);
+        }
+        Ok(Hit { t, point })
+    }
+}
+
 /// An accepted intersection.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hit<S> {
@@ -146,15 +166,7 @@ impl<S: Scalar> Plane<S> {
         if t < S::ZERO {
             return Err(Miss::Behind);
         }
-        let point = ray
-            .dir
-            .scale(t)
-            .and_then(|td| ray.base.sum(td))
-            .ok_or(Miss::OutOfRange)?;
-        if ray.kind == RayKind::Primary && point.z > S::ZERO {
-            return Err(Miss::InFrontOfScreen);
-        }
-        Ok(Hit { t, point })
+        ray.hit_at(t)
     }
 }
 
@@ -352,15 +364,7 @@ impl<S: Scalar> Sphere<S> {
         } else {
             return Err(Miss::Behind);
         };
-        let point = ray
-            .dir
-            .scale(t)
-            .and_then(|td| ray.base.sum(td))
-            .ok_or(Miss::OutOfRange)?;
-        if ray.kind == RayKind::Primary && point.z > S::ZERO {
-            return Err(Miss::InFrontOfScreen);
-        }
-        Ok(Hit { t, point })
+        ray.hit_at(t)
     }
 
     /// The outward unit normal at a point on the surface.

@@ -1,6 +1,11 @@
 //! The scene parser: every error kind with its line and column, the lexical rules of
 //! `scene-format.md`, and a seeded storm of mangled inputs that must never panic.
 
+#[allow(dead_code)]
+#[path = "../examples/support/sampling.rs"]
+mod sampling;
+use sampling::SplitMix;
+
 use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, SceneError};
 
 const CAMERA: &str = "camera cam { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n";
@@ -425,22 +430,6 @@ fn every_entity_of_the_format_is_read_and_checked() {
         23,
         "`specular` must be >= 0",
     );
-}
-
-/// A tiny deterministic generator (SplitMix64), so that the storm below is the same on
-/// every run and a failure can be replayed.
-struct SplitMix(u64);
-impl SplitMix {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        usize::try_from(self.next() % u64::try_from(n).unwrap()).unwrap()
-    }
 }
 
 /// Mangles a valid scene in many ways (cut, duplicate, replace, insert tokens and bytes)

@@ -4,6 +4,11 @@
 //!
 //! Run with `cargo test --release --test precision -- --nocapture` to see the figures.
 
+#[allow(dead_code)]
+#[path = "../examples/support/sampling.rs"]
+mod sampling;
+use sampling::SplitMix;
+
 use embedded_graphics::pixelcolor::RgbColor;
 use fixray::compare::{Comparison, compare};
 use fixray::render::{Traced, nearest_hit, trace_pixel};
@@ -212,23 +217,6 @@ fn narrow_t<S: Scalar>(plane: &Plane<S>, ray: &Ray<S>) -> Option<S> {
     let nd = narrow_dot(plane.normal(), ray.dir)?;
     let nb = narrow_dot(plane.normal(), ray.base)?;
     plane.offset().checked_sub(nb)?.checked_div(nd)
-}
-
-/// A small deterministic generator (SplitMix64).
-struct SplitMix(u64);
-impl SplitMix {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [lo, hi).
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        let unit = f64::from(u32::try_from(self.next() >> 32).unwrap()) / 4_294_967_296.0;
-        lo + (hi - lo) * unit
-    }
 }
 
 /// Narrow against wide dot products in the plane test, on the same quantised inputs,
