@@ -16,11 +16,21 @@ fn the_viewer_draws_the_scene_headless() {
     let dir = exe.parent().and_then(Path::parent).unwrap();
     // `cargo test --test viewer` does not build examples: build it, in this profile.
     let mut build = Command::new(env!("CARGO"));
-    build.args(["build", "--quiet", "--features", "window", "--example", "viewer"]);
+    build.args([
+        "build",
+        "--quiet",
+        "--features",
+        "window",
+        "--example",
+        "viewer",
+    ]);
     if dir.file_name().is_some_and(|n| n == "release") {
         build.arg("--release");
     }
-    assert!(build.status().unwrap().success(), "building the viewer example");
+    assert!(
+        build.status().unwrap().success(),
+        "building the viewer example"
+    );
     let viewer = dir.join("examples").join("viewer");
     let out = std::env::temp_dir().join(format!("fixray-viewer-{}", std::process::id()));
     std::fs::create_dir_all(&out).unwrap();
