@@ -2,28 +2,12 @@
 //! exact shading values, the counters that show absent stages cost nothing, shadow acne,
 //! and precision against f64 per effect scene with stated budgets.
 
-use embedded_graphics::mock_display::MockDisplay;
+mod common;
+use common::assert_pattern_everywhere;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::compare::compare;
 use fixray::variants::F32Micro;
-use fixray::{
-    Counters, I16F16, I20F12, I32F32, Scalar, Scene, render, render_line, render_line_counted,
-};
-
-fn pattern<S: Scalar>(text: &str) -> MockDisplay<Rgb888> {
-    let scene = Scene::<S>::parse(text).unwrap();
-    let mut display = MockDisplay::new();
-    render(&scene, &mut display).unwrap();
-    display
-}
-
-fn assert_pattern_everywhere(text: &str, expected: &[&str]) {
-    pattern::<I16F16>(text).assert_pattern(expected);
-    pattern::<I20F12>(text).assert_pattern(expected);
-    pattern::<I32F32>(text).assert_pattern(expected);
-    pattern::<f32>(text).assert_pattern(expected);
-    pattern::<f64>(text).assert_pattern(expected);
-}
+use fixray::{Counters, I16F16, I20F12, I32F32, Scalar, Scene, render_line, render_line_counted};
 
 #[test]
 fn a_sphere_is_a_disc() {

@@ -2,11 +2,9 @@
 //! Each says why it is hard and what the right answer is. (Spheres join this catalogue when
 //! the renderer draws them.)
 
+mod common;
+use common::{every_format, v};
 use fixray::{I16F16, I20F12, I32F32, Miss, Plane, PlaneError, Ray, RayKind, Scalar, Vec3};
-
-fn v<S: Scalar>(x: f64, y: f64, z: f64) -> Vec3<S> {
-    Vec3::from_f64([x, y, z]).unwrap()
-}
 
 /// The notes' plane z = −7 (normal (0, 0, 1)).
 fn floor<S: Scalar>() -> Plane<S> {
@@ -15,16 +13,6 @@ fn floor<S: Scalar>() -> Plane<S> {
 
 fn ray<S: Scalar>(base: Vec3<S>, dir: Vec3<S>, kind: RayKind) -> Ray<S> {
     Ray { base, dir, kind }
-}
-
-macro_rules! every_format {
-    ($check:ident) => {
-        $check::<I16F16>();
-        $check::<I20F12>();
-        $check::<I32F32>();
-        $check::<f32>();
-        $check::<f64>();
-    };
 }
 
 /// |N·d| swept across the epsilon from 8 DELTAs below to 8 above. Hard: the decision turns

@@ -1,11 +1,9 @@
 //! The plane test of the course notes (`plane_hits`), in every number format: the notes'
 //! numeric example exactly, then a table of cases around each rule of the test.
 
-use fixray::{Hit, I16F16, I20F12, I32F32, Miss, Plane, PlaneError, Ray, RayKind, Scalar, Vec3};
-
-fn v<S: Scalar>(x: f64, y: f64, z: f64) -> Vec3<S> {
-    Vec3::from_f64([x, y, z]).unwrap()
-}
+mod common;
+use common::{every_format, v};
+use fixray::{Hit, I16F16, Miss, Plane, PlaneError, Ray, RayKind, Scalar, Vec3};
 
 fn ray<S: Scalar>(base: [f64; 3], dir: [f64; 3], kind: RayKind) -> Ray<S> {
     Ray {
@@ -13,17 +11,6 @@ fn ray<S: Scalar>(base: [f64; 3], dir: [f64; 3], kind: RayKind) -> Ray<S> {
         dir: v(dir[0], dir[1], dir[2]).unit().unwrap(),
         kind,
     }
-}
-
-/// Runs a generic check in every format.
-macro_rules! every_format {
-    ($check:ident) => {
-        $check::<I16F16>();
-        $check::<I20F12>();
-        $check::<I32F32>();
-        $check::<f32>();
-        $check::<f64>();
-    };
 }
 
 /// The notes: plane n = (0,0,1), p = (0,0,−7); ray base (4,3,5), dir (0,0,−1):

@@ -2,6 +2,8 @@
 //! out-of-bounds writes), plus the streaming contract: one `fill_contiguous` per scanline,
 //! the same pixels through `render`, `render_line`, a `Framebuffer` and Rgb565.
 
+mod common;
+use common::assert_pattern_everywhere;
 use embedded_graphics::framebuffer::{Framebuffer, buffer_size};
 use embedded_graphics::image::GetPixel;
 use embedded_graphics::mock_display::MockDisplay;
@@ -14,22 +16,6 @@ use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render, render_line};
 /// Camera for the 4×4 pattern scenes: screen [0,4]², eye at (2, 2, 5). Screen rows are at
 /// y = 3.5, 2.5, 1.5, 0.5 from the top.
 const CAM4: &str = "camera c { pixeldim 4 4 worlddim 4 4 viewpoint 2 2 5 }\n";
-
-fn pattern<S: Scalar>(text: &str) -> MockDisplay<Rgb888> {
-    let scene = Scene::<S>::parse(text).unwrap();
-    let mut display = MockDisplay::new();
-    render(&scene, &mut display).unwrap();
-    display
-}
-
-/// Checks a pattern in every format.
-fn assert_pattern_everywhere(text: &str, expected: &[&str]) {
-    pattern::<I16F16>(text).assert_pattern(expected);
-    pattern::<I20F12>(text).assert_pattern(expected);
-    pattern::<I32F32>(text).assert_pattern(expected);
-    pattern::<f32>(text).assert_pattern(expected);
-    pattern::<f64>(text).assert_pattern(expected);
-}
 
 #[test]
 fn the_nearest_plane_wins() {
