@@ -3,11 +3,11 @@
 //! and precision against f64 per effect scene with stated budgets.
 
 mod common;
-use common::assert_pattern_everywhere;
+use common::{assert_pattern_everywhere, top_left_pixel};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::compare::compare;
 use fixray::variants::F32Micro;
-use fixray::{Counters, I16F16, I20F12, I32F32, Scalar, Scene, render_line, render_line_counted};
+use fixray::{Counters, I16F16, I20F12, I32F32, Scalar, Scene, render_line_counted};
 
 #[test]
 fn a_sphere_is_a_disc() {
@@ -84,31 +84,9 @@ fn facing_mirrors_stop_at_the_depth_bound() {
 }
 
 fn assert_pattern_everywhere_grey(text: &str, level: u8) {
-    for c in one_pixel_each(text) {
+    for c in top_left_pixel(text) {
         assert_eq!(c, Rgb888::new(level, level, level));
     }
-}
-
-/// The top-left pixel of a scene, in every format.
-fn one_pixel_each(text: &str) -> [Rgb888; 5] {
-    fn one<S: Scalar>(text: &str) -> Rgb888 {
-        let scene = Scene::<S>::parse(text).unwrap();
-        let mut line = vec![Rgb888::BLACK; usize::from(scene.camera.width)];
-        render_line(&scene, 0, &mut line);
-        line[0]
-    }
-    [
-        one::<I16F16>(text),
-        one::<I20F12>(text),
-        one::<I32F32>(text),
-        one::<f32>(text),
-        one::<f64>(text),
-    ]
-}
-
-/// The single pixel of a 1×1 scene, in every format.
-fn one_pixel(text: &str) -> [Rgb888; 5] {
-    one_pixel_each(text)
 }
 
 #[test]
@@ -119,7 +97,7 @@ fn specular_follows_the_half_vector_formula() {
         material m { specular 0.5 shininess 7 }
         light l { location 0.5 0.5 -1 emissivity 2 2 2 }
         plane wall { material m normal 0 0 1 point 0 0 -5 }";
-    assert_eq!(one_pixel(text), [Rgb888::new(64, 64, 64); 5]);
+    assert_eq!(top_left_pixel(text), [Rgb888::new(64, 64, 64); 5]);
     // Off-axis, computed here independently: hit (0.5, 0.5, −5), light (2.5, 0.5, −3).
     let text = text.replace("location 0.5 0.5 -1", "location 2.5 0.5 -3");
     let l = [2.0f64, 0.0, 2.0];
@@ -129,7 +107,7 @@ fn specular_follows_the_half_vector_formula() {
     let hn = (h[0] * h[0] + h[2] * h[2]).sqrt();
     let nh = h[2] / hn;
     let expected = 255.0 * 0.5 * 2.0 * nh.powf(7.0) / dist;
-    for (i, c) in one_pixel(&text).iter().enumerate() {
+    for (i, c) in top_left_pixel(&text).iter().enumerate() {
         assert!(
             (f64::from(c.r()) - expected).abs() <= 1.0,
             "format {i}: {c:?} vs {expected}"

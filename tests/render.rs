@@ -3,7 +3,7 @@
 //! the same pixels through `render`, `render_line`, a `Framebuffer` and Rgb565.
 
 mod common;
-use common::assert_pattern_everywhere;
+use common::{assert_pattern_everywhere, top_left_pixel};
 use embedded_graphics::framebuffer::{Framebuffer, buffer_size};
 use embedded_graphics::image::GetPixel;
 use embedded_graphics::mock_display::MockDisplay;
@@ -11,7 +11,7 @@ use embedded_graphics::pixelcolor::raw::{LittleEndian, RawU16};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render, render_line};
+use fixray::{I16F16, Scene, render, render_line};
 
 /// Camera for the 4×4 pattern scenes: screen [0,4]², eye at (2, 2, 5). Screen rows are at
 /// y = 3.5, 2.5, 1.5, 0.5 from the top.
@@ -207,23 +207,6 @@ fn render_line_leaves_pixels_outside_the_image_untouched() {
     assert_eq!(line, [Rgb888::RED; 4]);
 }
 
-/// The colour of the single pixel of a 1×1 scene, in every format.
-fn single_pixel_everywhere(text: &str) -> [Rgb888; 5] {
-    fn one<S: Scalar>(text: &str) -> Rgb888 {
-        let scene = Scene::<S>::parse(text).unwrap();
-        let mut line = [Rgb888::BLACK];
-        render_line(&scene, 0, &mut line);
-        line[0]
-    }
-    [
-        one::<I16F16>(text),
-        one::<I20F12>(text),
-        one::<I32F32>(text),
-        one::<f32>(text),
-        one::<f64>(text),
-    ]
-}
-
 #[test]
 fn diffuse_light_follows_the_formula() {
     // A wall at z = −5 facing the eye; a light 4 units in front of the hit point, on its
@@ -232,13 +215,13 @@ fn diffuse_light_follows_the_formula() {
         material m { diffuse 0.5 0.5 0.5 }
         light l { location 0.5 0.5 -1 emissivity 2 2 2 }
         plane wall { material m normal 0 0 1 point 0 0 -5 }";
-    assert_eq!(single_pixel_everywhere(text), [Rgb888::new(64, 64, 64); 5]);
+    assert_eq!(top_left_pixel(text), [Rgb888::new(64, 64, 64); 5]);
     // Ambient adds: 0.1 × 255 = 25.5, + 63.75 = 89.25 → 89.
     let text = text.replace(
         "diffuse 0.5 0.5 0.5",
         "diffuse 0.5 0.5 0.5 ambient 0.1 0.1 0.1",
     );
-    assert_eq!(single_pixel_everywhere(&text), [Rgb888::new(89, 89, 89); 5]);
+    assert_eq!(top_left_pixel(&text), [Rgb888::new(89, 89, 89); 5]);
 }
 
 #[test]
@@ -249,7 +232,7 @@ fn a_strong_far_light_is_not_saturated_by_overflow() {
         material m { diffuse 1 1 1 }
         light l { location 0.5 999 -3 emissivity 200 200 200 }
         plane p { material m normal 0 1 0 point 0 -1 0 }";
-    assert_eq!(single_pixel_everywhere(text), [Rgb888::new(51, 51, 51); 5]);
+    assert_eq!(top_left_pixel(text), [Rgb888::new(51, 51, 51); 5]);
 }
 
 #[test]
@@ -264,7 +247,7 @@ fn a_light_beyond_the_format_range_still_lights() {
         plane p { material m normal 0 1 0 point 0 -1 0 }";
     // I20F12 keeps only a few bits of 255·cos/dist ≈ 0.0043 (17 DELTAs): lit, but up to
     // 10 % off; the other formats are within a level of the tie.
-    for (i, c) in single_pixel_everywhere(text).iter().enumerate() {
+    for (i, c) in top_left_pixel(text).iter().enumerate() {
         let range = if i == 1 { 115..=140 } else { 127..=128 };
         assert!(range.contains(&c.r()), "format {i}: {c:?}");
     }
@@ -277,5 +260,5 @@ fn a_far_eye_does_not_lose_a_plane() {
     let text = "camera c { pixeldim 1 1 worlddim 32000 32000 viewpoint 30000 30000 5000 }
         material m { ambient 1 0 0 }
         plane p { material m normal 1 1 0 point 10000 10000 0 }";
-    assert_eq!(single_pixel_everywhere(text), [Rgb888::RED; 5]);
+    assert_eq!(top_left_pixel(text), [Rgb888::RED; 5]);
 }

@@ -41,3 +41,21 @@ pub fn assert_pattern_everywhere(text: &str, expected: &[&str]) {
     pattern::<f32>(text).assert_pattern(expected);
     pattern::<f64>(text).assert_pattern(expected);
 }
+
+/// The top-left pixel of a scene (the only one of a 1×1 scene) in every format:
+/// I16F16, I20F12, I32F32, f32, f64.
+pub fn top_left_pixel(text: &str) -> [Rgb888; 5] {
+    fn one<S: Scalar>(text: &str) -> Rgb888 {
+        let scene = Scene::<S>::parse(text).unwrap();
+        let mut line = vec![Rgb888::new(0, 0, 0); usize::from(scene.camera.width)];
+        fixray::render_line(&scene, 0, &mut line);
+        line[0]
+    }
+    [
+        one::<I16F16>(text),
+        one::<I20F12>(text),
+        one::<I32F32>(text),
+        one::<f32>(text),
+        one::<f64>(text),
+    ]
+}
