@@ -1,6 +1,9 @@
 //! Build script: the firmware's link setup (the cortex-m-quickstart pattern) and its build
 //! options. Host builds get nothing but the declarations of the firmware's cfgs.
 //!
+//! `no_long_multiply` is set for cores without a 32 × 32 → 64 multiply (ARMv6-M, ARMv8-M
+//! Baseline): see `src/scalar.rs`.
+//!
 //! For Cortex-M targets (`thumb*`):
 //! - puts `memory.x` on the linker's search path and links the examples with
 //!   `cortex-m-rt`'s `link.x`;
@@ -28,7 +31,7 @@ fn main() {
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_FORMATS");
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_PPM");
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_SCENES");
-    for cfg in ["fw_microbit", "fw_mps2", "fw_ppm"] {
+    for cfg in ["fw_microbit", "fw_mps2", "fw_ppm", "no_long_multiply"] {
         println!("cargo:rustc-check-cfg=cfg({cfg})");
     }
     for f in FORMATS {
@@ -36,6 +39,12 @@ fn main() {
     }
 
     let target = env::var("TARGET").unwrap_or_default();
+    // ARMv6-M and ARMv8-M Baseline have no 32 × 32 → 64 multiply (SMULL): the library
+    // then forms double-width products from 16-bit halves (`scalar::mul_wide_halves`,
+    // bit-identical) instead of calling the 64-bit multiply helper.
+    if target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base") {
+        println!("cargo:rustc-cfg=no_long_multiply");
+    }
     if !target.starts_with("thumb") {
         return;
     }

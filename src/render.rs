@@ -147,15 +147,14 @@ pub fn nearest_hit<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Option<(usize, 
 }
 
 /// Whether any object lies on the segment from `ray.base` to `ray.base + dist·ray.dir`
-/// (a shadow test: the first hit is enough). Shadow rays start off the surface they leave
+/// (a shadow test: the first hit is enough, and planes need no division:
+/// [`Shape::occludes`]). Shadow rays start off the surface they leave
 /// by its computed error bound ([`Shape::spawn`]), so that surface cannot shadow itself.
 pub fn occludes<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, dist: S) -> bool {
-    scene.objects.iter().any(|object| {
-        object
-            .shape
-            .intersect(ray, scene.epsilon)
-            .is_ok_and(|hit| hit.t < dist)
-    })
+    scene
+        .objects
+        .iter()
+        .any(|object| object.shape.occludes(ray, scene.epsilon, dist))
 }
 
 /// Adds two non-negative colour terms; a sum beyond the format saturates (it is far above

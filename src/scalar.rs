@@ -146,8 +146,44 @@ pub trait Scalar: Copy + PartialOrd + Debug + Send + Sync + 'static {
     }
 }
 
+/// The exact product of two `i32`s, from four 16 × 16 → 32 multiplications: what a core
+/// without a long multiply (Cortex-M0: no `SMULL`) does far faster than the 64-bit
+/// multiply helper (about 15 instructions against 41, `../shared/measurements.md`).
+/// Bit-identical to `i64::from(a) * i64::from(b)` (tested on every sign and size).
+#[inline(always)]
+pub fn mul_wide_halves(a: i32, b: i32) -> i64 {
+    // a = ah·2¹⁶ + al with ah signed and al in [0, 2¹⁶); the same for b.
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    // |ah·bh| ≤ 2³⁰; |ah·bl|, |al·bh| < 2³¹; al·bl < 2³² (u32).
+    let high = i64::from(ah * bh);
+    let middle = i64::from(ah * bl) + i64::from(al * bh);
+    let low = i64::from(al.cast_unsigned() * bl.cast_unsigned());
+    (high << 32) + (middle << 16) + low
+}
+
+/// The exact product of two `i32`s: one long multiply where the core has it, otherwise
+/// [`mul_wide_halves`] (chosen by the build script for the target, not by the format).
+#[inline(always)]
+fn mul_wide_i32(a: i32, b: i32) -> i64 {
+    #[cfg(no_long_multiply)]
+    {
+        mul_wide_halves(a, b)
+    }
+    #[cfg(not(no_long_multiply))]
+    {
+        i64::from(a) * i64::from(b)
+    }
+}
+
+/// The exact product of two `i64`s (`I32F32`'s double width).
+#[inline(always)]
+fn mul_wide_i64(a: i64, b: i64) -> i128 {
+    i128::from(a) * i128::from(b)
+}
+
 macro_rules! impl_fixed {
-    ($t:ty, $name:literal, $wide:ty, $bits:ty, $wide_bits:ty) => {
+    ($t:ty, $name:literal, $wide:ty, $bits:ty, $wide_bits:ty, $mul:path) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
             const ZERO: Self = <$t>::ZERO;
@@ -185,7 +221,10 @@ macro_rules! impl_fixed {
             }
             #[inline]
             fn checked_mul(self, rhs: Self) -> Option<Self> {
-                <$t>::checked_mul(self, rhs)
+                // As `fixed`'s `checked_mul` (the exact product, floored), with the
+                // product formed by `$mul`.
+                let product = $mul(self.to_bits(), rhs.to_bits()) >> <$t>::FRAC_NBITS;
+                <$bits>::try_from(product).ok().map(<$t>::from_bits)
             }
             #[inline]
             fn checked_div(self, rhs: Self) -> Option<Self> {
@@ -201,24 +240,25 @@ macro_rules! impl_fixed {
             }
             #[inline]
             fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
-                let sum = a[0]
-                    .wide_mul(b[0])
-                    .checked_add(a[1].wide_mul(b[1]))?
-                    .checked_add(a[2].wide_mul(b[2]))?;
+                let w = |x: Self, y: Self| <$wide>::from_bits($mul(x.to_bits(), y.to_bits()));
+                let sum = w(a[0], b[0])
+                    .checked_add(w(a[1], b[1]))?
+                    .checked_add(w(a[2], b[2]))?;
                 // Round to nearest: add half a narrow DELTA, then narrowing floors.
                 let half = <$wide>::from_num(<$t>::DELTA) >> 1u32;
                 <$t>::checked_from_num(sum.checked_add(half)?)
             }
             #[inline]
             fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> core::cmp::Ordering {
-                a.wide_mul(b).cmp(&c.wide_mul(d))
+                $mul(a.to_bits(), b.to_bits()).cmp(&$mul(c.to_bits(), d.to_bits()))
             }
             #[inline]
             fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+                let w = |x: Self, y: Self| <$wide>::from_bits($mul(x.to_bits(), y.to_bits()));
                 let diff = <$wide>::from_num(c)
-                    .checked_sub(a[0].wide_mul(b[0]))?
-                    .checked_sub(a[1].wide_mul(b[1]))?
-                    .checked_sub(a[2].wide_mul(b[2]))?;
+                    .checked_sub(w(a[0], b[0]))?
+                    .checked_sub(w(a[1], b[1]))?
+                    .checked_sub(w(a[2], b[2]))?;
                 let half = <$wide>::from_num(<$t>::DELTA) >> 1u32;
                 <$t>::checked_from_num(diff.checked_add(half)?)
             }
@@ -253,9 +293,30 @@ macro_rules! impl_fixed {
     };
 }
 
-impl_fixed!(I16F16, "i16f16", fixed::types::I32F32, i32, i64);
-impl_fixed!(I20F12, "i20f12", fixed::types::I40F24, i32, i64);
-impl_fixed!(I32F32, "i32f32", fixed::types::I64F64, i64, i128);
+impl_fixed!(
+    I16F16,
+    "i16f16",
+    fixed::types::I32F32,
+    i32,
+    i64,
+    mul_wide_i32
+);
+impl_fixed!(
+    I20F12,
+    "i20f12",
+    fixed::types::I40F24,
+    i32,
+    i64,
+    mul_wide_i32
+);
+impl_fixed!(
+    I32F32,
+    "i32f32",
+    fixed::types::I64F64,
+    i64,
+    i128,
+    mul_wide_i64
+);
 
 macro_rules! impl_float {
     ($t:ty, $name:literal, $sqrt:path, $round:path, $floor:path, $pow:path, $cos:path) => {
@@ -494,6 +555,63 @@ mod tests {
         // Overflow of the sum (not of any single product) is refused.
         let big = I16F16::from_i32(30_000).unwrap();
         assert_eq!(I16F16::dot3([big; 3], [I16F16::ONE; 3]), None);
+    }
+
+    #[test]
+    fn products_from_halves_are_exact() {
+        let edges = [
+            i32::MIN,
+            i32::MIN + 1,
+            -65_537,
+            -65_536,
+            -65_535,
+            -1,
+            0,
+            1,
+            0xFFFF,
+            0x1_0000,
+            0x1_0001,
+            i32::MAX - 1,
+            i32::MAX,
+        ];
+        for a in edges {
+            for b in edges {
+                assert_eq!(
+                    mul_wide_halves(a, b),
+                    i64::from(a) * i64::from(b),
+                    "{a} {b}"
+                );
+            }
+        }
+        // A seeded sweep (xorshift) over every size.
+        let mut x: u32 = 0x2026_1124;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            let a = x.cast_signed() >> (x % 31);
+            let b = x.rotate_left(11).cast_signed() >> (x % 29);
+            assert_eq!(
+                mul_wide_halves(a, b),
+                i64::from(a) * i64::from(b),
+                "{a} {b}"
+            );
+        }
+    }
+
+    #[test]
+    fn checked_mul_matches_fixed() {
+        let values = [
+            -32768.0, -300.5, -1.0, -0.000_015, 0.0, 0.3, 1.0, 181.0, 32767.99,
+        ];
+        for a in values {
+            for b in values {
+                let (x, y) = (I16F16::from_f64(a).unwrap(), I16F16::from_f64(b).unwrap());
+                assert_eq!(Scalar::checked_mul(x, y), x.checked_mul(y), "{a} {b}");
+                let (x, y) = (I20F12::from_f64(a).unwrap(), I20F12::from_f64(b).unwrap());
+                assert_eq!(Scalar::checked_mul(x, y), x.checked_mul(y), "{a} {b}");
+            }
+        }
     }
 
     #[test]
