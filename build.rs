@@ -9,11 +9,13 @@
 //!   `cortex-m-rt`'s `link.x`;
 //! - `fw_microbit` (thumbv6m: the BBC micro:bit, SysTick at 16 MHz) or `fw_mps2`
 //!   (otherwise: MPS2 AN386, SysTick at 25 MHz) tell `examples/firmware.rs` its board;
-//! - `FIXRAY_FW_FORMATS` (default `i16f16,i20f12,i32f32,f32`) chooses which number
+//! - `FIXRAY_FW_FORMATS` (default `i16f16,i20f12,f32`: `i32f32` does not fit beside them
+//!   in 256 KB of flash, build it on its own) chooses which number
 //!   formats the firmware renders (one `fw_<format>` cfg each), so that flash can be
 //!   measured per format;
 //! - `FIXRAY_FW_SCENES` (default `default`) chooses which scenes of `scenes/` the firmware
 //!   embeds and renders (`$OUT_DIR/fw_scenes.rs`);
+//! - `FIXRAY_FW_SPANS=1` draws pure-geometry plane scenes in span mode (`fw_spans`);
 //! - `FIXRAY_FW_PPM=1` makes the firmware also write each frame to the host as a PPM file
 //!   through semihosting (`fw_ppm`).
 
@@ -31,7 +33,14 @@ fn main() {
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_FORMATS");
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_PPM");
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_SCENES");
-    for cfg in ["fw_microbit", "fw_mps2", "fw_ppm", "no_long_multiply"] {
+    println!("cargo:rerun-if-env-changed=FIXRAY_FW_SPANS");
+    for cfg in [
+        "fw_microbit",
+        "fw_mps2",
+        "fw_ppm",
+        "fw_spans",
+        "no_long_multiply",
+    ] {
         println!("cargo:rustc-check-cfg=cfg({cfg})");
     }
     for f in FORMATS {
@@ -60,8 +69,9 @@ fn main() {
         "fw_mps2"
     };
     println!("cargo:rustc-cfg={board}");
-    let formats =
-        env::var("FIXRAY_FW_FORMATS").unwrap_or_else(|_| "i16f16,i20f12,i32f32,f32".into());
+    // All four formats together do not fit the 256 KB of flash in `memory.x` (I32F32 alone
+    // takes about 118 KB on the M0): the default leaves I32F32 out (build it on its own).
+    let formats = env::var("FIXRAY_FW_FORMATS").unwrap_or_else(|_| "i16f16,i20f12,f32".into());
     for f in formats.split(',').map(str::trim).filter(|f| !f.is_empty()) {
         assert!(
             FORMATS.contains(&f),
@@ -89,6 +99,9 @@ fn main() {
     }
     table.push_str("];\n");
     fs::write(out.join("fw_scenes.rs"), table).expect("OUT_DIR is writable");
+    if env::var("FIXRAY_FW_SPANS").is_ok_and(|v| v == "1") {
+        println!("cargo:rustc-cfg=fw_spans");
+    }
     if env::var("FIXRAY_FW_PPM").is_ok_and(|v| v == "1") {
         println!("cargo:rustc-cfg=fw_ppm");
     }

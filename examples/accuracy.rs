@@ -239,6 +239,17 @@ struct Firmware {
     ram: u64,
 }
 
+/// Instructions per pixel of each scene's frame in a firmware run.
+fn per_pixel(run: &qemu::Run) -> BTreeMap<String, f64> {
+    run.frames
+        .iter()
+        .map(|f| {
+            let px = f.number("instructions") as f64 / f.pixels() as f64;
+            (f.get("scene").to_string(), px)
+        })
+        .collect()
+}
+
 fn measure_firmware(log: &mut String) -> BTreeMap<(String, String), Firmware> {
     let mut out = BTreeMap::new();
     if !qemu::qemu_available() {
@@ -252,14 +263,7 @@ fn measure_firmware(log: &mut String) -> BTreeMap<(String, String), Firmware> {
             eprintln!("firmware: {core} {format}");
             match qemu::run(target, format, &scenes) {
                 Ok(run) => {
-                    let per_pixel = run
-                        .frames
-                        .iter()
-                        .map(|f| {
-                            let px = f.number("instructions") as f64 / f.pixels() as f64;
-                            (f.get("scene").to_string(), px)
-                        })
-                        .collect();
+                    let per_pixel = per_pixel(&run);
                     let instructions = run
                         .frames
                         .iter()
@@ -283,6 +287,214 @@ fn measure_firmware(log: &mut String) -> BTreeMap<(String, String), Firmware> {
         }
     }
     out
+}
+
+/// The scenes and formats of the fast-path table.
+const FAST_SCENES: [&str; 3] = ["default", "planes", "horizon"];
+const FAST_FORMATS: [&str; 4] = ["i16f16", "i20f12", "i32f32", "f32"];
+
+/// One primary-ray path on one scene in one format.
+struct PathRow {
+    scene: &'static str,
+    format: &'static str,
+    path: &'static str,
+    /// Share of pixels differing from the f64 reference picture.
+    vs_f64: f64,
+    /// Share of pixels differing from this format's reference path.
+    vs_reference: f64,
+    /// Host median ms per frame, and the ratio to the reference path in the same run.
+    ms: f64,
+    ratio: f64,
+}
+
+type Picture = Vec<Rgb888>;
+
+fn share(a: &Picture, b: &Picture) -> f64 {
+    a.iter().zip(b).filter(|(x, y)| x != y).count() as f64 / a.len() as f64
+}
+
+/// Median wall time of `runs` frames, in ms.
+fn median_ms(runs: usize, mut frame: impl FnMut() -> Picture) -> (f64, Picture) {
+    let mut times = Vec::new();
+    let mut picture = Vec::new();
+    for _ in 0..runs {
+        let start = std::time::Instant::now();
+        picture = std::hint::black_box(frame());
+        times.push(start.elapsed().as_secs_f64() * 1e3);
+    }
+    times.sort_by(f64::total_cmp);
+    (times[times.len() / 2], picture)
+}
+
+struct MeasurePaths<'a> {
+    scene: &'static str,
+    text: &'a str,
+    runs: usize,
+}
+impl PerFormat for MeasurePaths<'_> {
+    type Out = Vec<PathRow>;
+    fn run<S: Scalar>(&mut self) -> Vec<PathRow> {
+        use fixray::PlaneMode;
+        let mut scene = Scene::<S>::parse(self.text).expect("shipped scenes parse");
+        let truth = Scene::<f64>::parse(self.text).expect("and in f64");
+        let (w, h) = (scene.camera.width, scene.camera.height);
+        let every = |f: &dyn Fn(u16, u16) -> Rgb888| -> Picture {
+            (0..h)
+                .flat_map(|y| (0..w).map(move |x| (x, y)))
+                .map(|(x, y)| f(x, y))
+                .collect()
+        };
+        let truth_picture = every(&|x, y| fixray::pixel(&truth, x, y));
+        let lines = |scene: &Scene<S>| -> Picture {
+            let mut out = Vec::new();
+            let mut line = vec![Rgb888::BLACK; usize::from(w)];
+            for row in 0..h {
+                render_line(std::hint::black_box(scene), row, &mut line);
+                out.extend_from_slice(&line);
+            }
+            out
+        };
+        let (ref_ms, reference) =
+            median_ms(self.runs, || every(&|x, y| fixray::pixel(&scene, x, y)));
+        let mut rows = Vec::new();
+        let mut push = |path, ms: f64, picture: &Picture| {
+            rows.push(PathRow {
+                scene: self.scene,
+                format: S::NAME,
+                path,
+                vs_f64: share(picture, &truth_picture),
+                vs_reference: share(picture, &reference),
+                ms,
+                ratio: ref_ms / ms,
+            })
+        };
+        push("reference (per pixel, normalised rays)", ref_ms, &reference);
+        if fixray::flat::applies(&scene) {
+            // The general fast path, as the renderer used it for these scenes before
+            // the pure-geometry kernel: the plane `fast::Primary` picks, its ambient colour.
+            let primary = fixray::fast::Primary::new(&scene).expect("a plane scene");
+            let (ms, picture) = median_ms(self.runs, || {
+                every(&|x, y| match primary
+                    .row(&scene, y, x)
+                    .map(|r| primary.nearest(&scene, &r))
+                {
+                    Some(Ok(Some(hit))) => {
+                        let m = scene.objects[hit.index].material;
+                        fixray::render::to_rgb888(scene.materials[usize::from(m)].ambient)
+                    }
+                    Some(Ok(None)) => fixray::render::to_rgb888(scene.background),
+                    _ => fixray::pixel(&scene, x, y),
+                })
+            });
+            push("fast: cross-products, one pixel at a time", ms, &picture);
+            scene.mode = PlaneMode::PerPixel;
+            let (ms, picture) = median_ms(self.runs, || lines(&scene));
+            push("pure geometry, per-pixel mode", ms, &picture);
+            scene.mode = PlaneMode::Spans;
+            let (ms, picture) = median_ms(self.runs, || lines(&scene));
+            push("pure geometry, span mode", ms, &picture);
+        } else {
+            let (ms, picture) = median_ms(self.runs, || lines(&scene));
+            push("fast: cross-products, division-free shadows", ms, &picture);
+        }
+        rows
+    }
+}
+
+/// I16F16 firmware in span mode on both cores (instructions per pixel per scene).
+fn measure_spans(log: &mut String) -> BTreeMap<String, Firmware> {
+    let mut out = BTreeMap::new();
+    if !qemu::qemu_available() {
+        return out;
+    }
+    for (target, core) in qemu::CORES {
+        eprintln!("firmware: {core} i16f16 spans");
+        match qemu::run_spans(target, "i16f16", &FAST_SCENES.join(",")) {
+            Ok(run) => {
+                let per_pixel = per_pixel(&run);
+                out.insert(
+                    core.to_string(),
+                    Firmware {
+                        per_pixel,
+                        instructions: BTreeMap::new(),
+                        flash: run.flash,
+                        ram: run.static_ram,
+                    },
+                );
+            }
+            Err(e) => {
+                let _ = writeln!(log, "{core} i16f16 spans: {e}");
+            }
+        }
+    }
+    out
+}
+
+fn fast_section(
+    rows: &[PathRow],
+    fw: &FirmwareTable,
+    spans: &BTreeMap<String, Firmware>,
+) -> String {
+    let mut r = String::from(
+        "\n## Fast primary-ray paths\n\n\
+         Each path of the renderer against the per-pixel reference path of its own format and \
+         against the f64 reference picture (share of pixels with any channel different), with \
+         its host time (median of 15 frames, `std::time::Instant`, in one run: the ratio is \
+         reference time / path time) and, for I16F16, its cost on the chips (instructions per \
+         pixel including about 11–13 of frame hashing; the default renderer's path is the \
+         firmware table's, span mode is the same firmware built with `FIXRAY_FW_SPANS=1`).\n\n\
+         - *fast: cross-products* is `fixray::fast`: unnormalised directions, the epsilon and \
+         screen tests in squared and cross-multiplied form, one division per pixel (for the \
+         hit point); shadow rays against planes without division (`Plane::occludes`).\n\
+         - *pure geometry* is `fixray::flat`, the renderer's path for scenes of infinite planes \
+         without lighting: per scanline the interval where each plane is accepted (settled by \
+         the per-pixel test) and `1/t'` as a line; per pixel a multiply-add per plane (per-pixel \
+         mode) or per run of equal pixels a few comparisons (span mode). Span mode is \
+         bit-identical to per-pixel mode in the fixed formats (`tests/flat.rs`).\n\
+         - Division: the fixed formats divide once per plane per frame in the pure-geometry \
+         kernel and once per pixel in the fast path; no reciprocal table or Newton variant \
+         is built yet, so there is no row for one.\n\n\
+         | scene | format | path | differ vs reference | differ vs f64 | host ms/frame | × reference | M0 instr/px | M4F instr/px |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
+    );
+    for row in rows {
+        let chip = |core: &str| -> String {
+            if row.format != "i16f16" {
+                return "—".into();
+            }
+            if row.path.contains("span mode") {
+                spans
+                    .get(core)
+                    .and_then(|f| f.per_pixel.get(row.scene))
+                    .map_or("—".into(), |v| format!("{v:.0}"))
+            } else if row.path.contains("per-pixel mode")
+                || (row.path.starts_with("fast") && !fixray_flat_scene(row.scene))
+            {
+                firmware_cell(fw, core, "i16f16", row.scene)
+            } else {
+                "—".into()
+            }
+        };
+        let _ = writeln!(
+            r,
+            "| {} | {} | {} | {:.3} % | {:.3} % | {:.3} | {:.1} | {} | {} |",
+            row.scene,
+            row.format,
+            row.path,
+            100.0 * row.vs_reference,
+            100.0 * row.vs_f64,
+            row.ms,
+            row.ratio,
+            chip("cortex-m0"),
+            chip("cortex-m4f"),
+        );
+    }
+    r
+}
+
+/// Whether a shipped scene is drawn by the pure-geometry kernel.
+fn fixray_flat_scene(scene: &str) -> bool {
+    scene != "default"
 }
 
 fn fmt_sci(v: f64) -> String {
@@ -355,7 +567,29 @@ fn main() {
         measure_firmware(&mut firmware_log)
     };
 
-    let report = write_report(&accuracy, &host, &sweeps, &firmware, &firmware_log);
+    // Fast paths: each against the reference path and f64, host time, chip cost.
+    let mut fast_rows = Vec::new();
+    for (scene, _, text) in SCENES.iter().filter(|s| FAST_SCENES.contains(&s.0)) {
+        for format in FAST_FORMATS {
+            eprintln!("fast paths: {scene} {format}");
+            fast_rows.extend(with_format(
+                format,
+                &mut MeasurePaths {
+                    scene,
+                    text,
+                    runs: if quick { 3 } else { 15 },
+                },
+            ));
+        }
+    }
+    let spans_fw = if quick {
+        BTreeMap::new()
+    } else {
+        measure_spans(&mut firmware_log)
+    };
+
+    let mut report = write_report(&accuracy, &host, &sweeps, &firmware, &firmware_log);
+    report.push_str(&fast_section(&fast_rows, &firmware, &spans_fw));
     std::fs::write(docs.join("accuracy.md"), report).expect("docs/ is writable");
     plot(&accuracy, &host, &firmware, &docs.join("accuracy.png"));
     println!("wrote docs/accuracy.md and docs/accuracy.png");
@@ -402,10 +636,10 @@ fn write_report(
          one format and the scenes' text; **RAM** is static data plus the deepest stack.\n\
          - The accuracy columns follow the per-pixel reference path (the definition of \
          `scene-format.md`); the host and chip costs are those of the default renderer, in \
-         which primary rays of plane scenes take the fast path (`fixray::fast`). \
-         `tests/fast.rs` compares the fast path's pictures with both: on the default scene \
-         in I16F16 they differ from f64 on 0.67 % of pixels, against 1.12 % for the \
-         reference path.\n"
+         which primary rays of plane scenes take the fast path (`fixray::fast`) and scenes of \
+         infinite planes without lighting the pure-geometry kernel (`fixray::flat`, per-pixel \
+         mode). The last section compares every path with the reference path, with its \
+         cost.\n"
     );
 
     // Goals.
@@ -430,13 +664,14 @@ fn write_report(
                 if met {
                     ""
                 } else {
-                    "Primary rays of plane scenes already take the fast path (`fixray::fast`: \
-                     no normalisation, one division per pixel). What remains is lighting: per \
-                     light and pixel a normalisation (3 divisions, a square root, 3 more \
-                     divisions) and a shadow ray that divides once per plane; on the M0 each \
-                     I16F16 division is a ~370-instruction 64-bit helper call, so divisions \
-                     dominate. Division-free shadow tests (the primary rays' cross-multiplied \
-                     form) and a cheaper normalisation are the next levers."
+                    "Primary rays take the fast path (`fixray::fast`: no normalisation, one \
+                     division per pixel), shadow rays against planes divide no more \
+                     (`Plane::occludes`), and on the M0 double-width products are formed \
+                     from 16-bit halves instead of the 64-bit multiply helper. What remains \
+                     is per light and pixel: normalising the direction to the light (divisions \
+                     and a square root) and the falloff division, each I16F16 division a \
+                     ~370-instruction 64-bit helper call on the M0. Soft-float f32 has the \
+                     same structure, so the ratio moves less than the counts."
                 }
             );
         }
@@ -468,7 +703,7 @@ fn write_report(
                      fixed formats pay a 64-bit division helper (~120 instructions) per \
                      division and a bit-by-bit square root (~170), and after the fast primary \
                      path most of them are in the lighting (normalising the direction to the \
-                     light, shadow rays)."
+                     light and the falloff; shadow rays against planes no longer divide)."
                 }
             );
         }

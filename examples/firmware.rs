@@ -18,6 +18,7 @@
 //! cargo run --release --example firmware --target thumbv7em-none-eabihf  # Cortex-M4F (MPS2 AN386)
 //! FIXRAY_FW_FORMATS=i16f16 cargo build ...   # only some formats (to measure flash per format)
 //! FIXRAY_FW_SCENES=default,planes cargo ...  # which scenes/ to embed (default: default)
+//! FIXRAY_FW_SPANS=1 cargo run ...            # pure-geometry plane scenes in span mode
 //! FIXRAY_FW_PPM=1 cargo run ...              # also write fixray-<core>-<scene>-<format>.ppm
 //! ```
 //!
@@ -190,6 +191,10 @@ mod firmware {
             );
             return;
         }
+        #[cfg(fw_spans)]
+        {
+            scene.mode = fixray::PlaneMode::Spans;
+        }
         let parsed = instructions();
         let (w, h) = (usize::from(scene.camera.width), scene.camera.height);
         if w > MAX_WIDTH {
@@ -226,7 +231,7 @@ mod firmware {
         let frame = after - before;
         let tenths = frame * 10 / pixels;
         hprintln!(
-            "format={} size={}x{} hash=0x{:08x} instructions={} per_pixel={}.{} stack={} parse_instructions={} hash_instructions={} core={} scene={}",
+            "format={} size={}x{} hash=0x{:08x} instructions={} per_pixel={}.{} stack={} parse_instructions={} hash_instructions={} core={} scene={} mode={:?}",
             S::NAME,
             w,
             h,
@@ -238,7 +243,8 @@ mod firmware {
             parsed - start,
             hash_cost,
             BOARD.0,
-            name
+            name,
+            scene.mode
         );
         #[cfg(fw_ppm)]
         write_ppm(name, &scene, line);

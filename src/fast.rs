@@ -80,6 +80,23 @@ pub struct Row<S> {
     column: u16,
 }
 
+/// The plane test of the definition for a primary ray with unnormalised direction `D`:
+/// `num = D' − N·eye`, `nd = N·D`, `eps_d2 = ε·|D|²`. Accepted unless the ray is parallel
+/// within the epsilon, the plane is behind the eye, or the hit lies in front of the screen.
+#[inline]
+pub(crate) fn accepts<S: Scalar>(num: S, nd: S, eps: S, eps_d2: S) -> bool {
+    // Parallel within the epsilon (also catches N·D = 0).
+    if S::cmp_products(nd, nd, eps, eps_d2).is_lt() || nd == S::ZERO {
+        return false;
+    }
+    // Behind: t' < 0. (num = 0 puts the hit at the eye: in front of the screen.)
+    if (num > S::ZERO) != (nd > S::ZERO) || num == S::ZERO {
+        return false;
+    }
+    // In front of the screen: t' < 1.
+    num.abs() >= nd.abs()
+}
+
 impl<S: Scalar> Primary<S> {
     /// Prepares a frame, or `None` when the fast path does not apply (a sphere, or a
     /// quantity out of range): the caller then uses the reference path.
@@ -153,19 +170,10 @@ impl<S: Scalar> Primary<S> {
         // The best so far: (term, N·D, |num|, |N·D|).
         let mut best: Option<(&Term<S>, S, S, S)> = None;
         for (term, &nd) in self.terms.iter().zip(&row.nd) {
-            // Parallel within the epsilon (also catches N·D = 0).
-            if S::cmp_products(nd, nd, eps, eps_d2).is_lt() || nd == S::ZERO {
-                continue;
-            }
-            // Behind: t' < 0. (num = 0 puts the hit at the eye: in front of the screen.)
-            if (term.num > S::ZERO) != (nd > S::ZERO) || term.num == S::ZERO {
+            if !accepts(term.num, nd, eps, eps_d2) {
                 continue;
             }
             let (num_abs, nd_abs) = (term.num.abs(), nd.abs());
-            // In front of the screen: t' < 1.
-            if num_abs < nd_abs {
-                continue;
-            }
             if let Some((_, _, b_num, b_nd)) = best
                 && !S::cmp_products(num_abs, b_nd, b_num, nd_abs).is_lt()
             {

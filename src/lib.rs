@@ -29,6 +29,7 @@
 pub mod compare;
 pub mod decimal;
 pub mod fast;
+pub mod flat;
 pub mod geometry;
 pub mod hash;
 pub mod parse;
@@ -43,6 +44,7 @@ pub mod vec3;
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
 
+pub use flat::PlaneMode;
 pub use geometry::{
     FrameError, Hit, Miss, Plane, PlaneError, PlaneFrame, Ray, RayKind, Shape, Sphere, SphereError,
 };

@@ -18,6 +18,7 @@ use embedded_graphics_core::prelude::{DrawTarget, Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
 
 use crate::fast::{Primary, Row};
+use crate::flat::{Flat, FlatRow, PlaneMode};
 use crate::scene::Plan;
 use crate::{Color, Hit, Object, Ray, Scalar, Scene, Shape, Vec3};
 
@@ -485,6 +486,44 @@ pub fn render_line_stages<S: Scalar, T: Stages, C: From<Rgb888>>(
     }
 }
 
+/// The pure-geometry kernel ([`crate::flat`]) for stage set `T`: plane scenes drawn
+/// without lighting or mirrors.
+fn flat_for<S: Scalar, T: Stages>(scene: &Scene<S>) -> Option<Flat<S>> {
+    if T::LIGHTING || T::REFLECTION {
+        return None;
+    }
+    Flat::new(scene)
+}
+
+/// Counts `n` primary rays at once (the pure-geometry kernel's scanlines).
+fn count_primary(counters: &mut Counters, n: u16) {
+    if cfg!(feature = "stats") {
+        counters.primary_rays = counters.primary_rays.wrapping_add(u32::from(n));
+    }
+}
+
+/// Fills `line` with columns `0..line.len()` of a pure-geometry scanline.
+fn flat_line<S: Scalar, C: From<Rgb888>>(row: &FlatRow<S>, mode: PlaneMode, line: &mut [C]) {
+    let width = u16::try_from(line.len()).unwrap_or(u16::MAX);
+    match mode {
+        PlaneMode::PerPixel => {
+            for (k, slot) in (0..width).zip(line.iter_mut()) {
+                *slot = C::from(row.pixel(k));
+            }
+        }
+        PlaneMode::Spans => {
+            let mut rest = line;
+            for (n, color) in row.spans(0, width) {
+                let (run, tail) = rest.split_at_mut(usize::from(n).min(rest.len()));
+                for slot in run {
+                    *slot = C::from(color);
+                }
+                rest = tail;
+            }
+        }
+    }
+}
+
 fn line_with<S: Scalar, T: Stages, C: From<Rgb888>>(
     scene: &Scene<S>,
     row: u16,
@@ -494,6 +533,11 @@ fn line_with<S: Scalar, T: Stages, C: From<Rgb888>>(
     let width = u16::try_from(line.len())
         .unwrap_or(u16::MAX)
         .min(scene.camera.width);
+    if let Some(flat_row) = flat_for::<S, T>(scene).and_then(|f| f.row(scene, row)) {
+        count_primary(counters, width);
+        flat_line(&flat_row, scene.mode, &mut line[..usize::from(width)]);
+        return;
+    }
     let primary = primary_for::<S, T>(scene);
     let pixels = scanline_with::<S, T, C>(scene, primary.as_ref(), row, 0..width, counters);
     for (slot, c) in line.iter_mut().zip(pixels) {
@@ -608,15 +652,36 @@ where
     let to_u16 = |v: i32| u16::try_from(v).unwrap_or(0);
     let (x0, x1) = (to_u16(area.top_left.x), to_u16(bottom_right.x));
     // What is constant for the frame is computed once.
-    let primary = primary_for::<S, T>(scene);
+    let flat = flat_for::<S, T>(scene);
+    let primary = match flat {
+        Some(_) => None,
+        None => primary_for::<S, T>(scene),
+    };
     for row in to_u16(area.top_left.y)..=to_u16(bottom_right.y) {
         let line = Rectangle::new(
             Point::new(area.top_left.x, i32::from(row)),
             Size::new(area.size.width, 1),
         );
+        if let Some(r) = flat.as_ref().and_then(|f| f.row(scene, row)) {
+            count_primary(counters, x1 - x0 + 1);
+            match scene.mode {
+                PlaneMode::PerPixel => {
+                    target.fill_contiguous(&line, (x0..=x1).map(|k| D::Color::from(r.pixel(k))))?;
+                }
+                PlaneMode::Spans => target.fill_contiguous(
+                    &line,
+                    r.spans(x0, x1 + 1)
+                        .flat_map(|(n, c)| core::iter::repeat_n(D::Color::from(c), n.into())),
+                )?,
+            }
+            continue;
+        }
+        // A scanline the pure-geometry kernel handed back takes the general fast path.
+        let fallback = flat.as_ref().and_then(|_| primary_for::<S, T>(scene));
+        let primary = fallback.as_ref().or(primary.as_ref());
         target.fill_contiguous(
             &line,
-            scanline_with::<S, T, D::Color>(scene, primary.as_ref(), row, x0..x1 + 1, counters),
+            scanline_with::<S, T, D::Color>(scene, primary, row, x0..x1 + 1, counters),
         )?;
     }
     Ok(())

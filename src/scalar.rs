@@ -127,6 +127,15 @@ pub trait Scalar: Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// rounding errs by at most this much; error bounds are written in these units.
     fn ulp(self) -> Self;
 
+    /// How many bits [`crate::flat`] scales a ratio of at most 1 up by, so that it keeps the
+    /// format's full resolution: half the integer bits of a fixed format (I16F16: 8, so
+    /// `2^8/|num|` still fits for planes 1/128 of a unit from the eye), 0 for floats (their
+    /// resolution is relative).
+    const RATIO_SHIFT: u32;
+
+    /// `self × k` for an integer `k`, exact, or `None` on overflow.
+    fn checked_mul_int(self, k: i32) -> Option<Self>;
+
     /// The larger of two values.
     #[inline]
     fn max(self, other: Self) -> Self {
@@ -182,6 +191,30 @@ fn mul_wide_i64(a: i64, b: i64) -> i128 {
     i128::from(a) * i128::from(b)
 }
 
+/// `bits × num / den` truncated towards zero, as the double-width quotient
+/// `(bits·num)/den` would give it, without dividing in double width: with
+/// `bits = q·den + r`, the result is `q·num + (r·num)/den`, where `|r·num| < |den·num|`
+/// nearly always fits an `i32` (screen coordinates: below 2²⁶), so the division is a
+/// 32-bit one (one instruction on the Cortex-M4 instead of the 64-bit helper's ~350).
+/// Both parts have the same sign, so truncating the second truncates the sum.
+/// `None` on overflow or when `den` is zero.
+macro_rules! mul_ratio_bits {
+    ($bits:expr, $num:expr, $den:expr, $b:ty, $wide:ty) => {{
+        let (bits, num, den): ($b, i32, i32) = ($bits, $num, $den);
+        (|| {
+            let q = bits.checked_div(<$b>::from(den))?;
+            let r = bits.checked_rem(<$b>::from(den))?;
+            let whole = q.checked_mul(<$b>::from(num))?;
+            let part = <$wide>::from(r) * <$wide>::from(num);
+            let frac = match i32::try_from(part) {
+                Ok(p) => <$wide>::from(p / den),
+                Err(_) => part / <$wide>::from(den),
+            };
+            whole.checked_add(<$b>::try_from(frac).ok()?)
+        })()
+    }};
+}
+
 macro_rules! impl_fixed {
     ($t:ty, $name:literal, $wide:ty, $bits:ty, $wide_bits:ty, $mul:path) => {
         impl Scalar for $t {
@@ -191,6 +224,12 @@ macro_rules! impl_fixed {
             const MAX: Self = <$t>::MAX;
             const DELTA: Self = <$t>::DELTA;
             const DEFAULT_EPSILON: Self = <$t>::from_bits(EPSILON_DELTAS as $bits);
+            const RATIO_SHIFT: u32 = <$t>::INT_NBITS / 2;
+
+            #[inline]
+            fn checked_mul_int(self, k: i32) -> Option<Self> {
+                <$t>::checked_mul_int(self, <$bits>::from(k))
+            }
 
             #[inline]
             fn from_f64(value: f64) -> Option<Self> {
@@ -264,12 +303,7 @@ macro_rules! impl_fixed {
             }
             #[inline]
             fn mul_ratio(self, num: i32, den: i32) -> Option<Self> {
-                if den == 0 {
-                    return None;
-                }
-                let prod = <$wide_bits>::from(self.to_bits()) * <$wide_bits>::from(num);
-                let quot = prod.checked_div(<$wide_bits>::from(den))?;
-                <$bits>::try_from(quot).ok().map(<$t>::from_bits)
+                mul_ratio_bits!(self.to_bits(), num, den, $bits, $wide_bits).map(<$t>::from_bits)
             }
             #[inline]
             fn round_to_i32(self) -> Option<i32> {
@@ -328,6 +362,12 @@ macro_rules! impl_float {
             const DELTA: Self = <$t>::EPSILON;
             // EPSILON_DELTAS is a small integer: exact in both float formats.
             const DEFAULT_EPSILON: Self = <$t>::EPSILON * EPSILON_DELTAS as $t;
+            const RATIO_SHIFT: u32 = 0;
+
+            #[inline]
+            fn checked_mul_int(self, k: i32) -> Option<Self> {
+                Some(self * Self::from_i32(k)?).filter(|v| v.is_finite())
+            }
 
             #[inline]
             fn from_f64(value: f64) -> Option<Self> {
@@ -610,6 +650,40 @@ mod tests {
                 assert_eq!(Scalar::checked_mul(x, y), x.checked_mul(y), "{a} {b}");
                 let (x, y) = (I20F12::from_f64(a).unwrap(), I20F12::from_f64(b).unwrap());
                 assert_eq!(Scalar::checked_mul(x, y), x.checked_mul(y), "{a} {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn mul_ratio_equals_the_double_width_quotient() {
+        let wide = |bits: i32, num: i32, den: i32| -> Option<i32> {
+            let q = (i64::from(bits) * i64::from(num)).checked_div(i64::from(den))?;
+            i32::try_from(q).ok()
+        };
+        let mut x: u64 = 0x2026_1124_0000_0001;
+        for case in 0..300_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let bits = (x as u32).cast_signed() >> (x % 32);
+            let num = ((x >> 32) as u32).cast_signed() >> ((x >> 8) % 32);
+            let den = ((x >> 16) as u32).cast_signed() >> ((x >> 24) % 32);
+            let den = if case % 3 == 0 { den % 8192 } else { den };
+            let got = mul_ratio_bits!(bits, num, den, i32, i64);
+            let want = if den == 0 { None } else { wide(bits, num, den) };
+            // The split form may refuse a result right at the range's edge (q·num alone
+            // overflowing while the sum would not): never a different value.
+            if got != want {
+                assert!(got.is_none(), "{bits} {num} {den}: {got:?} vs {want:?}");
+                let exact = i64::from(bits) * i64::from(num) / i64::from(den);
+                assert!(exact.unsigned_abs() > (1 << 30), "{bits} {num} {den}");
+            }
+            let got64 = mul_ratio_bits!(i64::from(bits) << 16, num, den, i64, i128);
+            let want64 = (den != 0)
+                .then(|| i128::from(i64::from(bits) << 16) * i128::from(num) / i128::from(den))
+                .and_then(|q| i64::try_from(q).ok());
+            if got64 != want64 {
+                assert!(got64.is_none(), "i64 {bits} {num} {den}");
             }
         }
     }

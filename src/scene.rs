@@ -198,6 +198,10 @@ pub struct Scene<S> {
     /// The stages this scene needs; kept up to date by [`Scene::parse`] and the `push_`
     /// methods. After changing the public vectors directly, call [`Scene::replan`].
     pub plan: Plan,
+    /// How a pure-geometry plane scene is drawn ([`crate::flat`]): per pixel (the default)
+    /// or in spans. A drawing option, not part of the scene text: [`Scene::clear`] and
+    /// [`Scene::read`] keep it.
+    pub mode: crate::PlaneMode,
 }
 
 impl<S: Scalar> Scene<S> {
@@ -211,6 +215,7 @@ impl<S: Scalar> Scene<S> {
             background: [S::ZERO; 3],
             epsilon: S::DEFAULT_EPSILON,
             plan: Plan::default(),
+            mode: crate::PlaneMode::PerPixel,
         }
     }
 
@@ -286,7 +291,7 @@ mod tests {
             core::mem::size_of::<Scene<I32F32>>(),
             core::mem::size_of::<Scene<f32>>()
         );
-        assert_eq!(core::mem::size_of::<Scene<I16F16>>(), 3176);
-        assert_eq!(core::mem::size_of::<Scene<I32F32>>(), 6320);
+        assert_eq!(core::mem::size_of::<Scene<I16F16>>(), 3184);
+        assert_eq!(core::mem::size_of::<Scene<I32F32>>(), 6328);
     }
 }

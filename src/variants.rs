@@ -44,6 +44,12 @@ macro_rules! delegate {
             const MAX: Self = Self(<$inner as Scalar>::MAX);
             const DELTA: Self = Self(<$inner as Scalar>::DELTA);
             const DEFAULT_EPSILON: Self = Self(<$inner as Scalar>::DEFAULT_EPSILON);
+            const RATIO_SHIFT: u32 = <$inner as Scalar>::RATIO_SHIFT;
+
+            #[inline]
+            fn checked_mul_int(self, k: i32) -> Option<Self> {
+                self.0.checked_mul_int(k).map(Self)
+            }
 
             fn from_f64(value: f64) -> Option<Self> {
                 <$inner>::from_f64(value).map(Self)

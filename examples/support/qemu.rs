@@ -75,6 +75,21 @@ pub fn run_with_features(
     scenes: &str,
     features: Option<&str>,
 ) -> Result<Run, String> {
+    run_with(target, formats, scenes, features, false)
+}
+
+/// [`run`] with pure-geometry plane scenes drawn in span mode (`FIXRAY_FW_SPANS=1`).
+pub fn run_spans(target: &str, formats: &str, scenes: &str) -> Result<Run, String> {
+    run_with(target, formats, scenes, None, true)
+}
+
+fn run_with(
+    target: &str,
+    formats: &str,
+    scenes: &str,
+    features: Option<&str>,
+    spans: bool,
+) -> Result<Run, String> {
     let manifest = env!("CARGO_MANIFEST_DIR");
     let mut args = vec![
         "run",
@@ -94,6 +109,7 @@ pub fn run_with_features(
         .env("FIXRAY_FW_FORMATS", formats)
         .env("FIXRAY_FW_SCENES", scenes)
         .env_remove("FIXRAY_FW_PPM")
+        .env("FIXRAY_FW_SPANS", if spans { "1" } else { "0" })
         .output()
         .map_err(|e| format!("cannot run cargo: {e}"))?;
     let stdout = String::from_utf8_lossy(&out.stdout);

@@ -1,0 +1,457 @@
+//! Pure-geometry plane scenes, a scanline at a time: per-pixel mode and span mode.
+//!
+//! A scene of infinite planes without lights, tiles or mirrors is pure geometry
+//! (`scene-format.md`): a pixel shows the ambient colour of the nearest plane it sees, so
+//! no hit point, division or colour arithmetic is needed per pixel, only *which* plane.
+//! With the eye `b`, `num_i = D'_i − N_i·b` per plane (per frame) and the unnormalised
+//! direction `D = screen point − b` (as in [`crate::fast`]):
+//!
+//! - **Per scanline**, each plane is accepted (the tests of [`crate::fast`], which are
+//!   those of the definition) on one interval of columns `[lo, hi)`: the accepted
+//!   directions form a convex cone (`σN·D ≥ ε|D|` and `σN·D ≤ |num|`, `σ` the sign of
+//!   `num`), and a scanline is a line through it. The interval's ends are estimated from
+//!   `N·D`, which is linear along the scanline, and then settled by the per-pixel test
+//!   itself, so the interval is exactly where that test accepts.
+//! - **The nearest plane** has the largest `w = σ N·D / |num| = 1/t'` (`t'` the distance in
+//!   units of `D`). On a scanline `w` is linear in the column; it is evaluated as
+//!   `w̃(k) = w̃(lo) + (k − lo)·Δw̃`, scaled by `2^RATIO_SHIFT` ([`Scalar::RATIO_SHIFT`]) so
+//!   that the fixed formats keep their full resolution for a quantity at most 1:
+//!   `w̃(lo) = σ N·D(lo) · r` and `Δw̃ = σ N.x·(WX/W) · r` with `r = 2^RATIO_SHIFT/|num|`
+//!   (one division per plane per frame, none per scanline or pixel).
+//!
+//! **Per-pixel mode** evaluates `w̃` of every plane accepted at the pixel (a multiply and
+//! an add each) and keeps the largest. **Span mode** walks the scanline from one change of
+//! the nearest plane to the next: a change happens where a plane's interval starts or ends
+//! or where two planes' `w̃` lines cross, each found with one estimate and settled by the
+//! same per-pixel comparison. For the fixed formats `w̃(k)` is exact integer arithmetic on
+//! a line, so span mode draws exactly the per-pixel mode's image (`tests/flat.rs`); for
+//! floats the rounding of `w̃` can move a span's end by a pixel.
+//!
+//! Against the general fast path ([`crate::fast`], which compares `t'` by exact
+//! cross-products) the only difference is the rounding of `w̃`: pixels can differ where two
+//! planes meet within that rounding (`tests/flat.rs` counts them). Any quantity that does
+//! not fit the format makes [`Flat::new`] or [`Flat::row`] return `None`, and the renderer
+//! traces that frame or scanline on the general path instead.
+
+use embedded_graphics_core::pixelcolor::Rgb888;
+use heapless::Vec;
+
+use crate::fast::accepts;
+use crate::render::to_rgb888;
+use crate::scene::MAX_OBJECTS;
+use crate::{Scalar, Scene, Shape, Vec3};
+
+/// How a pure-geometry plane scene is drawn (see the [module](self) documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PlaneMode {
+    /// Every pixel compares the planes accepted there.
+    #[default]
+    PerPixel,
+    /// Runs of pixels that see the same plane are filled at once.
+    Spans,
+}
+
+/// The per-frame part of a plane.
+#[derive(Debug, Clone, Copy)]
+struct FramePlane<S> {
+    normal: Vec3<S>,
+    /// `D' − N·eye`.
+    num: S,
+    /// `2^RATIO_SHIFT / |num|`, with the sign of `num` (`σ r`).
+    ratio: S,
+    /// `Δw̃`: the change of `w̃` from one column to the next.
+    step: S,
+    color: Rgb888,
+}
+
+/// The per-frame part: see [`Flat::new`].
+#[derive(Debug, Clone)]
+pub struct Flat<S> {
+    planes: Vec<FramePlane<S>, MAX_OBJECTS>,
+    background: Rgb888,
+    width: u16,
+}
+
+/// A plane on one scanline: accepted on `lo..hi`, where `w̃(k) = start + (k − lo)·step`.
+#[derive(Debug, Clone, Copy)]
+struct Segment<S> {
+    lo: u16,
+    hi: u16,
+    start: S,
+    step: S,
+    color: Rgb888,
+}
+
+impl<S: Scalar> Segment<S> {
+    /// `w̃` at column `k` (`lo <= k < hi`); `None` when it does not fit (not for `k`
+    /// inside the segment, whose ends were computed to fit).
+    #[inline]
+    fn weight(&self, k: u16) -> Option<S> {
+        self.step
+            .checked_mul_int(i32::from(k.wrapping_sub(self.lo)))?
+            .checked_add(self.start)
+    }
+
+    #[inline]
+    fn covers(&self, k: u16) -> bool {
+        k.wrapping_sub(self.lo) < self.hi.wrapping_sub(self.lo)
+    }
+}
+
+/// One scanline: the segment of every plane accepted somewhere on it (in object order).
+#[derive(Debug, Clone)]
+pub struct FlatRow<S> {
+    segments: Vec<Segment<S>, MAX_OBJECTS>,
+    background: Rgb888,
+}
+
+/// Whether a scene is pure geometry made of infinite planes: what [`Flat`] draws exactly.
+/// (The renderer also uses it for stage sets without lighting or mirrors, which draw
+/// ambient colours only.)
+pub fn applies<S: Scalar>(scene: &Scene<S>) -> bool {
+    !(scene.plan.lighting || scene.plan.reflection) && planes_only(scene)
+}
+
+/// Whether every object is an infinite plane.
+pub(crate) fn planes_only<S: Scalar>(scene: &Scene<S>) -> bool {
+    scene
+        .objects
+        .iter()
+        .all(|o| matches!(o.shape, Shape::Plane(_)))
+}
+
+impl<S: Scalar> Flat<S> {
+    /// Prepares a frame of a scene of infinite planes, each drawn in its ambient colour
+    /// (the whole image of a pure-geometry scene, [`applies`]); `None` when an object is
+    /// not an infinite plane, or a per-frame quantity does not fit the format (an eye
+    /// within `2^RATIO_SHIFT / MAX` of a plane, for instance).
+    ///
+    /// ```
+    /// use fixray::flat::Flat;
+    /// use fixray::{Scene, I16F16};
+    /// use embedded_graphics::pixelcolor::Rgb888;
+    ///
+    /// let scene = Scene::<I16F16>::parse(
+    ///     "camera c { pixeldim 4 2 worlddim 4 2 viewpoint 2 1 5 }
+    ///      material red { ambient 1 0 0 }
+    ///      plane floor { material red normal 0 1 0 point 0 0.5 0 }",
+    /// )
+    /// .unwrap();
+    /// let flat = Flat::new(&scene).unwrap();
+    /// let top = flat.row(&scene, 0).unwrap();
+    /// let bottom = flat.row(&scene, 1).unwrap();
+    /// assert_eq!(top.pixel(0), Rgb888::new(0, 0, 0));
+    /// assert_eq!(bottom.pixel(3), Rgb888::new(255, 0, 0));
+    /// // Span mode: the whole bottom row is one run.
+    /// assert_eq!(bottom.spans(0, 4).collect::<Vec<_>>(), [(4, Rgb888::new(255, 0, 0))]);
+    /// ```
+    pub fn new(scene: &Scene<S>) -> Option<Self> {
+        if !planes_only(scene) {
+            return None;
+        }
+        let camera = &scene.camera;
+        let eye = camera.viewpoint;
+        let w = i32::from(camera.width);
+        let scale = S::from_i32(1_i32.checked_shl(S::RATIO_SHIFT)?)?;
+        let mut planes = Vec::new();
+        for object in &scene.objects {
+            let Shape::Plane(plane) = &object.shape else {
+                return None;
+            };
+            let normal = plane.normal();
+            let num = S::sub_dot3(plane.offset(), normal.to_array(), eye.to_array())?;
+            let material = scene.materials.get(usize::from(object.material))?;
+            // num = 0: the eye lies on the plane; its every hit is at the eye, in front of
+            // the screen, so it is never accepted (ratio 0 marks it, see `row`).
+            let ratio = if num == S::ZERO {
+                S::ZERO
+            } else {
+                scale.checked_div(num)?
+            };
+            // N.x·(WX/W)·r, rounding the large factor first: WX/W alone would carry a
+            // relative error of DELTA/(WX/W) into every column (0.1 % in I20F12).
+            let step = normal
+                .x
+                .checked_mul(ratio.checked_mul(camera.world_width)?.mul_ratio(1, w)?)?;
+            planes
+                .push(FramePlane {
+                    normal,
+                    num,
+                    ratio,
+                    step,
+                    color: to_rgb888(material.ambient),
+                })
+                .ok()?;
+        }
+        Some(Self {
+            planes,
+            background: to_rgb888(scene.background),
+            width: camera.width,
+        })
+    }
+
+    /// Prepares scanline `row`: the interval and `w̃` line of every plane; `None` when a
+    /// quantity does not fit the format (the caller traces the scanline on the general
+    /// path).
+    pub fn row(&self, scene: &Scene<S>, row: u16) -> Option<FlatRow<S>> {
+        let camera = &scene.camera;
+        let eye = camera.viewpoint;
+        let dy = camera.screen_y(row)?.checked_sub(eye.y)?;
+        let dz = S::ZERO.checked_sub(eye.z)?;
+        let w = i32::from(self.width);
+        // The direction through column k, as the per-pixel paths form it (the screen x
+        // rounded once from the exact fraction).
+        let dir = |k: u16| -> Option<Vec3<S>> {
+            let x = camera.world_width.mul_ratio(2 * i32::from(k) + 1, 2 * w)?;
+            Some(Vec3::new(x.checked_sub(eye.x)?, dy, dz))
+        };
+        let last = self.width.checked_sub(1)?;
+        let mut segments = Vec::new();
+        for plane in &self.planes {
+            if plane.ratio == S::ZERO {
+                continue;
+            }
+            // The test of the definition at column k (see `fast`), and σN·D there.
+            let accepted = |k: u16| -> Option<(bool, S)> {
+                let d = dir(k)?;
+                let nd = plane.normal.dot(d)?;
+                let eps_d2 = scene.epsilon.checked_mul(d.dot(d)?)?;
+                Some((accepts(plane.num, nd, scene.epsilon, eps_d2), nd))
+            };
+            let Some((lo, hi)) = interval(plane, last, &accepted)? else {
+                continue;
+            };
+            let (_, nd) = accepted(lo)?;
+            let start = nd.checked_mul(plane.ratio)?;
+            let segment = Segment {
+                lo,
+                hi,
+                start,
+                step: plane.step,
+                color: plane.color,
+            };
+            // Both ends fit, so every w̃ between them does (a line).
+            segment.weight(hi - 1)?;
+            segments.push(segment).ok()?;
+        }
+        Some(FlatRow {
+            segments,
+            background: self.background,
+        })
+    }
+}
+
+/// The interval `[lo, hi)` of columns `0..=last` where `accepted` holds, `None` inside
+/// when there is none (`None` outside when a quantity does not fit).
+///
+/// `σ N·D` is linear in the column: the ends of the interval `0 < σ N·D <= |num|` are
+/// estimated from its values at the two ends of the scanline, a column between them that
+/// the test accepts is the seed, and each end is then moved one column at a time until the
+/// per-pixel test changes there (the accepted columns form an interval, see the module
+/// documentation). A good estimate needs one or two tests per end.
+fn interval<S: Scalar>(
+    plane: &FramePlane<S>,
+    last: u16,
+    accepted: &dyn Fn(u16) -> Option<(bool, S)>,
+) -> Option<Option<(u16, u16)>> {
+    let (ok0, nd0) = accepted(0)?;
+    let (ok1, nd1) = accepted(last)?;
+    let oriented = |v: S| {
+        if plane.num > S::ZERO {
+            Some(v)
+        } else {
+            v.checked_neg()
+        }
+    };
+    let (e0, e1) = (oriented(nd0)?, oriented(nd1)?);
+    let n = i32::from(last);
+    // The first column where the line through (0, e0), (last, e1) exceeds `target`.
+    let after = |target: S| -> Option<i32> {
+        let cols = target
+            .checked_sub(e0)?
+            .checked_div(e1.checked_sub(e0)?)?
+            .checked_mul_int(n)?
+            .floor_to_i32()?;
+        Some(cols.saturating_add(1).clamp(0, n + 1))
+    };
+    let a = plane.num.abs();
+    let (lo_est, hi_est) = if e1 > e0 {
+        (after(S::ZERO).unwrap_or(0), after(a).unwrap_or(n + 1))
+    } else if e1 < e0 {
+        (after(a).unwrap_or(0), after(S::ZERO).unwrap_or(n + 1))
+    } else {
+        (0, n + 1)
+    };
+    let to_col = |k: i32| u16::try_from(k.clamp(0, n)).ok();
+    // A seed: an accepted column.
+    let seed = if ok0 {
+        Some(0)
+    } else if ok1 {
+        Some(last)
+    } else {
+        let mid = to_col(lo_est + (hi_est - lo_est) / 2)?;
+        let mut found = None;
+        for k in [mid, mid.saturating_add(1).min(last), mid.saturating_sub(1)] {
+            if accepted(k)?.0 {
+                found = Some(k);
+                break;
+            }
+        }
+        found
+    };
+    let Some(seed) = seed else {
+        return Some(None);
+    };
+    // The low end: the first accepted column at or below the seed.
+    let mut lo = to_col(lo_est)?.min(seed);
+    if accepted(lo)?.0 {
+        while lo > 0 && accepted(lo - 1)?.0 {
+            lo -= 1;
+        }
+    } else {
+        while !accepted(lo)?.0 {
+            lo += 1;
+        }
+    }
+    // The high end: the first rejected column above the seed (or last + 1).
+    let mut hi = u16::try_from(hi_est.clamp(i32::from(seed) + 1, n + 1)).ok()?;
+    if accepted(hi - 1)?.0 {
+        while hi <= last && accepted(hi)?.0 {
+            hi += 1;
+        }
+    } else {
+        while !accepted(hi - 1)?.0 {
+            hi -= 1;
+        }
+    }
+    Some(Some((lo, hi)))
+}
+
+impl<S: Scalar> FlatRow<S> {
+    /// The nearest plane's segment at column `k` (the largest `w̃`; the first in object
+    /// order on a tie, as the per-pixel paths), or `None` for the background.
+    #[inline]
+    fn winner(&self, k: u16) -> Option<(usize, S)> {
+        let mut best: Option<(usize, S)> = None;
+        for (i, s) in self.segments.iter().enumerate() {
+            if s.covers(k)
+                && let Some(w) = s.weight(k)
+                && best.is_none_or(|(_, b)| w > b)
+            {
+                best = Some((i, w));
+            }
+        }
+        best
+    }
+
+    /// The colour of column `k` (per-pixel mode).
+    #[inline]
+    pub fn pixel(&self, k: u16) -> Rgb888 {
+        match self.winner(k) {
+            Some((i, _)) => self.segments[i].color,
+            None => self.background,
+        }
+    }
+
+    /// Whether segment `j` wins over segment `p` at column `k` (both cover `k`).
+    fn beats(&self, j: usize, p: usize, k: u16) -> bool {
+        let (sj, sp) = (&self.segments[j], &self.segments[p]);
+        match (sj.weight(k), sp.weight(k)) {
+            (Some(wj), Some(wp)) => wj > wp || (wj == wp && j < p),
+            _ => false,
+        }
+    }
+
+    /// The first column in `from..to` where segment `j` wins over `p` (which covers the
+    /// whole range), if any. `w̃_j − w̃_p` is linear: estimated, then settled.
+    fn overtake(&self, j: usize, p: usize, from: u16, to: u16) -> Option<u16> {
+        if from >= to {
+            return None;
+        }
+        if self.beats(j, p, from) {
+            return Some(from);
+        }
+        if !self.beats(j, p, to - 1) {
+            // A line below at both ends is below in between.
+            return None;
+        }
+        // w̃_j − w̃_p rises from ≤ 0 at `from` to > 0 at `to − 1`: estimate the crossing.
+        let (sj, sp) = (&self.segments[j], &self.segments[p]);
+        let estimate = (|| {
+            let gap = sp.weight(from)?.checked_sub(sj.weight(from)?)?;
+            let rate = sj.step.checked_sub(sp.step)?;
+            let cols = gap.checked_div(rate)?.floor_to_i32()?;
+            let k = i64::from(from) + i64::from(cols) + 1;
+            u16::try_from(k.clamp(i64::from(from) + 1, i64::from(to) - 1)).ok()
+        })()
+        .unwrap_or(to - 1);
+        let mut k = estimate;
+        while k > from + 1 && self.beats(j, p, k - 1) {
+            k -= 1;
+        }
+        while k < to - 1 && !self.beats(j, p, k) {
+            k += 1;
+        }
+        Some(k)
+    }
+
+    /// The scanline from column `from` to `to` as runs `(length, colour)` (span mode):
+    /// each run ends where the nearest plane changes.
+    pub fn spans(&self, from: u16, to: u16) -> Spans<'_, S> {
+        Spans {
+            row: self,
+            at: from,
+            to,
+        }
+    }
+
+    /// Where the run starting at `k` (seen by `winner`) ends, at most `to`.
+    fn run_end(&self, k: u16, winner: Option<usize>, to: u16) -> u16 {
+        let mut end = to;
+        match winner {
+            None => {
+                for s in &self.segments {
+                    if s.lo > k && s.lo < end && s.hi > s.lo {
+                        end = s.lo;
+                    }
+                }
+            }
+            Some(p) => {
+                end = end.min(self.segments[p].hi);
+                for (j, s) in self.segments.iter().enumerate() {
+                    if j == p {
+                        continue;
+                    }
+                    if let Some(at) = self.overtake(j, p, s.lo.max(k + 1), s.hi.min(end)) {
+                        end = end.min(at);
+                    }
+                }
+            }
+        }
+        end
+    }
+}
+
+/// The runs of a scanline: see [`FlatRow::spans`].
+#[derive(Debug)]
+pub struct Spans<'a, S> {
+    row: &'a FlatRow<S>,
+    at: u16,
+    to: u16,
+}
+
+impl<S: Scalar> Iterator for Spans<'_, S> {
+    type Item = (u16, Rgb888);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.at >= self.to {
+            return None;
+        }
+        let k = self.at;
+        let winner = self.row.winner(k).map(|(i, _)| i);
+        let end = self.row.run_end(k, winner, self.to).max(k + 1);
+        self.at = end;
+        let color = winner.map_or(self.row.background, |i| self.row.segments[i].color);
+        Some((end - k, color))
+    }
+}
