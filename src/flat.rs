@@ -54,7 +54,9 @@ pub enum PlaneMode {
 /// The per-frame part of a plane.
 #[derive(Debug, Clone, Copy)]
 struct FramePlane<S> {
-    normal: Vec3<S>,
+    /// The object (its normal is read from the scene: on a 16 KB chip a copy of every
+    /// normal is RAM the stack needs).
+    index: u8,
     /// `D' − N·eye`.
     num: S,
     /// `2^RATIO_SHIFT / |num|`, with the sign of `num` (`σ r`).
@@ -154,10 +156,11 @@ impl<S: Scalar> Flat<S> {
         let w = i32::from(camera.width);
         let scale = S::from_i32(1_i32.checked_shl(S::RATIO_SHIFT)?)?;
         let mut planes = Vec::new();
-        for object in &scene.objects {
+        for (index, object) in scene.objects.iter().enumerate() {
             let Shape::Plane(plane) = &object.shape else {
                 return None;
             };
+            let index = u8::try_from(index).ok()?;
             let normal = plane.normal();
             let num = S::sub_dot3(plane.offset(), normal.to_array(), eye.to_array())?;
             let material = scene.materials.get(usize::from(object.material))?;
@@ -175,7 +178,7 @@ impl<S: Scalar> Flat<S> {
                 .checked_mul(ratio.checked_mul(camera.world_width)?.mul_ratio(1, w)?)?;
             planes
                 .push(FramePlane {
-                    normal,
+                    index,
                     num,
                     ratio,
                     step,
@@ -211,10 +214,16 @@ impl<S: Scalar> Flat<S> {
             if plane.ratio == S::ZERO {
                 continue;
             }
+            let Some(Shape::Plane(p)) =
+                scene.objects.get(usize::from(plane.index)).map(|o| o.shape)
+            else {
+                return None;
+            };
+            let normal = p.normal();
             // The test of the definition at column k (see `fast`), and σN·D there.
             let accepted = |k: u16| -> Option<(bool, S)> {
                 let d = dir(k)?;
-                let nd = plane.normal.dot(d)?;
+                let nd = normal.dot(d)?;
                 let eps_d2 = scene.epsilon.checked_mul(d.dot(d)?)?;
                 Some((accepts(plane.num, nd, scene.epsilon, eps_d2), nd))
             };

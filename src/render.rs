@@ -533,11 +533,38 @@ fn line_with<S: Scalar, T: Stages, C: From<Rgb888>>(
     let width = u16::try_from(line.len())
         .unwrap_or(u16::MAX)
         .min(scene.camera.width);
-    if let Some(flat_row) = flat_for::<S, T>(scene).and_then(|f| f.row(scene, row)) {
+    if !T::LIGHTING && !T::REFLECTION && flat_line_with(scene, row, &mut line[..usize::from(width)])
+    {
         count_primary(counters, width);
-        flat_line(&flat_row, scene.mode, &mut line[..usize::from(width)]);
         return;
     }
+    primary_line_with::<S, T, C>(scene, row, width, line, counters);
+}
+
+/// A scanline of the pure-geometry kernel, `false` when it does not apply or hands the
+/// scanline back. Not inlined: its frame (the kernel's per-frame and per-scanline data)
+/// and the general path's are never on the stack together (on a 16 KB chip in I32F32
+/// that is the difference between fitting and not).
+#[inline(never)]
+fn flat_line_with<S: Scalar, C: From<Rgb888>>(scene: &Scene<S>, row: u16, line: &mut [C]) -> bool {
+    match Flat::new(scene).and_then(|f| f.row(scene, row)) {
+        Some(flat_row) => {
+            flat_line(&flat_row, scene.mode, line);
+            true
+        }
+        None => false,
+    }
+}
+
+/// A scanline of the general path (fast primary rays where they apply).
+#[inline(never)]
+fn primary_line_with<S: Scalar, T: Stages, C: From<Rgb888>>(
+    scene: &Scene<S>,
+    row: u16,
+    width: u16,
+    line: &mut [C],
+    counters: &mut Counters,
+) {
     let primary = primary_for::<S, T>(scene);
     let pixels = scanline_with::<S, T, C>(scene, primary.as_ref(), row, 0..width, counters);
     for (slot, c) in line.iter_mut().zip(pixels) {
