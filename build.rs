@@ -23,8 +23,8 @@ use std::env;
 use std::fs;
 use std::path::PathBuf;
 
-const FORMATS: [&str; 7] = [
-    "i16f16", "i16f16n", "i20f12", "i32f32", "f32", "f32m", "f64",
+const FORMATS: [&str; 8] = [
+    "i16f16", "i16f16n", "i16f16r", "i20f12", "i32f32", "f32", "f32m", "f64",
 ];
 
 fn main() {

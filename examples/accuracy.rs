@@ -30,7 +30,7 @@ use embedded_graphics::primitives::{Circle, Line, PrimitiveStyle, Rectangle};
 use embedded_graphics::text::{Alignment, Text};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use fixray::compare::{Comparison, compare};
-use fixray::variants::{F32Micro, I16F16Narrow};
+use fixray::variants::{F32Micro, I16F16Narrow, I16F16Recip};
 use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render_line, trace_pixel};
 
 /// The scenes: name, what it is, text. The grazing scene is third (the epsilon sweep).
@@ -78,9 +78,13 @@ const SCENES: [(&str, &str, &str); 8] = [
 ];
 
 /// Every format, with what it is.
-const FORMATS: [(&str, &str); 7] = [
+const FORMATS: [(&str, &str); 8] = [
     ("i16f16", "I16F16, wide dot products"),
     ("i16f16n", "I16F16, narrow dot products"),
+    (
+        "i16f16r",
+        "I16F16, division by reciprocal (table + 2 Newton steps)",
+    ),
     ("i20f12", "I20F12"),
     ("i32f32", "I32F32"),
     ("f32", "f32, correctly rounded libm sqrt"),
@@ -98,6 +102,7 @@ fn with_format<V: PerFormat>(format: &str, v: &mut V) -> V::Out {
     match format {
         "i16f16" => v.run::<I16F16>(),
         "i16f16n" => v.run::<I16F16Narrow>(),
+        "i16f16r" => v.run::<I16F16Recip>(),
         "i20f12" => v.run::<I20F12>(),
         "i32f32" => v.run::<I32F32>(),
         "f32" => v.run::<f32>(),
@@ -679,7 +684,7 @@ fn write_report(
             let _ = writeln!(r, "- Cortex-M0 goal: not measured (no firmware figures).");
         }
     }
-    let fixed_m4: Vec<(&str, u64)> = ["i16f16", "i16f16n", "i20f12", "i32f32"]
+    let fixed_m4: Vec<(&str, u64)> = ["i16f16", "i16f16n", "i16f16r", "i20f12", "i32f32"]
         .iter()
         .filter_map(|f| per_px("cortex-m4f", f).map(|n| (*f, n)))
         .collect();
@@ -873,6 +878,7 @@ fn format_color(format: &str) -> Rgb888 {
     match format {
         "i16f16" => Rgb888::new(0, 114, 178),
         "i16f16n" => Rgb888::new(86, 180, 233),
+        "i16f16r" => Rgb888::new(120, 60, 160),
         "i20f12" => Rgb888::new(0, 158, 115),
         "i32f32" => Rgb888::new(213, 94, 0),
         "f32" => Rgb888::new(204, 121, 167),

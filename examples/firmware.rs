@@ -288,6 +288,8 @@ mod firmware {
         frames::<fixray::I16F16>(&mut line);
         #[cfg(fw_i16f16n)]
         frames::<fixray::variants::I16F16Narrow>(&mut line);
+        #[cfg(fw_i16f16r)]
+        frames::<fixray::variants::I16F16Recip>(&mut line);
         #[cfg(fw_i20f12)]
         frames::<fixray::I20F12>(&mut line);
         #[cfg(fw_i32f32)]

@@ -185,6 +185,23 @@ fn mul_wide_i32(a: i32, b: i32) -> i64 {
     }
 }
 
+/// The exact product of two `u32`s: one long multiply where the core has it, otherwise
+/// from 16-bit halves as [`mul_wide_halves`].
+#[inline(always)]
+pub(crate) fn mul_wide_u32(a: u32, b: u32) -> u64 {
+    #[cfg(no_long_multiply)]
+    {
+        let (ah, al) = (a >> 16, a & 0xFFFF);
+        let (bh, bl) = (b >> 16, b & 0xFFFF);
+        let middle = u64::from(ah * bl) + u64::from(al * bh);
+        (u64::from(ah * bh) << 32) + (middle << 16) + u64::from(al * bl)
+    }
+    #[cfg(not(no_long_multiply))]
+    {
+        u64::from(a) * u64::from(b)
+    }
+}
+
 /// The exact product of two `i64`s (`I32F32`'s double width).
 #[inline(always)]
 fn mul_wide_i64(a: i64, b: i64) -> i128 {

@@ -20,7 +20,7 @@ use std::fmt::Write as _;
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::hash::FrameHash;
-use fixray::variants::{F32Micro, I16F16Narrow};
+use fixray::variants::{F32Micro, I16F16Narrow, I16F16Recip};
 use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render_line};
 
 const SCENE: &str = include_str!("../scenes/default.scene");
@@ -43,9 +43,10 @@ fn host_hash<S: Scalar>() -> u32 {
 #[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
 fn firmware_frames_match_the_host_bit_for_bit() {
     assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
-    let host: [(&str, u32); 6] = [
+    let host: [(&str, u32); 7] = [
         ("i16f16", host_hash::<I16F16>()),
         ("i16f16n", host_hash::<I16F16Narrow>()),
+        ("i16f16r", host_hash::<I16F16Recip>()),
         ("i20f12", host_hash::<I20F12>()),
         ("i32f32", host_hash::<I32F32>()),
         ("f32", host_hash::<f32>()),
