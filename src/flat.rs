@@ -227,10 +227,9 @@ impl<S: Scalar> Flat<S> {
                 let eps_d2 = scene.epsilon.checked_mul(d.dot(d)?)?;
                 Some((accepts(plane.num, nd, scene.epsilon, eps_d2), nd))
             };
-            let Some((lo, hi)) = interval(plane, last, &accepted)? else {
+            let Some((lo, hi, nd)) = interval(plane, last, &accepted)? else {
                 continue;
             };
-            let (_, nd) = accepted(lo)?;
             let start = nd.checked_mul(plane.ratio)?;
             let segment = Segment {
                 lo,
@@ -250,21 +249,25 @@ impl<S: Scalar> Flat<S> {
     }
 }
 
-/// The interval `[lo, hi)` of columns `0..=last` where `accepted` holds, `None` inside
-/// when there is none (`None` outside when a quantity does not fit).
+/// The interval `[lo, hi)` of columns `0..=last` where `accepted` holds, with `N·D` at
+/// `lo`; `None` inside when there is none (`None` outside when a quantity does not fit).
 ///
-/// `σ N·D` is linear in the column: the ends of the interval `0 < σ N·D <= |num|` are
-/// estimated from its values at the two ends of the scanline, a column between them that
-/// the test accepts is the seed, and each end is then moved one column at a time until the
-/// per-pixel test changes there (the accepted columns form an interval, see the module
-/// documentation). A good estimate needs one or two tests per end.
+/// The accepted columns form an interval (see the module documentation), so both ends
+/// accepted means all of it. Otherwise `σ N·D`, linear in the column, gives estimates of
+/// the ends from its values at the two ends of the scanline (one division), a column
+/// between them that the test accepts is the seed, and each open end is moved one column
+/// at a time until the per-pixel test changes there: with a good estimate two tests per
+/// end.
 fn interval<S: Scalar>(
     plane: &FramePlane<S>,
     last: u16,
     accepted: &dyn Fn(u16) -> Option<(bool, S)>,
-) -> Option<Option<(u16, u16)>> {
+) -> Option<Option<(u16, u16, S)>> {
     let (ok0, nd0) = accepted(0)?;
     let (ok1, nd1) = accepted(last)?;
+    if ok0 && ok1 {
+        return Some(Some((0, last + 1, nd0)));
+    }
     let oriented = |v: S| {
         if plane.num > S::ZERO {
             Some(v)
@@ -274,12 +277,16 @@ fn interval<S: Scalar>(
     };
     let (e0, e1) = (oriented(nd0)?, oriented(nd1)?);
     let n = i32::from(last);
-    // The first column where the line through (0, e0), (last, e1) exceeds `target`.
+    // Columns per unit of σN·D along the line through (0, e0), (last, e1).
+    let per_unit = e1
+        .checked_sub(e0)
+        .filter(|span| *span != S::ZERO)
+        .and_then(|span| S::from_i32(n)?.checked_div(span));
+    // The first column where that line exceeds `target`.
     let after = |target: S| -> Option<i32> {
         let cols = target
             .checked_sub(e0)?
-            .checked_div(e1.checked_sub(e0)?)?
-            .checked_mul_int(n)?
+            .checked_mul(per_unit?)?
             .floor_to_i32()?;
         Some(cols.saturating_add(1).clamp(0, n + 1))
     };
@@ -311,29 +318,46 @@ fn interval<S: Scalar>(
     let Some(seed) = seed else {
         return Some(None);
     };
-    // The low end: the first accepted column at or below the seed.
-    let mut lo = to_col(lo_est)?.min(seed);
-    if accepted(lo)?.0 {
-        while lo > 0 && accepted(lo - 1)?.0 {
-            lo -= 1;
-        }
+    // The low end: the first accepted column at or below the seed, and N·D there.
+    let (lo, nd_lo) = if ok0 {
+        (0, nd0)
     } else {
-        while !accepted(lo)?.0 {
-            lo += 1;
+        let mut lo = to_col(lo_est)?.min(seed);
+        let (mut ok, mut nd) = accepted(lo)?;
+        if ok {
+            while lo > 0 {
+                let (ok_below, nd_below) = accepted(lo - 1)?;
+                if !ok_below {
+                    break;
+                }
+                lo -= 1;
+                nd = nd_below;
+            }
+        } else {
+            while !ok {
+                lo += 1;
+                (ok, nd) = accepted(lo)?;
+            }
         }
-    }
+        (lo, nd)
+    };
     // The high end: the first rejected column above the seed (or last + 1).
-    let mut hi = u16::try_from(hi_est.clamp(i32::from(seed) + 1, n + 1)).ok()?;
-    if accepted(hi - 1)?.0 {
-        while hi <= last && accepted(hi)?.0 {
-            hi += 1;
-        }
+    let hi = if ok1 {
+        last + 1
     } else {
-        while !accepted(hi - 1)?.0 {
-            hi -= 1;
+        let mut hi = u16::try_from(hi_est.clamp(i32::from(seed) + 1, n)).ok()?;
+        if accepted(hi - 1)?.0 {
+            while accepted(hi)?.0 {
+                hi += 1;
+            }
+        } else {
+            while !accepted(hi - 1)?.0 {
+                hi -= 1;
+            }
         }
-    }
-    Some(Some((lo, hi)))
+        hi
+    };
+    Some(Some((lo, hi, nd_lo)))
 }
 
 impl<S: Scalar> FlatRow<S> {
@@ -353,13 +377,23 @@ impl<S: Scalar> FlatRow<S> {
         best
     }
 
-    /// The colour of column `k` (per-pixel mode).
+    /// The colour of column `k` (per-pixel mode): [`FlatRow::winner`]'s plane, tracked
+    /// by colour.
     #[inline]
     pub fn pixel(&self, k: u16) -> Rgb888 {
-        match self.winner(k) {
-            Some((i, _)) => self.segments[i].color,
-            None => self.background,
+        let mut color = self.background;
+        // Below every accepted plane's w̃ (which is ≥ 0: σN·D > 0 and r > 0).
+        let mut best = S::ONE.checked_neg().unwrap_or(S::ZERO);
+        for s in &self.segments {
+            if s.covers(k)
+                && let Some(w) = s.weight(k)
+                && w > best
+            {
+                best = w;
+                color = s.color;
+            }
         }
+        color
     }
 
     /// Whether segment `j` wins over segment `p` at column `k` (both cover `k`).
