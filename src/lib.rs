@@ -50,8 +50,8 @@ pub use geometry::{
 };
 pub use parse::{SceneError, SceneErrorKind};
 pub use render::{
-    Counters, Traced, pixel, render, render_counted, render_line, render_line_counted, trace,
-    trace_pixel,
+    Counters, Frame, Traced, pixel, render, render_counted, render_line, render_line_counted,
+    trace, trace_pixel,
 };
 pub use scalar::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};
 pub use scene::{Camera, Color, Cone, Light, Material, Object, Plan, Scene};

@@ -530,24 +530,38 @@ fn line_with<S: Scalar, T: Stages, C: From<Rgb888>>(
     line: &mut [C],
     counters: &mut Counters,
 ) {
-    let width = u16::try_from(line.len())
-        .unwrap_or(u16::MAX)
-        .min(scene.camera.width);
-    if !T::LIGHTING && !T::REFLECTION && flat_line_with(scene, row, &mut line[..usize::from(width)])
-    {
-        count_primary(counters, width);
+    let width = line_width(scene, line);
+    if !T::LIGHTING && !T::REFLECTION && flat_line_with(scene, None, row, &mut line[..width]) {
+        count_primary(
+            counters,
+            scene.camera.width.min(u16::try_from(width).unwrap_or(0)),
+        );
         return;
     }
-    primary_line_with::<S, T, C>(scene, row, width, line, counters);
+    primary_line_with::<S, T, C>(scene, None, row, line, counters);
 }
 
-/// A scanline of the pure-geometry kernel, `false` when it does not apply or hands the
-/// scanline back. Not inlined: its frame (the kernel's per-frame and per-scanline data)
-/// and the general path's are never on the stack together (on a 16 KB chip in I32F32
-/// that is the difference between fitting and not).
+/// How many pixels of `line` a scanline fills: its length, at most the camera's width.
+fn line_width<S: Scalar, C>(scene: &Scene<S>, line: &[C]) -> usize {
+    line.len().min(usize::from(scene.camera.width))
+}
+
+/// A scanline of the pure-geometry kernel (with the frame's part if the caller has it),
+/// `false` when it does not apply or hands the scanline back. Not inlined: its frame (the
+/// kernel's per-scanline data) and the general path's are never on the stack together
+/// (on a 16 KB chip in I32F32 that is the difference between fitting and not).
 #[inline(never)]
-fn flat_line_with<S: Scalar, C: From<Rgb888>>(scene: &Scene<S>, row: u16, line: &mut [C]) -> bool {
-    match Flat::new(scene).and_then(|f| f.row(scene, row)) {
+fn flat_line_with<S: Scalar, C: From<Rgb888>>(
+    scene: &Scene<S>,
+    flat: Option<&Flat<S>>,
+    row: u16,
+    line: &mut [C],
+) -> bool {
+    let flat_row = match flat {
+        Some(f) => f.row(scene, row),
+        None => Flat::new(scene).and_then(|f| f.row(scene, row)),
+    };
+    match flat_row {
         Some(flat_row) => {
             flat_line(&flat_row, scene.mode, line);
             true
@@ -556,19 +570,107 @@ fn flat_line_with<S: Scalar, C: From<Rgb888>>(scene: &Scene<S>, row: u16, line: 
     }
 }
 
-/// A scanline of the general path (fast primary rays where they apply).
+/// A scanline of the general path (fast primary rays where they apply; with the frame's
+/// part if the caller has it).
 #[inline(never)]
 fn primary_line_with<S: Scalar, T: Stages, C: From<Rgb888>>(
     scene: &Scene<S>,
+    primary: Option<&Primary<S>>,
     row: u16,
-    width: u16,
     line: &mut [C],
     counters: &mut Counters,
 ) {
-    let primary = primary_for::<S, T>(scene);
-    let pixels = scanline_with::<S, T, C>(scene, primary.as_ref(), row, 0..width, counters);
+    let width = u16::try_from(line_width(scene, line)).unwrap_or(0);
+    let own = match primary {
+        Some(_) => None,
+        None => primary_for::<S, T>(scene),
+    };
+    let primary = primary.or(own.as_ref());
+    let pixels = scanline_with::<S, T, C>(scene, primary, row, 0..width, counters);
     for (slot, c) in line.iter_mut().zip(pixels) {
         *slot = c;
+    }
+}
+
+/// What a frame computes once for all its scanlines.
+#[derive(Debug, Clone)]
+enum Kernel<S> {
+    /// The pure-geometry kernel's per-frame part.
+    Flat(Flat<S>),
+    /// The fast primary-ray path's per-frame part, if it applies.
+    Primary(Option<Primary<S>>),
+}
+
+/// A frame drawn line by line, for display drivers fed a scanline at a time (no
+/// framebuffer): what is constant for the frame (per-plane terms, reciprocals, colours) is
+/// computed once in [`Frame::new`] instead of once per [`render_line`] call. The pictures
+/// are those of [`render_line`].
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb565;
+/// use fixray::{render::Frame, render_line, Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse(include_str!("../scenes/planes.scene")).unwrap();
+/// let frame = Frame::new(&scene);
+/// let (mut a, mut b) = ([Rgb565::new(0, 0, 0); 160], [Rgb565::new(0, 0, 0); 160]);
+/// for row in 0..scene.camera.height {
+///     frame.render_line(row, &mut a); // send `a` to the display here
+///     render_line(&scene, row, &mut b);
+///     assert_eq!(a, b);
+/// }
+/// ```
+#[derive(Debug, Clone)]
+pub struct Frame<'a, S> {
+    scene: &'a Scene<S>,
+    kernel: Kernel<S>,
+}
+
+impl<'a, S: Scalar> Frame<'a, S> {
+    /// Prepares a frame of `scene` (for the stages its plan needs).
+    pub fn new(scene: &'a Scene<S>) -> Self {
+        let kernel = match shading_for(&scene.plan) {
+            Shading::AmbientOnly => match Flat::new(scene) {
+                Some(flat) => Kernel::Flat(flat),
+                None => Kernel::Primary(primary_for::<S, AmbientOnly>(scene)),
+            },
+            Shading::Diffuse => Kernel::Primary(primary_for::<S, Diffuse>(scene)),
+            Shading::DiffuseShadows => Kernel::Primary(primary_for::<S, DiffuseShadows>(scene)),
+            Shading::Full => Kernel::Primary(primary_for::<S, Full>(scene)),
+        };
+        Self { scene, kernel }
+    }
+
+    /// [`render_line`] with this frame's precomputation.
+    pub fn render_line<C: From<Rgb888>>(&self, row: u16, line: &mut [C]) {
+        self.render_line_counted(row, line, &mut Counters::default());
+    }
+
+    /// [`render_line_counted`] with this frame's precomputation.
+    pub fn render_line_counted<C: From<Rgb888>>(
+        &self,
+        row: u16,
+        line: &mut [C],
+        counters: &mut Counters,
+    ) {
+        let scene = self.scene;
+        if row >= scene.camera.height {
+            return;
+        }
+        let primary = match &self.kernel {
+            Kernel::Flat(flat) => {
+                let width = line_width(scene, line);
+                if flat_line_with(scene, Some(flat), row, &mut line[..width]) {
+                    count_primary(counters, u16::try_from(width).unwrap_or(0));
+                    return;
+                }
+                None
+            }
+            Kernel::Primary(p) => p.as_ref(),
+        };
+        with_stages!(
+            scene,
+            primary_line_with::<S>(scene, primary, row, line, counters)
+        );
     }
 }
 
@@ -600,10 +702,7 @@ pub fn render_line_counted<S: Scalar, C: From<Rgb888>>(
     line: &mut [C],
     counters: &mut Counters,
 ) {
-    if row >= scene.camera.height {
-        return;
-    }
-    with_stages!(scene, line_with::<S>(scene, row, line, counters));
+    Frame::new(scene).render_line_counted(row, line, counters);
 }
 
 /// Renders the scene into `target`, one `fill_contiguous` call per scanline, top to bottom.
