@@ -48,7 +48,7 @@ mod firmware {
     use cortex_m_semihosting::{debug, hprintln};
     use embedded_graphics::pixelcolor::Rgb888;
     use fixray::hash::FrameHash;
-    use fixray::{Frame, Scalar, Scene, render_line};
+    use fixray::{Frame, Scalar, Scene};
     use panic_semihosting as _;
 
     // The scenes, as text (parsed on the chip): `SCENES`, chosen at build time by
@@ -156,8 +156,9 @@ mod firmware {
         );
         write(header.as_bytes());
         let w = usize::from(scene.camera.width);
+        let frame = Frame::new(scene);
         for row in 0..scene.camera.height {
-            render_line(scene, row, &mut line[..w]);
+            frame.render_line(row, &mut line[..w]);
             let mut bytes = [0u8; 3 * MAX_WIDTH];
             for (chunk, c) in bytes.chunks_mut(3).zip(&line[..w]) {
                 chunk.copy_from_slice(&[c.r(), c.g(), c.b()]);
