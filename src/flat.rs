@@ -41,6 +41,10 @@ use crate::render::to_rgb888;
 use crate::scene::MAX_OBJECTS;
 use crate::{Scalar, Scene, Shape, Vec3};
 
+/// Columns per block of [`FlatRow::fill`]: its `w̃` buffer is this many values on the
+/// stack (256 bytes in I16F16).
+pub const BLOCK: usize = 64;
+
 /// How a pure-geometry plane scene is drawn (see the [module](self) documentation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum PlaneMode {
@@ -394,6 +398,50 @@ impl<S: Scalar> FlatRow<S> {
             }
         }
         color
+    }
+
+    /// Columns `from..from + out.len()` in per-pixel mode, into `out`: the same colours as
+    /// [`FlatRow::pixel`] column by column, computed plane by plane over blocks of
+    /// [`BLOCK`] columns (a block's `w̃` buffer on the stack): each plane steps its `w̃` by
+    /// one addition per column of its interval and keeps the columns where it is the
+    /// largest so far. Every accepted plane is still compared at every pixel; only the
+    /// loop order differs (the fixed formats add exactly, so the values are
+    /// [`FlatRow::pixel`]'s; floats round the additions instead of one product).
+    pub fn fill(&self, from: u16, out: &mut [Rgb888]) {
+        let mut start = from;
+        for block in out.chunks_mut(BLOCK) {
+            self.fill_block(start, block);
+            start = start.saturating_add(u16::try_from(block.len()).unwrap_or(u16::MAX));
+        }
+    }
+
+    /// One block of [`FlatRow::fill`] (`out.len() <= BLOCK`).
+    fn fill_block(&self, from: u16, out: &mut [Rgb888]) {
+        // Below every accepted plane's w̃ (which is ≥ 0: σN·D > 0 and r > 0).
+        let floor = S::ONE.checked_neg().unwrap_or(S::ZERO);
+        let mut best = [floor; BLOCK];
+        out.fill(self.background);
+        let len = u16::try_from(out.len().min(BLOCK)).unwrap_or(0);
+        let to = from.saturating_add(len);
+        for s in &self.segments {
+            let (a, b) = (s.lo.max(from), s.hi.min(to));
+            if a >= b {
+                continue;
+            }
+            let Some(mut w) = s.weight(a) else {
+                continue;
+            };
+            let range = usize::from(a - from)..usize::from(b - from);
+            for (best, pixel) in best[range.clone()].iter_mut().zip(&mut out[range]) {
+                if w > *best {
+                    *best = w;
+                    *pixel = s.color;
+                }
+                // Inside the segment every w̃ fits (both ends were checked); past its
+                // last column the value is not used.
+                w = w.checked_add(s.step).unwrap_or(w);
+            }
+        }
     }
 
     /// Whether segment `j` wins over segment `p` at column `k` (both cover `k`).

@@ -507,8 +507,15 @@ fn flat_line<S: Scalar, C: From<Rgb888>>(row: &FlatRow<S>, mode: PlaneMode, line
     let width = u16::try_from(line.len()).unwrap_or(u16::MAX);
     match mode {
         PlaneMode::PerPixel => {
-            for (k, slot) in (0..width).zip(line.iter_mut()) {
-                *slot = C::from(row.pixel(k));
+            let mut block = [Rgb888::default(); crate::flat::BLOCK];
+            let mut at = 0u16;
+            for slots in line.chunks_mut(crate::flat::BLOCK) {
+                let colors = &mut block[..slots.len()];
+                row.fill(at, colors);
+                for (slot, c) in slots.iter_mut().zip(colors.iter()) {
+                    *slot = C::from(*c);
+                }
+                at = at.saturating_add(u16::try_from(slots.len()).unwrap_or(0));
             }
         }
         PlaneMode::Spans => {
@@ -792,7 +799,14 @@ where
             count_primary(counters, x1 - x0 + 1);
             match scene.mode {
                 PlaneMode::PerPixel => {
-                    target.fill_contiguous(&line, (x0..=x1).map(|k| D::Color::from(r.pixel(k))))?;
+                    // Block by block, as `render_line` fills its buffer.
+                    let blocks = (x0..=x1).step_by(crate::flat::BLOCK).flat_map(|start| {
+                        let n = usize::from(x1 - start + 1).min(crate::flat::BLOCK);
+                        let mut colors = [Rgb888::default(); crate::flat::BLOCK];
+                        r.fill(start, &mut colors[..n]);
+                        colors.into_iter().take(n)
+                    });
+                    target.fill_contiguous(&line, blocks.map(D::Color::from))?;
                 }
                 PlaneMode::Spans => target.fill_contiguous(
                     &line,
