@@ -65,15 +65,20 @@ struct FramePlane<S> {
     num: S,
     /// `2^RATIO_SHIFT / |num|`, with the sign of `num` (`σ r`).
     ratio: S,
-    /// `Δw̃`: the change of `w̃` from one column to the next.
-    step: S,
     color: Rgb888,
 }
+
+/// How many planes [`Flat`] takes: a scene with more is drawn by the general fast path.
+/// The per-frame part lives for a whole frame beside the deepest shading stack, so it is
+/// kept small (16 × 24 bytes in I32F32).
+pub const MAX_PLANES: usize = 16;
 
 /// The per-frame part: see [`Flat::new`].
 #[derive(Debug, Clone)]
 pub struct Flat<S> {
-    planes: Vec<FramePlane<S>, MAX_OBJECTS>,
+    planes: Vec<FramePlane<S>, MAX_PLANES>,
+    /// `WX`, the screen window's width.
+    world_width: S,
     background: Rgb888,
     width: u16,
 }
@@ -129,7 +134,7 @@ pub(crate) fn planes_only<S: Scalar>(scene: &Scene<S>) -> bool {
 impl<S: Scalar> Flat<S> {
     /// Prepares a frame of a scene of infinite planes, each drawn in its ambient colour
     /// (the whole image of a pure-geometry scene, [`applies`]); `None` when an object is
-    /// not an infinite plane, or a per-frame quantity does not fit the format (an eye
+    /// not an infinite plane, there are more than [`MAX_PLANES`], or a per-frame quantity does not fit the format (an eye
     /// within `2^RATIO_SHIFT / MAX` of a plane, for instance).
     ///
     /// ```
@@ -157,7 +162,6 @@ impl<S: Scalar> Flat<S> {
         }
         let camera = &scene.camera;
         let eye = camera.viewpoint;
-        let w = i32::from(camera.width);
         let scale = S::from_i32(1_i32.checked_shl(S::RATIO_SHIFT)?)?;
         let mut planes = Vec::new();
         for (index, object) in scene.objects.iter().enumerate() {
@@ -175,23 +179,18 @@ impl<S: Scalar> Flat<S> {
             } else {
                 scale.checked_div(num)?
             };
-            // N.x·(WX/W)·r, rounding the large factor first: WX/W alone would carry a
-            // relative error of DELTA/(WX/W) into every column (0.1 % in I20F12).
-            let step = normal
-                .x
-                .checked_mul(ratio.checked_mul(camera.world_width)?.mul_ratio(1, w)?)?;
             planes
                 .push(FramePlane {
                     index,
                     num,
                     ratio,
-                    step,
                     color: to_rgb888(material.ambient),
                 })
                 .ok()?;
         }
         Some(Self {
             planes,
+            world_width: camera.world_width,
             background: to_rgb888(scene.background),
             width: camera.width,
         })
@@ -235,11 +234,16 @@ impl<S: Scalar> Flat<S> {
                 continue;
             };
             let start = nd.checked_mul(plane.ratio)?;
+            // Δw̃ = N.x·(WX/W)·r, rounding the large factor first: WX/W alone would carry
+            // a relative error of DELTA/(WX/W) into every column (0.1 % in I20F12).
+            let step = normal
+                .x
+                .checked_mul(plane.ratio.checked_mul(self.world_width)?.mul_ratio(1, w)?)?;
             let segment = Segment {
                 lo,
                 hi,
                 start,
-                step: plane.step,
+                step,
                 color: plane.color,
             };
             // Both ends fit, so every w̃ between them does (a line).

@@ -151,6 +151,7 @@ pub fn nearest_hit<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Option<(usize, 
 /// (a shadow test: the first hit is enough, and planes need no division:
 /// [`Shape::occludes`]). Shadow rays start off the surface they leave
 /// by its computed error bound ([`Shape::spawn`]), so that surface cannot shadow itself.
+#[inline(never)] // its locals stay out of the recursive shading frames (stack: see below)
 pub fn occludes<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, dist: S) -> bool {
     scene
         .objects
@@ -229,9 +230,55 @@ fn shade_with<S: Scalar, T: Stages>(
     } else {
         surface_normal
     };
+    if lit {
+        light_with::<S, T>(
+            scene, ray, object, material, hit, facing, &mut color, counters,
+        );
+    }
+    if mirror {
+        count(&mut counters.reflection_rays);
+        // r = d − 2 (N·d) N
+        let reflected = surface_normal
+            .dot(ray.dir)
+            .and_then(|nd| nd.checked_add(nd))
+            .and_then(|two_nd| surface_normal.scale(two_nd))
+            .and_then(|n2| ray.dir.diff(n2))
+            .and_then(Vec3::unit)
+            .and_then(|r| object.shape.spawn(ray, hit, r));
+        let seen = match reflected {
+            Some(r) => trace_with::<S, T>(scene, &r, depth + 1, counters).color,
+            None => scene.background,
+        };
+        let k = material.reflective;
+        let own = S::ONE.checked_sub(k).unwrap_or(S::ZERO);
+        for (c, s) in color.iter_mut().zip(seen) {
+            *c = add_sat(
+                c.checked_mul(own).unwrap_or(S::MAX),
+                s.checked_mul(k).unwrap_or(S::MAX),
+            );
+        }
+    }
+    color
+}
+
+/// The lights' share of a hit's colour, added to `color` (see [`shade_with`]). Not
+/// inlined: its locals are not part of the recursive frames of mirror reflections (on a
+/// 16 KB chip in I32F32 they decide whether four reflections fit the stack).
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn light_with<S: Scalar, T: Stages>(
+    scene: &Scene<S>,
+    ray: &Ray<S>,
+    object: &Object<S>,
+    material: &crate::Material<S>,
+    hit: &Hit<S>,
+    facing: Vec3<S>,
+    color: &mut Color<S>,
+    counters: &mut Counters,
+) {
     let channel_max = S::from_i32(255).unwrap_or(S::MAX);
     let specular = T::SPECULAR && material.specular > S::ZERO;
-    if lit && (material.diffuse != [S::ZERO; 3] || specular) {
+    if material.diffuse != [S::ZERO; 3] || specular {
         for light in &scene.lights {
             let Some(to_light) = light.location.diff(hit.point).and_then(Vec3::normalize) else {
                 continue;
@@ -295,30 +342,6 @@ fn shade_with<S: Scalar, T: Stages>(
             }
         }
     }
-    if mirror {
-        count(&mut counters.reflection_rays);
-        // r = d − 2 (N·d) N
-        let reflected = surface_normal
-            .dot(ray.dir)
-            .and_then(|nd| nd.checked_add(nd))
-            .and_then(|two_nd| surface_normal.scale(two_nd))
-            .and_then(|n2| ray.dir.diff(n2))
-            .and_then(Vec3::unit)
-            .and_then(|r| object.shape.spawn(ray, hit, r));
-        let seen = match reflected {
-            Some(r) => trace_with::<S, T>(scene, &r, depth + 1, counters).color,
-            None => scene.background,
-        };
-        let k = material.reflective;
-        let own = S::ONE.checked_sub(k).unwrap_or(S::ZERO);
-        for (c, s) in color.iter_mut().zip(seen) {
-            *c = add_sat(
-                c.checked_mul(own).unwrap_or(S::MAX),
-                s.checked_mul(k).unwrap_or(S::MAX),
-            );
-        }
-    }
-    color
 }
 
 /// Traces a ray with the stages of `T`.
@@ -545,7 +568,8 @@ fn line_with<S: Scalar, T: Stages, C: From<Rgb888>>(
         );
         return;
     }
-    primary_line_with::<S, T, C>(scene, None, row, line, counters);
+    let primary = primary_for::<S, T>(scene);
+    primary_line_with::<S, T, C>(scene, primary.as_ref(), row, line, counters);
 }
 
 /// How many pixels of `line` a scanline fills: its length, at most the camera's width.
@@ -577,8 +601,8 @@ fn flat_line_with<S: Scalar, C: From<Rgb888>>(
     }
 }
 
-/// A scanline of the general path (fast primary rays where they apply; with the frame's
-/// part if the caller has it).
+/// A scanline of the general path: fast primary rays with the frame's part `primary`,
+/// the reference path without it.
 #[inline(never)]
 fn primary_line_with<S: Scalar, T: Stages, C: From<Rgb888>>(
     scene: &Scene<S>,
@@ -588,11 +612,6 @@ fn primary_line_with<S: Scalar, T: Stages, C: From<Rgb888>>(
     counters: &mut Counters,
 ) {
     let width = u16::try_from(line_width(scene, line)).unwrap_or(0);
-    let own = match primary {
-        Some(_) => None,
-        None => primary_for::<S, T>(scene),
-    };
-    let primary = primary.or(own.as_ref());
     let pixels = scanline_with::<S, T, C>(scene, primary, row, 0..width, counters);
     for (slot, c) in line.iter_mut().zip(pixels) {
         *slot = c;
