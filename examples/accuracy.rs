@@ -296,7 +296,7 @@ fn measure_firmware(log: &mut String) -> BTreeMap<(String, String), Firmware> {
 
 /// The scenes and formats of the fast-path table.
 const FAST_SCENES: [&str; 3] = ["default", "planes", "horizon"];
-const FAST_FORMATS: [&str; 4] = ["i16f16", "i20f12", "i32f32", "f32"];
+const FAST_FORMATS: [&str; 5] = ["i16f16", "i16f16r", "i20f12", "i32f32", "f32"];
 
 /// One primary-ray path on one scene in one format.
 struct PathRow {
@@ -445,8 +445,8 @@ fn fast_section(
          Each path of the renderer against the per-pixel reference path of its own format and \
          against the f64 reference picture (share of pixels with any channel different), with \
          its host time (median of 15 frames, `std::time::Instant`, in one run: the ratio is \
-         reference time / path time) and, for I16F16, its cost on the chips (instructions per \
-         pixel including about 11–13 of frame hashing; the default renderer's path is the \
+         reference time / path time) and, for I16F16 and its reciprocal variant, its cost on \
+         the chips (instructions per pixel including about 11–13 of frame hashing; the default renderer's path is the \
          firmware table's, span mode is the same firmware built with `FIXRAY_FW_SPANS=1`).\n\n\
          - *fast: cross-products* is `fixray::fast`: unnormalised directions, the epsilon and \
          screen tests in squared and cross-multiplied form, one division per pixel (for the \
@@ -456,18 +456,24 @@ fn fast_section(
          the per-pixel test) and `1/t'` as a line; per pixel a multiply-add per plane (per-pixel \
          mode) or per run of equal pixels a few comparisons (span mode). Span mode is \
          bit-identical to per-pixel mode in the fixed formats (`tests/flat.rs`).\n\
-         - Division: the fixed formats divide once per plane per frame in the pure-geometry \
-         kernel and once per pixel in the fast path; no reciprocal table or Newton variant \
-         is built yet, so there is no row for one.\n\n\
-         | scene | format | path | differ vs reference | differ vs f64 | host ms/frame | × reference | M0 instr/px | M4F instr/px |\n\
-         |---|---|---|---|---|---|---|---|---|\n",
+         - Division: the pure-geometry kernel divides once per plane per frame; the fast \
+         path once per pixel (the hit point) plus the lighting's divisions. *i16f16r* is \
+         I16F16 with every division replaced by a reciprocal (256-entry table, two Newton \
+         steps, 32-bit arithmetic; `fixray::variants::I16F16Recip`, within 1 + |q|/2²⁸ \
+         DELTAs of the exact quotient): its rows here and in every scene table above show \
+         what that costs in accuracy.\n\
+         - The reference path is the renderer as it was before the fast paths (one \
+         normalised ray and one division per plane per pixel): *× reference* is the \
+         speed-up over it, measured in the same run.\n\n\
+         | scene | format | path | differ vs reference | differ vs f64 | host ms/frame | host frames/s | × reference | M0 instr/px | M4F instr/px |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n",
     );
     for row in rows {
         let chip = |core: &str| -> String {
-            if row.format != "i16f16" {
+            if row.format != "i16f16" && row.format != "i16f16r" {
                 return "—".into();
             }
-            if row.path.contains("span mode") {
+            if row.path.contains("span mode") && row.format == "i16f16" {
                 spans
                     .get(core)
                     .and_then(|f| f.per_pixel.get(row.scene))
@@ -475,20 +481,21 @@ fn fast_section(
             } else if row.path.contains("per-pixel mode")
                 || (row.path.starts_with("fast") && !fixray_flat_scene(row.scene))
             {
-                firmware_cell(fw, core, "i16f16", row.scene)
+                firmware_cell(fw, core, row.format, row.scene)
             } else {
                 "—".into()
             }
         };
         let _ = writeln!(
             r,
-            "| {} | {} | {} | {:.3} % | {:.3} % | {:.3} | {:.1} | {} | {} |",
+            "| {} | {} | {} | {:.3} % | {:.3} % | {:.3} | {:.0} | {:.1} | {} | {} |",
             row.scene,
             row.format,
             row.path,
             100.0 * row.vs_reference,
             100.0 * row.vs_f64,
             row.ms,
+            1000.0 / row.ms,
             row.ratio,
             chip("cortex-m0"),
             chip("cortex-m4f"),

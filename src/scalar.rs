@@ -177,12 +177,20 @@ pub fn mul_wide_halves(a: i32, b: i32) -> i64 {
 fn mul_wide_i32(a: i32, b: i32) -> i64 {
     #[cfg(no_long_multiply)]
     {
-        mul_wide_halves(a, b)
+        mul_wide_halves_call(a, b)
     }
     #[cfg(not(no_long_multiply))]
     {
         i64::from(a) * i64::from(b)
     }
+}
+
+/// [`mul_wide_halves`] as one function (a call, as the 64-bit helper is, but about a third
+/// of its instructions): inlined at every product it would add kilobytes of flash.
+#[cfg(no_long_multiply)]
+#[inline(never)]
+fn mul_wide_halves_call(a: i32, b: i32) -> i64 {
+    mul_wide_halves(a, b)
 }
 
 /// The exact product of two `u32`s: one long multiply where the core has it, otherwise
