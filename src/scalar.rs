@@ -210,8 +210,9 @@ pub(crate) fn mul_wide_u32(a: u32, b: u32) -> u64 {
     }
 }
 
-/// The exact product of two `i64`s (`I32F32`'s double width).
-#[inline(always)]
+/// The exact product of two `i64`s (`I32F32`'s double width). One shared function: a
+/// 128-bit product inlined at every use would double I32F32's flash on a 32-bit core.
+#[inline(never)]
 fn mul_wide_i64(a: i64, b: i64) -> i128 {
     i128::from(a) * i128::from(b)
 }
