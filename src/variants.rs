@@ -51,9 +51,10 @@ const RECIPROCALS: [u16; 256] = {
     let mut table = [0u16; 256];
     let mut i = 0;
     while i < 256 {
-        // 2¹⁶ · 512 / (512 + 2i + 1), rounded to nearest; below 2¹⁶ since 2i + 1 > 0.
+        // 2¹⁶ · 512 / (512 + 2i + 1), rounded to nearest: at most 2²⁵/513 < 2¹⁶, so the
+        // narrowing keeps every bit. (`as` because `TryFrom` is not `const`; i < 256.)
         let den = 512 + 2 * i as u32 + 1;
-        table[i] = ((1u32 << 25) + den / 2).div_ceil(den).saturating_sub(1) as u16;
+        table[i] = (((1u32 << 25) + den / 2) / den) as u16;
         i += 1;
     }
     table
