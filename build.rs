@@ -2,7 +2,7 @@
 //! options. Host builds get nothing but the declarations of the firmware's cfgs.
 //!
 //! `no_long_multiply` is set for cores without a 32 × 32 → 64 multiply (ARMv6-M, ARMv8-M
-//! Baseline): see `src/scalar.rs`.
+//! Baseline): see `src/num/wide.rs`.
 //!
 //! For Cortex-M targets (`thumb*`):
 //! - puts `memory.x` on the linker's search path and links the examples with
@@ -10,9 +10,9 @@
 //! - `fw_microbit` (thumbv6m: the BBC micro:bit, SysTick at 16 MHz) or `fw_mps2`
 //!   (otherwise: MPS2 AN386, SysTick at 25 MHz) tell `examples/firmware.rs` its board;
 //! - `FIXRAY_FW_FORMATS` (default `i16f16,i20f12,f32`: `i32f32` does not fit beside them
-//!   in 256 KB of flash, build it on its own) chooses which number
-//!   formats the firmware renders (one `fw_<format>` cfg each), so that flash can be
-//!   measured per format;
+//!   in 256 KB of flash, build it on its own) chooses which number formats the firmware
+//!   renders (checked against the one list, `src/num/formats.rs`, and handed to the
+//!   firmware as `FIXRAY_FW_FORMATS_BUILT`), so that flash can be measured per format;
 //! - `FIXRAY_FW_SCENES` (default `default`) chooses which scenes of `scenes/` the firmware
 //!   embeds and renders (`$OUT_DIR/fw_scenes.rs`);
 //! - `FIXRAY_FW_SPANS=1` draws pure-geometry plane scenes in span mode (`fw_spans`);
@@ -23,9 +23,24 @@ use std::env;
 use std::fs;
 use std::path::PathBuf;
 
-const FORMATS: [&str; 8] = [
-    "i16f16", "i16f16n", "i16f16r", "i20f12", "i32f32", "f32", "f32m", "f64",
-];
+/// The number formats, read from the one list (`src/num/formats.rs`, `pub const FORMATS`):
+/// the build script cannot use the crate it builds, so it reads the list's text.
+fn formats(dir: &str) -> Vec<String> {
+    let path = format!("{dir}/src/num/formats.rs");
+    println!("cargo:rerun-if-changed={path}");
+    let text = fs::read_to_string(&path).expect("src/num/formats.rs is readable");
+    let start = text
+        .find("pub const FORMATS")
+        .expect("src/num/formats.rs defines FORMATS");
+    let list = &text[start..];
+    let open = list.find("= [").expect("FORMATS is an array") + 3;
+    let close = list[open..].find("];").expect("FORMATS ends") + open;
+    list[open..close]
+        .split(',')
+        .map(|n| n.trim().trim_matches('"').to_string())
+        .filter(|n| !n.is_empty())
+        .collect()
+}
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
@@ -43,13 +58,12 @@ fn main() {
     ] {
         println!("cargo:rustc-check-cfg=cfg({cfg})");
     }
-    for f in FORMATS {
-        println!("cargo:rustc-check-cfg=cfg(fw_{f})");
-    }
+    let dir = env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
+    let known = formats(&dir);
 
     let target = env::var("TARGET").unwrap_or_default();
     // ARMv6-M and ARMv8-M Baseline have no 32 × 32 → 64 multiply (SMULL): the library
-    // then forms double-width products from 16-bit halves (`scalar::mul_wide_halves`,
+    // then forms double-width products from 16-bit halves (`num/wide.rs`,
     // bit-identical) instead of calling the 64-bit multiply helper.
     if target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base") {
         println!("cargo:rustc-cfg=no_long_multiply");
@@ -72,15 +86,21 @@ fn main() {
     // All four formats together do not fit the 256 KB of flash in `memory.x` (I32F32 alone
     // takes about 118 KB on the M0): the default leaves I32F32 out (build it on its own).
     let formats = env::var("FIXRAY_FW_FORMATS").unwrap_or_else(|_| "i16f16,i20f12,f32".into());
+    let mut chosen = Vec::new();
     for f in formats.split(',').map(str::trim).filter(|f| !f.is_empty()) {
         assert!(
-            FORMATS.contains(&f),
-            "FIXRAY_FW_FORMATS: unknown format `{f}` (one of {FORMATS:?})"
+            known.iter().any(|k| k == f),
+            "FIXRAY_FW_FORMATS: unknown number format `{f}` (known: {})",
+            known.join(", ")
         );
-        println!("cargo:rustc-cfg=fw_{f}");
+        chosen.push(f);
     }
+    // The firmware reads the checked list at compile time (`env!`).
+    println!(
+        "cargo:rustc-env=FIXRAY_FW_FORMATS_BUILT={}",
+        chosen.join(",")
+    );
     let scenes = env::var("FIXRAY_FW_SCENES").unwrap_or_else(|_| "default".into());
-    let dir = env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
     let mut table = String::from(
         "/// The scenes this firmware renders: (name, text).\nconst SCENES: &[(&str, &str)] = &[\n",
     );

@@ -10,7 +10,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
-use fixray::render::{AmbientOnly, render_line_stages};
+use fixray::internals::{AmbientOnly, render_line_stages};
 use fixray::{
     Counters, I16F16, I20F12, I32F32, Plane, Ray, RayKind, Scalar, Scene, Vec3, render_line,
 };

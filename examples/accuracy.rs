@@ -30,7 +30,7 @@ use embedded_graphics::primitives::{Circle, Line, PrimitiveStyle, Rectangle};
 use embedded_graphics::text::{Alignment, Text};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use fixray::compare::{Comparison, compare};
-use fixray::variants::{F32Micro, I16F16Narrow, I16F16Recip};
+use fixray::num::variants::{F32Micro, I16F16Narrow, I16F16Recip};
 use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render_line, trace_pixel};
 
 /// The scenes: name, what it is, text. The grazing scene is third (the epsilon sweep).
@@ -340,7 +340,7 @@ impl PerFormat for MeasurePaths<'_> {
     type Out = Vec<PathRow>;
     fn run<S: Scalar>(&mut self) -> Vec<PathRow> {
         use fixray::PlaneMode;
-        let mut scene = Scene::<S>::parse(self.text).expect("shipped scenes parse");
+        let scene = Scene::<S>::parse(self.text).expect("shipped scenes parse");
         let truth = Scene::<f64>::parse(self.text).expect("and in f64");
         let (w, h) = (scene.camera.width, scene.camera.height);
         let every = |f: &dyn Fn(u16, u16) -> Rgb888| -> Picture {
@@ -350,11 +350,12 @@ impl PerFormat for MeasurePaths<'_> {
                 .collect()
         };
         let truth_picture = every(&|x, y| fixray::pixel(&truth, x, y));
-        let lines = |scene: &Scene<S>| -> Picture {
+        let lines = |scene: &Scene<S>, mode: PlaneMode| -> Picture {
             let mut out = Vec::new();
             let mut line = vec![Rgb888::BLACK; usize::from(w)];
+            let frame = fixray::Frame::with_mode(std::hint::black_box(scene), mode);
             for row in 0..h {
-                render_line(std::hint::black_box(scene), row, &mut line);
+                frame.render_line(row, &mut line);
                 out.extend_from_slice(&line);
             }
             out
@@ -374,10 +375,10 @@ impl PerFormat for MeasurePaths<'_> {
             })
         };
         push("reference (per pixel, normalised rays)", ref_ms, &reference);
-        if fixray::flat::applies(&scene) {
+        if fixray::internals::applies(&scene) {
             // The general fast path, as the renderer used it for these scenes before
             // the pure-geometry kernel: the plane `fast::Primary` picks, its ambient colour.
-            let primary = fixray::fast::Primary::new(&scene).expect("a plane scene");
+            let primary = fixray::internals::Primary::new(&scene).expect("a plane scene");
             let (ms, picture) = median_ms(self.runs, || {
                 every(&|x, y| match primary
                     .row(&scene, y, x)
@@ -385,21 +386,19 @@ impl PerFormat for MeasurePaths<'_> {
                 {
                     Some(Ok(Some(hit))) => {
                         let m = scene.objects[hit.index].material;
-                        fixray::render::to_rgb888(scene.materials[usize::from(m)].ambient)
+                        fixray::to_rgb888(scene.materials[usize::from(m)].ambient)
                     }
-                    Some(Ok(None)) => fixray::render::to_rgb888(scene.background),
+                    Some(Ok(None)) => fixray::to_rgb888(scene.background),
                     _ => fixray::pixel(&scene, x, y),
                 })
             });
             push("fast: cross-products, one pixel at a time", ms, &picture);
-            scene.mode = PlaneMode::PerPixel;
-            let (ms, picture) = median_ms(self.runs, || lines(&scene));
+            let (ms, picture) = median_ms(self.runs, || lines(&scene, PlaneMode::PerPixel));
             push("pure geometry, per-pixel mode", ms, &picture);
-            scene.mode = PlaneMode::Spans;
-            let (ms, picture) = median_ms(self.runs, || lines(&scene));
+            let (ms, picture) = median_ms(self.runs, || lines(&scene, PlaneMode::Spans));
             push("pure geometry, span mode", ms, &picture);
         } else {
-            let (ms, picture) = median_ms(self.runs, || lines(&scene));
+            let (ms, picture) = median_ms(self.runs, || lines(&scene, PlaneMode::PerPixel));
             push("fast: cross-products, division-free shadows", ms, &picture);
         }
         rows
@@ -459,7 +458,7 @@ fn fast_section(
          - Division: the pure-geometry kernel divides once per plane per frame; the fast \
          path once per pixel (the hit point) plus the lighting's divisions. *i16f16r* is \
          I16F16 with every division replaced by a reciprocal (256-entry table, two Newton \
-         steps, 32-bit arithmetic; `fixray::variants::I16F16Recip`, within 1 + |q|/2²⁸ \
+         steps, 32-bit arithmetic; `fixray::num::variants::I16F16Recip`, within 1 + |q|/2²⁸ \
          DELTAs of the exact quotient): its rows here and in every scene table above show \
          what that costs in accuracy.\n\
          - The reference path is the renderer as it was before the fast paths (one \

@@ -48,7 +48,7 @@ mod firmware {
     use cortex_m_semihosting::{debug, hprintln};
     use embedded_graphics::pixelcolor::Rgb888;
     use fixray::hash::FrameHash;
-    use fixray::{Frame, Scalar, Scene};
+    use fixray::{Frame, PlaneMode, Scalar, Scene};
     use panic_semihosting as _;
 
     // The scenes, as text (parsed on the chip): `SCENES`, chosen at build time by
@@ -156,7 +156,7 @@ mod firmware {
         );
         write(header.as_bytes());
         let w = usize::from(scene.camera.width);
-        let frame = Frame::new(scene);
+        let frame = Frame::with_mode(scene, MODE);
         for row in 0..scene.camera.height {
             frame.render_line(row, &mut line[..w]);
             let mut bytes = [0u8; 3 * MAX_WIDTH];
@@ -170,8 +170,45 @@ mod firmware {
         hprintln!("format={} ppm={}", S::NAME, name.trim_end_matches('\0'));
     }
 
-    /// Renders every scene in format `S`.
+    /// How pure-geometry plane scenes are drawn (`FIXRAY_FW_SPANS=1`: in spans).
+    #[cfg(fw_spans)]
+    const MODE: PlaneMode = PlaneMode::Spans;
+    #[cfg(not(fw_spans))]
+    const MODE: PlaneMode = PlaneMode::PerPixel;
+
+    /// The formats this firmware renders (`FIXRAY_FW_FORMATS`, checked against
+    /// `fixray::num::formats::FORMATS` by the build script).
+    const FORMATS: &str = env!("FIXRAY_FW_FORMATS_BUILT");
+
+    /// Whether `name` is one of the comma-separated names of [`FORMATS`] (at compile time:
+    /// a format not asked for is not built in).
+    const fn wanted(name: &str) -> bool {
+        let (list, name) = (FORMATS.as_bytes(), name.as_bytes());
+        let mut start = 0;
+        while start <= list.len() {
+            let mut end = start;
+            while end < list.len() && list[end] != b',' {
+                end += 1;
+            }
+            if end - start == name.len() {
+                let mut i = 0;
+                while i < name.len() && list[start + i] == name[i] {
+                    i += 1;
+                }
+                if i == name.len() {
+                    return true;
+                }
+            }
+            start = end + 1;
+        }
+        false
+    }
+
+    /// Renders every scene in format `S`, if it is built in.
     fn frames<S: Scalar>(line: &mut [Rgb888; MAX_WIDTH]) {
+        if !const { wanted(S::NAME) } {
+            return;
+        }
         for (name, text) in SCENES {
             frame::<S>(name, text, line);
         }
@@ -193,10 +230,6 @@ mod firmware {
             );
             return;
         }
-        #[cfg(fw_spans)]
-        {
-            scene.mode = fixray::PlaneMode::Spans;
-        }
         let parsed = instructions();
         let (w, h) = (usize::from(scene.camera.width), scene.camera.height);
         if w > MAX_WIDTH {
@@ -212,7 +245,7 @@ mod firmware {
         let mut hash = FrameHash::new();
         let before = instructions();
         // What is constant for the frame is computed once (`Frame`), then line by line.
-        let frame = Frame::new(&scene);
+        let frame = Frame::with_mode(&scene, MODE);
         for row in 0..h {
             frame.render_line(row, &mut line[..w]);
             for c in &line[..w] {
@@ -248,7 +281,7 @@ mod firmware {
             hash_cost,
             BOARD.0,
             name,
-            scene.mode
+            frame.mode()
         );
         #[cfg(fw_ppm)]
         write_ppm(name, &scene, line);
@@ -288,22 +321,8 @@ mod firmware {
         hprintln!("calibration nops=4000 counted={} core={}", b - a, BOARD.0);
 
         let mut line = [Rgb888::new(0, 0, 0); MAX_WIDTH];
-        #[cfg(fw_i16f16)]
-        frames::<fixray::I16F16>(&mut line);
-        #[cfg(fw_i16f16n)]
-        frames::<fixray::variants::I16F16Narrow>(&mut line);
-        #[cfg(fw_i16f16r)]
-        frames::<fixray::variants::I16F16Recip>(&mut line);
-        #[cfg(fw_i20f12)]
-        frames::<fixray::I20F12>(&mut line);
-        #[cfg(fw_i32f32)]
-        frames::<fixray::I32F32>(&mut line);
-        #[cfg(fw_f32)]
-        frames::<f32>(&mut line);
-        #[cfg(fw_f32m)]
-        frames::<fixray::variants::F32Micro>(&mut line);
-        #[cfg(fw_f64)]
-        frames::<f64>(&mut line);
+        // Every format of the one list, in its order; `frames` skips those not built in.
+        fixray::for_each_format!(all: frames(&mut line));
         debug::exit(debug::EXIT_SUCCESS);
         // Only reached without a semihosting host: sleep.
         loop {

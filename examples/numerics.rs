@@ -12,7 +12,7 @@ mod sampling;
 
 use std::fmt::Write as _;
 
-use fixray::variants::{F32Micro, I16F16Narrow};
+use fixray::num::variants::{F32Micro, I16F16Narrow};
 use fixray::{I16F16, I20F12, I32F32, Scalar, geometry};
 
 const CASES: u64 = 1_000_000;

@@ -1,5 +1,8 @@
 //! Accuracy of one number format against another (normally the `f64` reference), pixel by
-//! pixel, streaming: no image is stored, so this runs on a microcontroller too.
+//! pixel: the pixels are those the renderer draws (a [`Frame`] per scene, line by line),
+//! the hit errors those of the reference path's primary rays ([`trace_pixel`]), which is
+//! what `t` and the hit point are defined by. No image is stored: one line per scene
+//! ([`crate::scene::MAX_PIXELDIM`] pixels each, 24 KB of stack for both).
 //!
 //! ```
 //! use fixray::{compare::compare, Scene, I16F16};
@@ -17,8 +20,8 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
-use crate::render::{Traced, to_rgb888, trace_pixel};
-use crate::{Scalar, Scene};
+use crate::scene::MAX_PIXELDIM;
+use crate::{Frame, Scalar, Scene, Traced, trace_pixel};
 
 /// How a render in one format differs from a reference render of the same scene.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -110,7 +113,8 @@ pub fn heat_color(pixel: Rgb888, reference: Rgb888) -> Rgb888 {
     }
 }
 
-/// Renders both scenes pixel by pixel and compares them; `on_pixel(column, row, pixel,
+/// Renders both scenes and compares them (the pixels [`crate::render`] draws, the hits of
+/// the reference path); `on_pixel(column, row, pixel,
 /// reference_pixel)` sees every pair (for a heat map), row by row.
 pub fn compare<S: Scalar, R: Scalar>(
     scene: &Scene<S>,
@@ -120,14 +124,16 @@ pub fn compare<S: Scalar, R: Scalar>(
     let mut c = Comparison::default();
     let width = scene.camera.width.min(reference.camera.width);
     let height = scene.camera.height.min(reference.camera.height);
+    let (frame, ref_frame) = (Frame::new(scene), Frame::new(reference));
+    let mut line = [Rgb888::BLACK; MAX_PIXELDIM as usize];
+    let mut ref_line = [Rgb888::BLACK; MAX_PIXELDIM as usize];
     for row in 0..height {
+        frame.render_line(row, &mut line);
+        ref_frame.render_line(row, &mut ref_line);
         for column in 0..width {
-            let Traced { hit, color } = trace_pixel(scene, column, row);
-            let Traced {
-                hit: ref_hit,
-                color: ref_color,
-            } = trace_pixel(reference, column, row);
-            let (px, ref_px) = (to_rgb888(color), to_rgb888(ref_color));
+            let Traced { hit, .. } = trace_pixel(scene, column, row);
+            let Traced { hit: ref_hit, .. } = trace_pixel(reference, column, row);
+            let (px, ref_px) = (line[usize::from(column)], ref_line[usize::from(column)]);
             match (hit, ref_hit) {
                 (Some((i, h)), Some((j, g))) if i == j => {
                     let dt = libm::fabs(h.t.to_f64() - g.t.to_f64());

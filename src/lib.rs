@@ -22,37 +22,57 @@
 //! render(&scene, &mut display).unwrap();
 //! display.assert_pattern(&["KKKK", "KKKK", "RRRR", "RRRR"]);
 //! ```
+//!
+//! The modules, in the order they depend on each other (each uses only those above it):
+//! [`num`] (number formats), [`geometry`] (rays and shapes), [`scene`] (scene, camera,
+//! plan, parser), then the crate's private shading and kernels, the renderer (the
+//! functions and [`Frame`] at the crate root), and the tools [`compare`] and [`hash`].
 #![cfg_attr(not(test), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
-pub mod compare;
-pub mod decimal;
-pub mod fast;
-pub mod flat;
+pub mod num;
+
 pub mod geometry;
-pub mod hash;
-pub mod parse;
-pub mod render;
-pub mod scalar;
 pub mod scene;
-pub mod variants;
-pub mod vec3;
+
+mod stats;
+
+mod shade;
+
+mod kernel;
+
+mod render;
+
+pub mod compare;
+pub mod hash;
 
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
 
-pub use flat::PlaneMode;
 pub use geometry::{
-    FrameError, Hit, Miss, Plane, PlaneError, PlaneFrame, Ray, RayKind, Shape, Sphere, SphereError,
+    FrameError, Hit, Miss, Normalized, Plane, PlaneError, PlaneFrame, Ray, RayKind, Shape, Sphere,
+    SphereError, Vec3,
 };
-pub use parse::{SceneError, SceneErrorKind};
-pub use render::{
-    Counters, Frame, Traced, pixel, render, render_counted, render_line, render_line_counted,
-    trace, trace_pixel,
+pub use kernel::flat::PlaneMode;
+pub use num::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};
+pub use render::{Frame, render, render_counted, render_line, render_line_counted};
+pub use scene::{
+    Camera, Color, Cone, Light, Material, Object, Plan, Scene, SceneError, SceneErrorKind,
 };
-pub use scalar::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};
-pub use scene::{Camera, Color, Cone, Light, Material, Object, Plan, Scene};
-pub use vec3::{Normalized, Vec3};
+pub use shade::color::to_rgb888;
+pub use shade::{MAX_REFLECTION_DEPTH, Traced, pixel, shade, trace, trace_pixel};
+pub use stats::Counters;
+
+/// Kernel internals for the crate's own tests and benchmarks: not part of the API, and
+/// they may change at any time.
+#[doc(hidden)]
+pub mod internals {
+    pub use crate::kernel::fast::Primary;
+    pub use crate::kernel::flat::{Flat, applies};
+    pub use crate::render::render_line_stages;
+    pub use crate::shade::nearest_hit;
+    pub use crate::shade::stages::{AmbientOnly, Diffuse, DiffuseShadows, Full, Stages};
+}

@@ -6,7 +6,7 @@ mod common;
 use common::{assert_pattern_everywhere, top_left_pixel};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::compare::compare;
-use fixray::variants::F32Micro;
+use fixray::num::variants::F32Micro;
 use fixray::{Counters, I16F16, I20F12, I32F32, Scalar, Scene, render_line_counted};
 
 #[test]
@@ -79,7 +79,7 @@ fn facing_mirrors_stop_at_the_depth_bound() {
         plane b { material m normal 0 0 1 point 0 0 10 }";
     assert_pattern_everywhere_grey(text, 128);
     let c = counters::<I16F16>(text);
-    let depth = u32::from(fixray::render::MAX_REFLECTION_DEPTH);
+    let depth = u32::from(fixray::MAX_REFLECTION_DEPTH);
     assert_eq!(c.reflection_rays, 4 * depth, "{c:?}");
 }
 
@@ -183,13 +183,13 @@ fn no_acne<S: Scalar>() {
         plane floor { material floor_m normal 0 1 0 point 0 0 0 }
         sphere far { material s_m center 500 1 -100 radius 1 }";
     let scene = Scene::<S>::parse(text).unwrap();
-    assert!(scene.plan.shadows);
-    let unlit = fixray::render::to_rgb888(scene.materials[0].ambient);
+    assert!(scene.plan().shadows);
+    let unlit = fixray::to_rgb888(scene.materials[0].ambient);
     let mut acne = 0;
     for row in 0..scene.camera.height {
         for column in 0..scene.camera.width {
             let t = fixray::trace_pixel(&scene, column, row);
-            if t.hit.is_some_and(|(i, _)| i == 0) && fixray::render::to_rgb888(t.color) == unlit {
+            if t.hit.is_some_and(|(i, _)| i == 0) && fixray::to_rgb888(t.color) == unlit {
                 acne += 1;
             }
         }

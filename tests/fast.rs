@@ -4,13 +4,13 @@
 //! an object's area (3×3 neighbourhood of the reference seeing one object).
 
 use embedded_graphics::pixelcolor::Rgb888;
-use fixray::render::to_rgb888;
+use fixray::to_rgb888;
 use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render_line, trace_pixel};
 
 fn check<S: Scalar>(name: &str, text: &str, budget: f64) -> f64 {
     let scene = Scene::<S>::parse(text).unwrap();
     assert!(
-        fixray::fast::Primary::new(&scene).is_some(),
+        fixray::internals::Primary::new(&scene).is_some(),
         "{name}: fast path applies"
     );
     let (w, h) = (

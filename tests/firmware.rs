@@ -20,7 +20,7 @@ use std::fmt::Write as _;
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::hash::FrameHash;
-use fixray::variants::{F32Micro, I16F16Narrow, I16F16Recip};
+use fixray::num::variants::{F32Micro, I16F16Narrow, I16F16Recip};
 use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render_line};
 
 const SCENE: &str = include_str!("../scenes/default.scene");

@@ -10,20 +10,34 @@ mod sampling;
 use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
-use fixray::fast::Primary;
-use fixray::flat::{Flat, applies};
-use fixray::render::to_rgb888;
-use fixray::{I16F16, I20F12, I32F32, PlaneMode, Scalar, Scene, pixel, render, render_line};
+use fixray::internals::Primary;
+use fixray::internals::{Flat, applies};
+use fixray::to_rgb888;
+use fixray::{
+    Counters, Frame, I16F16, I20F12, I32F32, PlaneMode, Scalar, Scene, pixel, render, render_line,
+};
 use sampling::SplitMix;
 
 type Image = Vec<Vec<Rgb888>>;
 
 fn lines<S: Scalar>(scene: &Scene<S>) -> Image {
+    lines_in(scene, PlaneMode::PerPixel)
+}
+
+/// [`lines`] with pure-geometry scanlines drawn in `mode` (through a `Frame`); per-pixel
+/// mode is checked against `render_line` on the way.
+fn lines_in<S: Scalar>(scene: &Scene<S>, mode: PlaneMode) -> Image {
     let w = usize::from(scene.camera.width);
+    let frame = Frame::with_mode(scene, mode);
     (0..scene.camera.height)
         .map(|row| {
             let mut line = vec![Rgb888::new(1, 2, 3); w];
-            render_line(scene, row, &mut line);
+            frame.render_line(row, &mut line);
+            if mode == PlaneMode::PerPixel {
+                let mut plain = vec![Rgb888::new(1, 2, 3); w];
+                render_line(scene, row, &mut plain);
+                assert_eq!(line, plain, "row {row}");
+            }
             line
         })
         .collect()
@@ -62,7 +76,7 @@ fn differ(a: &Image, b: &Image) -> usize {
 /// Per-pixel and span images of a scene, checked against each other and the fast path;
 /// returns (pixels, per-pixel vs fast path differences, spans vs per-pixel differences).
 fn compare<S: Scalar>(name: &str, text: &str) -> (usize, usize, usize) {
-    let mut scene = Scene::<S>::parse(text).unwrap();
+    let scene = Scene::<S>::parse(text).unwrap();
     assert!(applies(&scene), "{name}: pure geometry");
     assert!(Flat::new(&scene).is_some(), "{name} {}", S::NAME);
     for row in 0..scene.camera.height {
@@ -72,10 +86,8 @@ fn compare<S: Scalar>(name: &str, text: &str) -> (usize, usize, usize) {
             S::NAME
         );
     }
-    scene.mode = PlaneMode::PerPixel;
-    let per_pixel = lines(&scene);
-    scene.mode = PlaneMode::Spans;
-    let spans = lines(&scene);
+    let per_pixel = lines_in(&scene, PlaneMode::PerPixel);
+    let spans = lines_in(&scene, PlaneMode::Spans);
     let fast = primary_image(&scene);
     let n = per_pixel.len() * per_pixel[0].len();
     (n, differ(&per_pixel, &fast), differ(&spans, &per_pixel))
@@ -200,11 +212,16 @@ fn render_draws_what_render_line_draws_in_both_modes_and_clipped() {
         plane back  { material c normal 0.3 0.1 1 point 0 0 -12 }
     ";
     for mode in [PlaneMode::PerPixel, PlaneMode::Spans] {
-        let mut scene = Scene::<I16F16>::parse(text).unwrap();
-        scene.mode = mode;
-        let expected = lines(&scene);
+        let scene = Scene::<I16F16>::parse(text).unwrap();
+        let frame = Frame::with_mode(&scene, mode);
+        let expected = lines_in(&scene, mode);
         let mut display = MockDisplay::<Rgb888>::new();
-        render(&scene, &mut display).unwrap();
+        frame.draw(&mut display, &mut Counters::default()).unwrap();
+        if mode == PlaneMode::PerPixel {
+            let mut plain = MockDisplay::<Rgb888>::new();
+            render(&scene, &mut plain).unwrap();
+            assert_eq!(plain, display);
+        }
         for (y, line) in expected.iter().enumerate() {
             for (x, c) in line.iter().enumerate() {
                 let p = Point::new(i32::try_from(x).unwrap(), i32::try_from(y).unwrap());
@@ -218,7 +235,7 @@ fn render_draws_what_render_line_draws_in_both_modes_and_clipped() {
             Point::new(5, 7),
             Size::new(30, 20),
         ));
-        render(&scene, &mut clipped).unwrap();
+        frame.draw(&mut clipped, &mut Counters::default()).unwrap();
         for y in 0..40 {
             for x in 0..48 {
                 let inside = (5..35).contains(&x) && (7..27).contains(&y);
@@ -240,9 +257,8 @@ fn an_eye_on_a_plane_and_a_one_column_image() {
         plane floor { material b normal 0 1 0 point 0 1 0 }
     ";
     for mode in [PlaneMode::PerPixel, PlaneMode::Spans] {
-        let mut scene = Scene::<I16F16>::parse(text).unwrap();
-        scene.mode = mode;
-        let got = lines(&scene);
+        let scene = Scene::<I16F16>::parse(text).unwrap();
+        let got = lines_in(&scene, mode);
         let want: Vec<Vec<Rgb888>> = (0..6).map(|row| vec![pixel(&scene, 0, row)]).collect();
         assert_eq!(got, want, "{mode:?}");
         assert!(got.iter().flatten().any(|c| *c == Rgb888::new(0, 255, 0)));

@@ -14,7 +14,7 @@
 mod sampling;
 
 use embedded_graphics::pixelcolor::Rgb888;
-use fixray::variants::{F32Micro, I16F16Narrow};
+use fixray::num::variants::{F32Micro, I16F16Narrow};
 use fixray::{I16F16, I20F12, I32F32, Plane, Ray, RayKind, Scalar, Scene, Vec3, render_line};
 use sampling::SplitMix;
 

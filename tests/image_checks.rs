@@ -7,8 +7,8 @@
 //!   render has the three equal.
 
 use embedded_graphics::pixelcolor::Rgb888;
-use fixray::variants::{F32Micro, I16F16Narrow};
-use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render::to_rgb888, render_line};
+use fixray::num::variants::{F32Micro, I16F16Narrow};
+use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render_line, to_rgb888};
 
 const HORIZON: &str = include_str!("../scenes/horizon.scene");
 

@@ -381,7 +381,7 @@ fn every_entity_of_the_format_is_read_and_checked() {
     let cone = s.lights[0].cone.unwrap();
     assert!((cone.cos_theta.to_f64() - 0.866_025_4).abs() < 4.0 * I16F16::DELTA.to_f64());
     assert_eq!(s.materials[2].shininess.to_f64(), 20.0);
-    let plan = s.plan;
+    let plan = s.plan();
     assert!(plan.spheres && plan.tiles && plan.finite_planes && plan.spotlights);
     assert!(plan.lighting && plan.shadows && !plan.specular && !plan.reflection);
 

@@ -11,8 +11,9 @@ use sampling::SplitMix;
 
 use embedded_graphics::pixelcolor::RgbColor;
 use fixray::compare::{Comparison, compare};
-use fixray::render::{Traced, nearest_hit, trace_pixel};
+use fixray::internals::nearest_hit;
 use fixray::{I16F16, I20F12, I32F32, Plane, Ray, RayKind, Scalar, Scene, Shape, Vec3};
+use fixray::{Traced, trace_pixel};
 
 const SCENES: [(&str, &str); 3] = [
     ("default", include_str!("../scenes/default.scene")),

@@ -12,7 +12,7 @@
 #[path = "../examples/support/sampling.rs"]
 mod sampling;
 
-use fixray::variants::I16F16Narrow;
+use fixray::num::variants::I16F16Narrow;
 use fixray::{I16F16, I20F12, I32F32, Scalar};
 
 const CASES: u64 = 1_000_000;

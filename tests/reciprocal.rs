@@ -3,7 +3,7 @@
 //! level, never the picture.
 
 use embedded_graphics::pixelcolor::Rgb888;
-use fixray::variants::I16F16Recip;
+use fixray::num::variants::I16F16Recip;
 use fixray::{I16F16, Scalar, Scene, render_line};
 
 fn picture<S: Scalar>(text: &str) -> Vec<Rgb888> {

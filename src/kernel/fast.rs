@@ -1,6 +1,6 @@
 //! Fast primary rays for scenes of planes (infinite, tiled and finite).
 //!
-//! The reference path ([`crate::render::trace_pixel`]) normalises every primary ray and
+//! The reference path ([`crate::trace_pixel`]) normalises every primary ray and
 //! divides once per plane. Here, per frame, `num = D' − N·eye` is computed once per plane
 //! (the eye is every primary ray's base), and per pixel the ray's direction is left
 //! unnormalised, `D = screen point − eye` (its x stepped along the scanline), so that a
@@ -23,6 +23,8 @@
 
 use heapless::Vec;
 
+use core::cmp::Ordering;
+
 use crate::scene::MAX_OBJECTS;
 use crate::{Scalar, Scene, Shape, Vec3};
 
@@ -34,13 +36,17 @@ struct Term<S> {
     num: S,
 }
 
-/// The unit normal of a plane-like shape.
+/// The unit normal of a plane-like object.
+#[inline]
 fn normal_of<S: Scalar>(scene: &Scene<S>, index: u8) -> Option<Vec3<S>> {
-    match &scene.objects.get(usize::from(index))?.shape {
-        Shape::Plane(p) => Some(p.normal()),
-        Shape::Tiled { frame, .. } | Shape::Finite(frame) => Some(frame.plane().normal()),
-        Shape::Sphere(_) => None,
-    }
+    Some(
+        scene
+            .objects
+            .get(usize::from(index))?
+            .shape
+            .plane()?
+            .normal(),
+    )
 }
 
 /// How many pixels a scanline steps `D.x` by addition before restarting from the exact
@@ -86,7 +92,7 @@ pub struct Row<S> {
 #[inline]
 pub(crate) fn accepts<S: Scalar>(num: S, nd: S, eps: S, eps_d2: S) -> bool {
     // Parallel within the epsilon (also catches N·D = 0).
-    if S::cmp_products(nd, nd, eps, eps_d2).is_lt() || nd == S::ZERO {
+    if S::cmp_products(nd, nd, eps, eps_d2) == Some(Ordering::Less) || nd == S::ZERO {
         return false;
     }
     // Behind: t' < 0. (num = 0 puts the hit at the eye: in front of the screen.)
@@ -108,11 +114,7 @@ impl<S: Scalar> Primary<S> {
             .mul_ratio(1, i32::from(scene.camera.width))?;
         let mut terms = Vec::new();
         for (index, object) in scene.objects.iter().enumerate() {
-            let plane = match &object.shape {
-                Shape::Plane(p) => p,
-                Shape::Tiled { frame, .. } | Shape::Finite(frame) => frame.plane(),
-                Shape::Sphere(_) => return None,
-            };
+            let plane = object.shape.plane()?;
             let num = S::sub_dot3(plane.offset(), plane.normal().to_array(), eye.to_array())?;
             let index = u8::try_from(index).ok()?;
             terms.push(Term { index, num }).ok()?;
@@ -128,10 +130,7 @@ impl<S: Scalar> Primary<S> {
     pub fn row(&self, scene: &Scene<S>, row: u16, column: u16) -> Option<Row<S>> {
         let eye = scene.camera.viewpoint;
         let y = scene.camera.screen_y(row)?;
-        let x = scene
-            .camera
-            .world_width
-            .mul_ratio(2 * i32::from(column) + 1, 2 * i32::from(scene.camera.width))?;
+        let x = scene.camera.screen_x(column)?;
         let dir = Vec3::new(x.checked_sub(eye.x)?, y.checked_sub(eye.y)?, self.dz);
         let mut nd = Vec::new();
         for term in &self.terms {
@@ -175,7 +174,7 @@ impl<S: Scalar> Primary<S> {
             }
             let (num_abs, nd_abs) = (term.num.abs(), nd.abs());
             if let Some((_, _, b_num, b_nd)) = best
-                && !S::cmp_products(num_abs, b_nd, b_num, nd_abs).is_lt()
+                && S::cmp_products(num_abs, b_nd, b_num, nd_abs) != Some(Ordering::Less)
             {
                 continue;
             }

@@ -8,7 +8,7 @@
 //! exact comparisons on the decimal.
 //!
 //! ```
-//! use fixray::decimal::Decimal;
+//! use fixray::num::Decimal;
 //! use core::cmp::Ordering;
 //!
 //! let d = Decimal::parse("-2.50e1").unwrap();

@@ -4,9 +4,9 @@
 //! (`scene-format.md`): a pixel shows the ambient colour of the nearest plane it sees, so
 //! no hit point, division or colour arithmetic is needed per pixel, only *which* plane.
 //! With the eye `b`, `num_i = D'_i − N_i·b` per plane (per frame) and the unnormalised
-//! direction `D = screen point − b` (as in [`crate::fast`]):
+//! direction `D = screen point − b` (as in [`super::fast`]):
 //!
-//! - **Per scanline**, each plane is accepted (the tests of [`crate::fast`], which are
+//! - **Per scanline**, each plane is accepted (the tests of [`super::fast`], which are
 //!   those of the definition) on one interval of columns `[lo, hi)`: the accepted
 //!   directions form a convex cone (`σN·D ≥ ε|D|` and `σN·D ≤ |num|`, `σ` the sign of
 //!   `num`), and a scanline is a line through it. The interval's ends are estimated from
@@ -14,7 +14,7 @@
 //!   itself, so the interval is exactly where that test accepts.
 //! - **The nearest plane** has the largest `w = σ N·D / |num| = 1/t'` (`t'` the distance in
 //!   units of `D`). On a scanline `w` is linear in the column; it is evaluated as
-//!   `w̃(k) = w̃(lo) + (k − lo)·Δw̃`, scaled by `2^RATIO_SHIFT` ([`Scalar::RATIO_SHIFT`]) so
+//!   `w̃(k) = w̃(lo) + (k − lo)·Δw̃`, scaled by `2^RATIO_SHIFT` ([`ratio_shift`]) so
 //!   that the fixed formats keep their full resolution for a quantity at most 1:
 //!   `w̃(lo) = σ N·D(lo) · r` and `Δw̃ = σ N.x·(WX/W) · r` with `r = 2^RATIO_SHIFT/|num|`
 //!   (one division per plane per frame, none per scanline or pixel).
@@ -27,7 +27,7 @@
 //! a line, so span mode draws exactly the per-pixel mode's image (`tests/flat.rs`); for
 //! floats the rounding of `w̃` can move a span's end by a pixel.
 //!
-//! Against the general fast path ([`crate::fast`], which compares `t'` by exact
+//! Against the general fast path ([`super::fast`], which compares `t'` by exact
 //! cross-products) the only difference is the rounding of `w̃`: pixels can differ where two
 //! planes meet within that rounding (`tests/flat.rs` counts them). Any quantity that does
 //! not fit the format makes [`Flat::new`] or [`Flat::row`] return `None`, and the renderer
@@ -36,10 +36,18 @@
 use embedded_graphics_core::pixelcolor::Rgb888;
 use heapless::Vec;
 
-use crate::fast::accepts;
-use crate::render::to_rgb888;
+use super::fast::accepts;
 use crate::scene::MAX_OBJECTS;
+use crate::shade::color::to_rgb888;
 use crate::{Scalar, Scene, Shape, Vec3};
+
+/// How many bits a ratio of at most 1 is scaled up by, so that it keeps the format's full
+/// resolution: half the integer bits of a fixed format (I16F16: 8, so `2^8/|num|` still
+/// fits for planes 1/128 of a unit from the eye), 0 for floats (their resolution is
+/// relative).
+const fn ratio_shift<S: Scalar>() -> u32 {
+    S::INT_BITS / 2
+}
 
 /// Columns per block of [`FlatRow::fill`]: its `w̃` buffer is this many values on the
 /// stack (256 bytes in I16F16).
@@ -120,15 +128,8 @@ pub struct FlatRow<S> {
 /// (The renderer also uses it for stage sets without lighting or mirrors, which draw
 /// ambient colours only.)
 pub fn applies<S: Scalar>(scene: &Scene<S>) -> bool {
-    !(scene.plan.lighting || scene.plan.reflection) && planes_only(scene)
-}
-
-/// Whether every object is an infinite plane.
-pub(crate) fn planes_only<S: Scalar>(scene: &Scene<S>) -> bool {
-    scene
-        .objects
-        .iter()
-        .all(|o| matches!(o.shape, Shape::Plane(_)))
+    let plan = scene.plan();
+    !(plan.lighting || plan.reflection) && plan.planes_only()
 }
 
 impl<S: Scalar> Flat<S> {
@@ -136,33 +137,10 @@ impl<S: Scalar> Flat<S> {
     /// (the whole image of a pure-geometry scene, [`applies`]); `None` when an object is
     /// not an infinite plane, there are more than [`MAX_PLANES`], or a per-frame quantity does not fit the format (an eye
     /// within `2^RATIO_SHIFT / MAX` of a plane, for instance).
-    ///
-    /// ```
-    /// use fixray::flat::Flat;
-    /// use fixray::{Scene, I16F16};
-    /// use embedded_graphics::pixelcolor::Rgb888;
-    ///
-    /// let scene = Scene::<I16F16>::parse(
-    ///     "camera c { pixeldim 4 2 worlddim 4 2 viewpoint 2 1 5 }
-    ///      material red { ambient 1 0 0 }
-    ///      plane floor { material red normal 0 1 0 point 0 0.5 0 }",
-    /// )
-    /// .unwrap();
-    /// let flat = Flat::new(&scene).unwrap();
-    /// let top = flat.row(&scene, 0).unwrap();
-    /// let bottom = flat.row(&scene, 1).unwrap();
-    /// assert_eq!(top.pixel(0), Rgb888::new(0, 0, 0));
-    /// assert_eq!(bottom.pixel(3), Rgb888::new(255, 0, 0));
-    /// // Span mode: the whole bottom row is one run.
-    /// assert_eq!(bottom.spans(0, 4).collect::<Vec<_>>(), [(4, Rgb888::new(255, 0, 0))]);
-    /// ```
     pub fn new(scene: &Scene<S>) -> Option<Self> {
-        if !planes_only(scene) {
-            return None;
-        }
         let camera = &scene.camera;
         let eye = camera.viewpoint;
-        let scale = S::from_i32(1_i32.checked_shl(S::RATIO_SHIFT)?)?;
+        let scale = S::from_i32(1_i32.checked_shl(ratio_shift::<S>())?)?;
         let mut planes = Vec::new();
         for (index, object) in scene.objects.iter().enumerate() {
             let Shape::Plane(plane) = &object.shape else {
@@ -208,7 +186,7 @@ impl<S: Scalar> Flat<S> {
         // The direction through column k, as the per-pixel paths form it (the screen x
         // rounded once from the exact fraction).
         let dir = |k: u16| -> Option<Vec3<S>> {
-            let x = camera.world_width.mul_ratio(2 * i32::from(k) + 1, 2 * w)?;
+            let x = camera.screen_x(k)?;
             Some(Vec3::new(x.checked_sub(eye.x)?, dy, dz))
         };
         let last = self.width.checked_sub(1)?;

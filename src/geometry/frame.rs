@@ -1,0 +1,98 @@
+//! A plane with coordinates on it: what tiled planes (checkerboards) and finite planes
+//! (rectangles) are built on.
+
+use super::{Plane, PlaneError, Vec3};
+use crate::Scalar;
+
+/// Why a tiled or finite plane cannot be built.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FrameError {
+    /// The plane itself cannot be built.
+    Plane(PlaneError),
+    /// `xdir` has no component in the plane (zero, or parallel to the normal).
+    XdirInvalid,
+    /// A tile or side length is not positive.
+    NonPositiveSize,
+}
+
+/// A plane with coordinates: the corner `point`, `u` = unit(xdir projected into the plane),
+/// `v` = unit(N × u), and two lengths along them. Tiled planes (tile size) and finite
+/// planes (side lengths) are built on it. The plane coordinates of a point `p` are
+/// `a = (p − point)·u`, `b = (p − point)·v`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlaneFrame<S> {
+    plane: Plane<S>,
+    corner: Vec3<S>,
+    u: Vec3<S>,
+    v: Vec3<S>,
+    size: [S; 2],
+}
+
+impl<S: Scalar> PlaneFrame<S> {
+    /// Builds the frame.
+    ///
+    /// # Errors
+    /// [`FrameError`] for a zero normal, an offset out of range, an `xdir` with no
+    /// component in the plane, or a non-positive size.
+    pub fn new(
+        normal: Vec3<S>,
+        point: Vec3<S>,
+        xdir: Vec3<S>,
+        size: [S; 2],
+    ) -> Result<Self, FrameError> {
+        let plane = Plane::new(normal, point).map_err(FrameError::Plane)?;
+        if size[0] <= S::ZERO || size[1] <= S::ZERO {
+            return Err(FrameError::NonPositiveSize);
+        }
+        let n = plane.normal();
+        let along = n.dot(xdir).ok_or(FrameError::XdirInvalid)?;
+        let u = n
+            .scale(along)
+            .and_then(|p| xdir.diff(p))
+            .and_then(Vec3::unit)
+            .ok_or(FrameError::XdirInvalid)?;
+        let v = n
+            .cross(u)
+            .and_then(Vec3::unit)
+            .ok_or(FrameError::XdirInvalid)?;
+        Ok(Self {
+            plane,
+            corner: point,
+            u,
+            v,
+            size,
+        })
+    }
+
+    /// The underlying infinite plane.
+    pub fn plane(&self) -> &Plane<S> {
+        &self.plane
+    }
+
+    /// The tile or side lengths along `u` and `v`.
+    pub fn size(&self) -> [S; 2] {
+        self.size
+    }
+
+    /// The plane coordinates `(a, b)` of a point.
+    pub fn coords(&self, p: Vec3<S>) -> Option<(S, S)> {
+        let q = p.diff(self.corner)?;
+        Some((q.dot(self.u)?, q.dot(self.v)?))
+    }
+
+    /// Whether a point lies on the checkerboard's odd squares:
+    /// `floor(a / W) + floor(b / H)` odd.
+    pub fn odd_tile(&self, p: Vec3<S>) -> Option<bool> {
+        let (a, b) = self.coords(p)?;
+        let i = a.checked_div(self.size[0])?.floor_to_i32()?;
+        let j = b.checked_div(self.size[1])?.floor_to_i32()?;
+        Some((i.wrapping_add(j)) & 1 == 1)
+    }
+
+    /// Whether a point lies inside the rectangle `0 <= a <= W`, `0 <= b <= H`.
+    pub fn contains(&self, p: Vec3<S>) -> bool {
+        self.coords(p).is_some_and(|(a, b)| {
+            a >= S::ZERO && a <= self.size[0] && b >= S::ZERO && b <= self.size[1]
+        })
+    }
+}

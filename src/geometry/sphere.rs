@@ -1,0 +1,143 @@
+//! The sphere, with the numerically careful intersection.
+
+use super::spawn::{offset_base, residual};
+use super::{Hit, Miss, Ray, RayKind, Vec3};
+use crate::Scalar;
+
+/// Why a sphere cannot be built.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SphereError {
+    /// The radius is not positive.
+    NonPositiveRadius,
+    /// `radius²` does not fit the number format.
+    RadiusOutOfRange,
+}
+
+/// A sphere.
+///
+/// The intersection uses the numerically careful form (as in pbrt and *Ray Tracing Gems*
+/// ch. 7): the discriminant is `r² − |oc − (oc·d)d|²` (the squared distance of the centre
+/// from the ray's line subtracted from r², which does not cancel catastrophically for
+/// far or grazing rays), and the two roots are `q = −(b + sign(b)√Δ)` and `c/q`, so
+/// neither is the difference of two nearly equal numbers. Tangency is decided by the sign
+/// of the discriminant (the precision epsilon belongs to the plane tests).
+///
+/// ```
+/// use fixray::{I16F16, Ray, RayKind, Scalar, Sphere, Vec3};
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// let s = Sphere::new(v(0.0, 0.0, -10.0), I16F16::from_i32(2).unwrap()).unwrap();
+/// let ray = Ray { base: v(0.0, 0.0, 5.0), dir: v(0.0, 0.0, -1.0), kind: RayKind::Primary };
+/// assert_eq!(s.intersect(&ray).unwrap().t.to_f64(), 13.0);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sphere<S> {
+    center: Vec3<S>,
+    radius: S,
+    radius_sq: S,
+}
+
+impl<S: Scalar> Sphere<S> {
+    /// A sphere of radius `radius` (> 0) around `center`.
+    ///
+    /// # Errors
+    /// [`SphereError`] when the radius is not positive or its square does not fit.
+    pub fn new(center: Vec3<S>, radius: S) -> Result<Self, SphereError> {
+        if radius <= S::ZERO {
+            return Err(SphereError::NonPositiveRadius);
+        }
+        let radius_sq = radius
+            .checked_mul(radius)
+            .ok_or(SphereError::RadiusOutOfRange)?;
+        Ok(Self {
+            center,
+            radius,
+            radius_sq,
+        })
+    }
+
+    /// The centre.
+    pub fn center(&self) -> Vec3<S> {
+        self.center
+    }
+
+    /// The radius.
+    pub fn radius(&self) -> S {
+        self.radius
+    }
+
+    /// Intersects a ray (unit direction): the smallest root `t >= 0`, the far root when the
+    /// base is inside; no real root is [`Miss::NoRoot`]; the primary-ray screen rule
+    /// applies as for planes.
+    ///
+    /// # Errors
+    /// The [`Miss`] reason when the ray does not hit.
+    pub fn intersect(&self, ray: &Ray<S>) -> Result<Hit<S>, Miss> {
+        let oc = ray.base.diff(self.center).ok_or(Miss::OutOfRange)?;
+        let b = oc.dot(ray.dir).ok_or(Miss::OutOfRange)?;
+        let perp = ray
+            .dir
+            .scale(b)
+            .and_then(|p| oc.diff(p))
+            .ok_or(Miss::OutOfRange)?;
+        let disc = S::sub_dot3(self.radius_sq, perp.to_array(), perp.to_array())
+            .ok_or(Miss::OutOfRange)?;
+        if disc < S::ZERO {
+            return Err(Miss::NoRoot);
+        }
+        let root = disc.checked_sqrt().ok_or(Miss::OutOfRange)?;
+        let q = if b >= S::ZERO {
+            b.checked_add(root).and_then(S::checked_neg)
+        } else {
+            root.checked_sub(b)
+        }
+        .ok_or(Miss::OutOfRange)?;
+        // The other root is c/q with c = |oc|² − r² (one wide step): exact where the two
+        // roots nearly cancel (the base near the surface, c ≈ 0). For a far sphere c can
+        // exceed the format while t fits; then |oc| ≫ r and −b ∓ √Δ does not cancel.
+        let c = S::sub_dot3(self.radius_sq, oc.to_array(), oc.to_array()).and_then(S::checked_neg);
+        let other = match c {
+            Some(c) if q != S::ZERO => c.checked_div(q),
+            _ if b < S::ZERO => S::ZERO.checked_sub(b).and_then(|nb| nb.checked_sub(root)),
+            _ => root.checked_sub(b),
+        }
+        .ok_or(Miss::OutOfRange)?;
+        let (t0, t1) = (q, other);
+        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+        let t = if near >= S::ZERO {
+            near
+        } else if far >= S::ZERO {
+            far
+        } else {
+            return Err(Miss::Behind);
+        };
+        ray.hit_at(t)
+    }
+
+    /// The outward unit normal at a point on the surface.
+    pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
+        point.diff(self.center)?.unit()
+    }
+
+    fn magnitude(&self, ray: &Ray<S>, hit: &Hit<S>) -> S {
+        ray.base
+            .max_abs()
+            .max(hit.point.max_abs())
+            .max(self.center.max_abs())
+            .max(self.radius)
+    }
+
+    /// A secondary ray leaving a hit on the sphere in direction `dir`: based off the
+    /// surface along the sphere's normal by the bound of [`super::Plane::spawn`].
+    /// `None` when the offset base does not fit the format.
+    pub fn spawn(&self, ray: &Ray<S>, hit: &Hit<S>, dir: Vec3<S>) -> Option<Ray<S>> {
+        let m = self.magnitude(ray, hit);
+        let bound = residual(hit.t, m)?;
+        let base = offset_base(hit.point, self.normal_at(hit.point)?, dir, bound, m)?;
+        Some(Ray {
+            base,
+            dir,
+            kind: RayKind::Secondary,
+        })
+    }
+}

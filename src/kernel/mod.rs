@@ -1,0 +1,231 @@
+//! Primary-ray kernels: how the pixels of a scanline are found. [`select`] is the only
+//! eligibility rule; the renderer (`render.rs`) asks it once per frame and draws every
+//! scanline with what it chose.
+//!
+//! - **flat** (`flat.rs`): pure geometry (infinite planes, no lighting, no mirrors), a
+//!   scanline at a time, no division per pixel; per-pixel or span mode.
+//! - **fast** (`fast.rs`): plane-like scenes whose stages need no unit primary direction
+//!   (no specular, no mirrors): per-frame `N·eye`, unnormalised directions, one division
+//!   per pixel.
+//! - **reference** (`reference.rs`): the definition, one normalised ray per pixel.
+//!
+//! A scanline the flat kernel hands back (a quantity out of the format's range) is drawn
+//! by the fast kernel if it applies, a pixel the fast kernel hands back by the reference
+//! path: every entry point (`render`, `render_line`, `Frame`) takes the same chain, so
+//! they draw the same pixels (`tests/kernels.rs`).
+
+pub(crate) mod fast;
+pub(crate) mod flat;
+mod reference;
+
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+use crate::shade::stages::Stages;
+use crate::stats::{Counters, count_primary};
+use crate::{Plan, Scalar, Scene};
+use fast::Primary;
+use flat::{Flat, FlatRow, PlaneMode};
+
+pub(crate) use reference::scanline;
+
+/// What a frame computes once for all its scanlines: the kernel [`select`] chose.
+#[derive(Debug, Clone)]
+pub(crate) enum Kernel<S> {
+    /// The pure-geometry kernel's per-frame part.
+    Flat(Flat<S>),
+    /// The fast primary-ray kernel's per-frame part.
+    Fast(Primary<S>),
+    /// The reference path (nothing per frame).
+    Reference,
+}
+
+/// The kernel for a frame of `scene` drawn with stage set `T`: the cheapest that draws
+/// the scene's definition. The only place that decides which kernel applies.
+pub(crate) fn select<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Kernel<S> {
+    // Pure geometry: only infinite planes, and stages that show ambient colours only.
+    if !T::LIGHTING
+        && !T::REFLECTION
+        && plan.planes_only()
+        && let Some(flat) = Flat::new(scene)
+    {
+        return Kernel::Flat(flat);
+    }
+    match fast::<S, T>(scene, plan) {
+        Some(primary) => Kernel::Fast(primary),
+        None => Kernel::Reference,
+    }
+}
+
+/// The fast kernel, where it applies: plane-like shapes, and stage sets that need only
+/// the side of the surface a primary ray comes from (no specular half vector, no mirror
+/// direction). Also what a scanline the flat kernel hands back is drawn with.
+fn fast<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Option<Primary<S>> {
+    if T::SPECULAR || T::REFLECTION || !plan.planes_like() {
+        return None;
+    }
+    Primary::new(scene)
+}
+
+/// Fills `line` (at most the camera's width) with scanline `row` drawn by `kernel`.
+pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
+    scene: &Scene<S>,
+    plan: &Plan,
+    kernel: &Kernel<S>,
+    mode: PlaneMode,
+    row: u16,
+    line: &mut [C],
+    counters: &mut Counters,
+) {
+    let width = line.len().min(usize::from(scene.camera.width));
+    let line = &mut line[..width];
+    let primary = match kernel {
+        Kernel::Flat(flat) => {
+            if flat_line(scene, flat, mode, row, line) {
+                count_primary(counters, u16::try_from(width).unwrap_or(0));
+                return;
+            }
+            // Handed back: this scanline takes the next kernel of the chain.
+            return fallback_line::<S, T, C>(scene, plan, row, line, counters);
+        }
+        Kernel::Fast(p) => Some(p),
+        Kernel::Reference => None,
+    };
+    primary_line::<S, T, C>(scene, primary, row, line, counters);
+}
+
+/// A scanline the flat kernel handed back, on the fast kernel if it applies.
+#[inline(never)]
+fn fallback_line<S: Scalar, T: Stages, C: From<Rgb888>>(
+    scene: &Scene<S>,
+    plan: &Plan,
+    row: u16,
+    line: &mut [C],
+    counters: &mut Counters,
+) {
+    let primary = fast::<S, T>(scene, plan);
+    primary_line::<S, T, C>(scene, primary.as_ref(), row, line, counters);
+}
+
+/// Streams columns `columns` of scanline `row` to `sink` (a `fill_contiguous`), drawn by
+/// `kernel`: the pixels of [`line`], without a line buffer.
+pub(crate) fn stream<S, T, C, E>(
+    scene: &Scene<S>,
+    plan: &Plan,
+    kernel: &Kernel<S>,
+    mode: PlaneMode,
+    row: u16,
+    columns: core::ops::Range<u16>,
+    counters: &mut Counters,
+    sink: &mut dyn FnMut(&mut dyn Iterator<Item = C>) -> Result<(), E>,
+) -> Result<(), E>
+where
+    S: Scalar,
+    T: Stages,
+    C: From<Rgb888> + Clone,
+{
+    let fallback;
+    let primary = match kernel {
+        Kernel::Flat(flat) => match flat.row(scene, row) {
+            Some(r) => {
+                count_primary(counters, columns.end.saturating_sub(columns.start));
+                return stream_flat(&r, mode, columns, sink);
+            }
+            None => {
+                fallback = fast::<S, T>(scene, plan);
+                fallback.as_ref()
+            }
+        },
+        Kernel::Fast(p) => Some(p),
+        Kernel::Reference => None,
+    };
+    sink(&mut scanline::<S, T, C>(
+        scene, primary, row, columns, counters,
+    ))
+}
+
+/// A pure-geometry scanline streamed: block by block (per-pixel mode, as [`line`] fills
+/// its buffer) or run by run (span mode).
+fn stream_flat<S: Scalar, C: From<Rgb888> + Clone, E>(
+    r: &FlatRow<S>,
+    mode: PlaneMode,
+    columns: core::ops::Range<u16>,
+    sink: &mut dyn FnMut(&mut dyn Iterator<Item = C>) -> Result<(), E>,
+) -> Result<(), E> {
+    let (x0, x1) = (columns.start, columns.end);
+    match mode {
+        PlaneMode::PerPixel => {
+            let mut blocks = (x0..x1).step_by(flat::BLOCK).flat_map(|start| {
+                let n = usize::from(x1 - start).min(flat::BLOCK);
+                let mut colors = [Rgb888::default(); flat::BLOCK];
+                r.fill(start, &mut colors[..n]);
+                colors.into_iter().take(n)
+            });
+            sink(&mut (&mut blocks).map(C::from))
+        }
+        PlaneMode::Spans => sink(
+            &mut r
+                .spans(x0, x1)
+                .flat_map(|(n, c)| core::iter::repeat_n(C::from(c), n.into())),
+        ),
+    }
+}
+
+/// Fills `line` with columns `0..line.len()` of a pure-geometry scanline; `false` when
+/// the kernel hands the scanline back. Not inlined: its frame (the kernel's per-scanline
+/// data) and the general path's are never on the stack together (on a 16 KB chip in
+/// I32F32 that is the difference between fitting and not).
+#[inline(never)]
+fn flat_line<S: Scalar, C: From<Rgb888>>(
+    scene: &Scene<S>,
+    flat: &Flat<S>,
+    mode: PlaneMode,
+    row: u16,
+    line: &mut [C],
+) -> bool {
+    let Some(r) = flat.row(scene, row) else {
+        return false;
+    };
+    let width = u16::try_from(line.len()).unwrap_or(u16::MAX);
+    match mode {
+        PlaneMode::PerPixel => {
+            let mut block = [Rgb888::default(); flat::BLOCK];
+            let mut at = 0u16;
+            for slots in line.chunks_mut(flat::BLOCK) {
+                let colors = &mut block[..slots.len()];
+                r.fill(at, colors);
+                for (slot, c) in slots.iter_mut().zip(colors.iter()) {
+                    *slot = C::from(*c);
+                }
+                at = at.saturating_add(u16::try_from(slots.len()).unwrap_or(0));
+            }
+        }
+        PlaneMode::Spans => {
+            let mut rest = line;
+            for (n, color) in r.spans(0, width) {
+                let (run, tail) = rest.split_at_mut(usize::from(n).min(rest.len()));
+                for slot in run {
+                    *slot = C::from(color);
+                }
+                rest = tail;
+            }
+        }
+    }
+    true
+}
+
+/// A scanline of the fast kernel (with its per-frame part `primary`) or, without it, of
+/// the reference path, into `line`.
+#[inline(never)]
+fn primary_line<S: Scalar, T: Stages, C: From<Rgb888>>(
+    scene: &Scene<S>,
+    primary: Option<&Primary<S>>,
+    row: u16,
+    line: &mut [C],
+    counters: &mut Counters,
+) {
+    let width = u16::try_from(line.len()).unwrap_or(0);
+    let pixels = scanline::<S, T, C>(scene, primary, row, 0..width, counters);
+    for (slot, c) in line.iter_mut().zip(pixels) {
+        *slot = c;
+    }
+}

@@ -1,0 +1,64 @@
+//! The per-pixel scanline: each pixel's primary ray on the fast kernel where it has a
+//! per-frame part, otherwise (and for any pixel the fast kernel hands back) the reference
+//! path, the definition itself: a normalised ray per pixel through
+//! [`crate::Camera::primary_ray_at`], traced and shaded.
+
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+use super::fast::{self, Primary, Row};
+use crate::shade::color::to_rgb888;
+use crate::shade::stages::Stages;
+use crate::shade::{Incoming, shade_with, trace_with};
+use crate::stats::{Counters, count};
+use crate::{Hit, Scalar, Scene};
+
+/// The pixels of columns `columns` of scanline `row` traced with the stage set `T`, one
+/// per step, as the caller (a `fill_contiguous` or a line buffer) pulls them. With a
+/// fast-kernel frame (`primary`) primary rays take [`super::fast`]; otherwise, and for
+/// any pixel the fast kernel hands back, the reference path.
+pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
+    scene: &'a Scene<S>,
+    primary: Option<&'a Primary<S>>,
+    row: u16,
+    columns: core::ops::Range<u16>,
+    counters: &'a mut Counters,
+) -> impl Iterator<Item = C> + 'a {
+    let y = scene.camera.screen_y(row);
+    let mut state: Option<Row<S>> = None;
+    columns.map(move |column| {
+        count(&mut counters.primary_rays);
+        let found = primary.and_then(|p| {
+            match state.as_mut() {
+                Some(r)
+                    if Primary::column(r).checked_add(1) == Some(column)
+                        && column % fast::RESYNC_PIXELS != 0 =>
+                {
+                    p.advance(scene, r)?
+                }
+                _ => state = Some(p.row(scene, row, column)?),
+            }
+            p.nearest(scene, state.as_ref()?).ok()
+        });
+        let color = match found {
+            Some(Some(h)) => {
+                // The unnormalised direction: see `Incoming` (the fast kernel takes only
+                // stage sets that need no more of it than its side).
+                let incoming = Incoming {
+                    base: scene.camera.viewpoint,
+                    dir: h.dir,
+                };
+                let hit = Hit {
+                    t: h.t_bound,
+                    point: h.point,
+                };
+                shade_with::<S, T>(scene, &incoming, h.index, &hit, 0, counters)
+            }
+            Some(None) => scene.background,
+            None => match y.and_then(|y| scene.camera.primary_ray_at(column, y)) {
+                Some(ray) => trace_with::<S, T>(scene, &ray, 0, counters).color,
+                None => scene.background,
+            },
+        };
+        C::from(to_rgb888(color))
+    })
+}

@@ -1,0 +1,214 @@
+//! [`Scalar`] for the fixed-point formats of the `fixed` crate: I16F16, I20F12, I32F32.
+//! Products are formed exactly in double width ([`super::wide`]) and rounded once.
+
+use super::{Decimal, EPSILON_DELTAS, Scalar, wide};
+use ::fixed::types::{I16F16, I20F12, I32F32};
+
+/// `bits × num / den` truncated towards zero, as the double-width quotient
+/// `(bits·num)/den` would give it, without dividing in double width: with
+/// `bits = q·den + r`, the result is `q·num + (r·num)/den`, where `|r·num| < |den·num|`
+/// nearly always fits an `i32` (screen coordinates: below 2²⁶), so the division is a
+/// 32-bit one (one instruction on the Cortex-M4 instead of the 64-bit helper's ~350).
+/// Both parts have the same sign, so truncating the second truncates the sum.
+/// `None` on overflow or when `den` is zero.
+macro_rules! mul_ratio_bits {
+    ($bits:expr, $num:expr, $den:expr, $b:ty, $wide:ty) => {{
+        let (bits, num, den): ($b, i32, i32) = ($bits, $num, $den);
+        (|| {
+            let q = bits.checked_div(<$b>::from(den))?;
+            let r = bits.checked_rem(<$b>::from(den))?;
+            let whole = q.checked_mul(<$b>::from(num))?;
+            let part = <$wide>::from(r) * <$wide>::from(num);
+            let frac = match i32::try_from(part) {
+                Ok(p) => <$wide>::from(p / den),
+                Err(_) => part / <$wide>::from(den),
+            };
+            whole.checked_add(<$b>::try_from(frac).ok()?)
+        })()
+    }};
+}
+
+macro_rules! impl_fixed {
+    ($t:ty, $name:literal, $wide:ty, $bits:ty, $wide_bits:ty, $mul:path) => {
+        impl Scalar for $t {
+            const NAME: &'static str = $name;
+            const ZERO: Self = <$t>::ZERO;
+            const ONE: Self = <$t>::ONE;
+            const MAX: Self = <$t>::MAX;
+            const DELTA: Self = <$t>::DELTA;
+            const DEFAULT_EPSILON: Self = <$t>::from_bits(EPSILON_DELTAS as $bits);
+            const INT_BITS: u32 = <$t>::INT_NBITS;
+
+            #[inline]
+            fn checked_mul_int(self, k: i32) -> Option<Self> {
+                <$t>::checked_mul_int(self, <$bits>::from(k))
+            }
+
+            #[inline]
+            fn from_f64(value: f64) -> Option<Self> {
+                // `checked_from_num` rounds to nearest (ties to even) and returns `None`
+                // for NaN, infinities and out-of-range values.
+                <$t>::checked_from_num(value)
+            }
+            fn from_decimal(value: Decimal) -> Option<Self> {
+                // Integer arithmetic only: exact, and no float code on a chip.
+                let bits = value.to_fixed_bits(<$t>::FRAC_NBITS)?;
+                <$bits>::try_from(bits).ok().map(<$t>::from_bits)
+            }
+            #[inline]
+            fn from_i32(value: i32) -> Option<Self> {
+                <$t>::checked_from_num(value)
+            }
+            #[inline]
+            fn to_f64(self) -> f64 {
+                self.to_num::<f64>()
+            }
+            #[inline]
+            fn checked_add(self, rhs: Self) -> Option<Self> {
+                <$t>::checked_add(self, rhs)
+            }
+            #[inline]
+            fn checked_sub(self, rhs: Self) -> Option<Self> {
+                <$t>::checked_sub(self, rhs)
+            }
+            #[inline]
+            fn checked_mul(self, rhs: Self) -> Option<Self> {
+                // As `fixed`'s `checked_mul` (the exact product, floored), with the
+                // product formed by `$mul`.
+                let product = $mul(self.to_bits(), rhs.to_bits()) >> <$t>::FRAC_NBITS;
+                <$bits>::try_from(product).ok().map(<$t>::from_bits)
+            }
+            #[inline]
+            fn checked_div(self, rhs: Self) -> Option<Self> {
+                <$t>::checked_div(self, rhs)
+            }
+            #[inline]
+            fn checked_sqrt(self) -> Option<Self> {
+                <$t>::checked_sqrt(self)
+            }
+            #[inline]
+            fn abs(self) -> Self {
+                self.saturating_abs()
+            }
+            #[inline]
+            fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+                let w = |x: Self, y: Self| <$wide>::from_bits($mul(x.to_bits(), y.to_bits()));
+                let sum = w(a[0], b[0])
+                    .checked_add(w(a[1], b[1]))?
+                    .checked_add(w(a[2], b[2]))?;
+                // Round to nearest: add half a narrow DELTA, then narrowing floors.
+                let half = <$wide>::from_num(<$t>::DELTA) >> 1u32;
+                <$t>::checked_from_num(sum.checked_add(half)?)
+            }
+            #[inline]
+            fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> Option<core::cmp::Ordering> {
+                Some($mul(a.to_bits(), b.to_bits()).cmp(&$mul(c.to_bits(), d.to_bits())))
+            }
+            #[inline]
+            fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+                let w = |x: Self, y: Self| <$wide>::from_bits($mul(x.to_bits(), y.to_bits()));
+                let diff = <$wide>::from_num(c)
+                    .checked_sub(w(a[0], b[0]))?
+                    .checked_sub(w(a[1], b[1]))?
+                    .checked_sub(w(a[2], b[2]))?;
+                let half = <$wide>::from_num(<$t>::DELTA) >> 1u32;
+                <$t>::checked_from_num(diff.checked_add(half)?)
+            }
+            #[inline]
+            fn mul_ratio(self, num: i32, den: i32) -> Option<Self> {
+                mul_ratio_bits!(self.to_bits(), num, den, $bits, $wide_bits).map(<$t>::from_bits)
+            }
+            #[inline]
+            fn round_to_i32(self) -> Option<i32> {
+                self.checked_round()?.checked_to_num::<i32>()
+            }
+            #[inline]
+            fn ulp(self) -> Self {
+                <$t>::DELTA
+            }
+            #[inline]
+            fn floor_to_i32(self) -> Option<i32> {
+                self.checked_floor()?.checked_to_num::<i32>()
+            }
+        }
+    };
+}
+
+impl_fixed!(
+    I16F16,
+    "i16f16",
+    ::fixed::types::I32F32,
+    i32,
+    i64,
+    wide::mul_wide_i32
+);
+impl_fixed!(
+    I20F12,
+    "i20f12",
+    ::fixed::types::I40F24,
+    i32,
+    i64,
+    wide::mul_wide_i32
+);
+impl_fixed!(
+    I32F32,
+    "i32f32",
+    ::fixed::types::I64F64,
+    i64,
+    i128,
+    wide::mul_wide_i64
+);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn checked_mul_matches_fixed() {
+        let values = [
+            -32768.0, -300.5, -1.0, -0.000_015, 0.0, 0.3, 1.0, 181.0, 32767.99,
+        ];
+        for a in values {
+            for b in values {
+                let (x, y) = (I16F16::from_f64(a).unwrap(), I16F16::from_f64(b).unwrap());
+                assert_eq!(Scalar::checked_mul(x, y), x.checked_mul(y), "{a} {b}");
+                let (x, y) = (I20F12::from_f64(a).unwrap(), I20F12::from_f64(b).unwrap());
+                assert_eq!(Scalar::checked_mul(x, y), x.checked_mul(y), "{a} {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn mul_ratio_equals_the_double_width_quotient() {
+        let wide = |bits: i32, num: i32, den: i32| -> Option<i32> {
+            let q = (i64::from(bits) * i64::from(num)).checked_div(i64::from(den))?;
+            i32::try_from(q).ok()
+        };
+        let mut x: u64 = 0x2026_1124_0000_0001;
+        for case in 0..300_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let bits = (x as u32).cast_signed() >> (x % 32);
+            let num = ((x >> 32) as u32).cast_signed() >> ((x >> 8) % 32);
+            let den = ((x >> 16) as u32).cast_signed() >> ((x >> 24) % 32);
+            let den = if case % 3 == 0 { den % 8192 } else { den };
+            let got = mul_ratio_bits!(bits, num, den, i32, i64);
+            let want = if den == 0 { None } else { wide(bits, num, den) };
+            // The split form may refuse a result right at the range's edge (q·num alone
+            // overflowing while the sum would not): never a different value.
+            if got != want {
+                assert!(got.is_none(), "{bits} {num} {den}: {got:?} vs {want:?}");
+                let exact = i64::from(bits) * i64::from(num) / i64::from(den);
+                assert!(exact.unsigned_abs() > (1 << 30), "{bits} {num} {den}");
+            }
+            let got64 = mul_ratio_bits!(i64::from(bits) << 16, num, den, i64, i128);
+            let want64 = (den != 0)
+                .then(|| i128::from(i64::from(bits) << 16) * i128::from(num) / i128::from(den))
+                .and_then(|q| i64::try_from(q).ok());
+            if got64 != want64 {
+                assert!(got64.is_none(), "i64 {bits} {num} {den}");
+            }
+        }
+    }
+}

@@ -1,0 +1,113 @@
+//! Exact double-width products of the fixed formats' bit patterns: one long multiply where
+//! the core has it, 16-bit halves where it does not (Cortex-M0: no `SMULL`; the build
+//! script sets `no_long_multiply` for such targets).
+
+/// The exact product of two `i32`s, from four 16 × 16 → 32 multiplications: what a core
+/// without a long multiply (Cortex-M0: no `SMULL`) does far faster than the 64-bit
+/// multiply helper (about 15 instructions against 41, `../shared/measurements.md`).
+/// Bit-identical to `i64::from(a) * i64::from(b)` (tested on every sign and size).
+#[inline(always)]
+#[cfg_attr(not(no_long_multiply), allow(dead_code))]
+pub(crate) fn mul_wide_halves(a: i32, b: i32) -> i64 {
+    // a = ah·2¹⁶ + al with ah signed and al in [0, 2¹⁶); the same for b.
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    // |ah·bh| ≤ 2³⁰; |ah·bl|, |al·bh| < 2³¹; al·bl < 2³² (u32).
+    let high = i64::from(ah * bh);
+    let middle = i64::from(ah * bl) + i64::from(al * bh);
+    let low = i64::from(al.cast_unsigned() * bl.cast_unsigned());
+    (high << 32) + (middle << 16) + low
+}
+
+/// The exact product of two `i32`s: one long multiply where the core has it, otherwise
+/// [`mul_wide_halves`] (chosen by the build script for the target, not by the format).
+#[inline(always)]
+pub(crate) fn mul_wide_i32(a: i32, b: i32) -> i64 {
+    #[cfg(no_long_multiply)]
+    {
+        mul_wide_halves_call(a, b)
+    }
+    #[cfg(not(no_long_multiply))]
+    {
+        i64::from(a) * i64::from(b)
+    }
+}
+
+/// [`mul_wide_halves`] as one function (a call, as the 64-bit helper is, but about a third
+/// of its instructions): inlined at every product it would add kilobytes of flash.
+#[cfg(no_long_multiply)]
+#[inline(never)]
+fn mul_wide_halves_call(a: i32, b: i32) -> i64 {
+    mul_wide_halves(a, b)
+}
+
+/// The exact product of two `u32`s: one long multiply where the core has it, otherwise
+/// from 16-bit halves as [`mul_wide_halves`].
+#[inline(always)]
+pub(crate) fn mul_wide_u32(a: u32, b: u32) -> u64 {
+    #[cfg(no_long_multiply)]
+    {
+        let (ah, al) = (a >> 16, a & 0xFFFF);
+        let (bh, bl) = (b >> 16, b & 0xFFFF);
+        let middle = u64::from(ah * bl) + u64::from(al * bh);
+        (u64::from(ah * bh) << 32) + (middle << 16) + u64::from(al * bl)
+    }
+    #[cfg(not(no_long_multiply))]
+    {
+        u64::from(a) * u64::from(b)
+    }
+}
+
+/// The exact product of two `i64`s (`I32F32`'s double width). One shared function: a
+/// 128-bit product inlined at every use would double I32F32's flash on a 32-bit core.
+#[inline(never)]
+pub(crate) fn mul_wide_i64(a: i64, b: i64) -> i128 {
+    i128::from(a) * i128::from(b)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn products_from_halves_are_exact() {
+        let edges = [
+            i32::MIN,
+            i32::MIN + 1,
+            -65_537,
+            -65_536,
+            -65_535,
+            -1,
+            0,
+            1,
+            0xFFFF,
+            0x1_0000,
+            0x1_0001,
+            i32::MAX - 1,
+            i32::MAX,
+        ];
+        for a in edges {
+            for b in edges {
+                assert_eq!(
+                    mul_wide_halves(a, b),
+                    i64::from(a) * i64::from(b),
+                    "{a} {b}"
+                );
+            }
+        }
+        // A seeded sweep (xorshift) over every size.
+        let mut x: u32 = 0x2026_1124;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            let a = x.cast_signed() >> (x % 31);
+            let b = x.rotate_left(11).cast_signed() >> (x % 29);
+            assert_eq!(
+                mul_wide_halves(a, b),
+                i64::from(a) * i64::from(b),
+                "{a} {b}"
+            );
+        }
+    }
+}

@@ -1,0 +1,408 @@
+//! The builder: each parsed block becomes the scene's values (converted into the number
+//! format, checked against the attribute's domain), with the error at the token at fault.
+
+use core::cmp::Ordering;
+
+use super::error::{SceneError, SceneErrorKind};
+use super::schema::Entity;
+use super::{Block, Number, Parser, Result, Value, quote};
+use crate::num::Decimal;
+use crate::scene::{Cone, MAX_LIGHTS, MAX_MATERIALS, MAX_OBJECTS, MAX_PIXELDIM, Object};
+use crate::{
+    Camera, Color, FrameError, Light, Material, Plane, PlaneError, PlaneFrame, Scalar, Shape,
+    Sphere, Vec3,
+};
+
+impl<'a, S: Scalar> Parser<'a, '_, S> {
+    pub(super) fn entity(&mut self, b: &Block<'a>) -> Result<()> {
+        match b.entity {
+            Entity::Camera => {
+                if self.camera.is_some() {
+                    return Err(b.error(SceneErrorKind::Duplicate("camera")));
+                }
+                self.camera = Some(camera(b)?);
+            }
+            Entity::Material => {
+                if self.material_names.contains(&b.name.text) {
+                    return Err(b.name.pos.error(SceneErrorKind::DuplicateName {
+                        entity: "material",
+                        name: quote(b.name.text),
+                    }));
+                }
+                let full = || {
+                    b.error(SceneErrorKind::TooMany {
+                        what: "materials",
+                        capacity: MAX_MATERIALS,
+                    })
+                };
+                // Both lists have the same capacity and length: check once, push both.
+                if self.scene.materials.is_full() {
+                    return Err(full());
+                }
+                self.scene
+                    .materials
+                    .push(material_of(b)?)
+                    .map_err(|_| full())?;
+                self.material_names.push(b.name.text).map_err(|_| full())?;
+            }
+            Entity::Light | Entity::Spotlight => {
+                if !cfg!(feature = "lighting") {
+                    return Err(b.error(SceneErrorKind::NotBuiltIn {
+                        what: "lights are",
+                        feature: "lighting",
+                    }));
+                }
+                self.register(b)?;
+                let location = vector(b.required("location")?)?;
+                let cone = if b.entity == Entity::Spotlight {
+                    Some(cone::<S>(b, location)?)
+                } else {
+                    None
+                };
+                let light = Light {
+                    location,
+                    emissivity: non_negative3(b.required("emissivity")?, "emissivity")?,
+                    cone,
+                };
+                self.scene.lights.push(light).map_err(|_| {
+                    b.error(SceneErrorKind::TooMany {
+                        what: "lights",
+                        capacity: MAX_LIGHTS,
+                    })
+                })?;
+            }
+            Entity::Plane => {
+                self.register(b)?;
+                let material = self.material_index(b, "material")?;
+                let normal = b.required("normal")?;
+                let plane = Plane::new(vector(normal)?, vector(b.required("point")?)?)
+                    .map_err(|e| plane_error::<S>(b, normal, e))?;
+                self.push(b, Shape::Plane(plane), material)?;
+            }
+            Entity::Sphere => {
+                if !cfg!(feature = "spheres") {
+                    return Err(b.error(SceneErrorKind::NotBuiltIn {
+                        what: "spheres are",
+                        feature: "spheres",
+                    }));
+                }
+                self.register(b)?;
+                let material = self.material_index(b, "material")?;
+                let center = vector::<S>(b.required("center")?)?;
+                let radius = positive::<S>(&b.required("radius")?.nums[0], "radius")?;
+                let sphere = Sphere::new(center, radius).map_err(|_| {
+                    b.error(SceneErrorKind::DerivedDoesNotFit {
+                        what: "the sphere's radius²",
+                        format: S::NAME,
+                    })
+                })?;
+                self.push(b, Shape::Sphere(sphere), material)?;
+            }
+            Entity::TiledPlane | Entity::FPlane => {
+                self.register(b)?;
+                let material = self.material_index(b, "material")?;
+                let dims = if b.entity == Entity::FPlane {
+                    "dimensions"
+                } else {
+                    "dimension"
+                };
+                let normal = b.required("normal")?;
+                let xdir = b.required("xdir")?;
+                let d = b.required(dims)?;
+                let size = [
+                    positive::<S>(&d.nums[0], dims)?,
+                    positive::<S>(&d.nums[1], dims)?,
+                ];
+                let point = vector(b.required("point")?)?;
+                let frame = PlaneFrame::new(vector(normal)?, point, vector(xdir)?, size)
+                    .map_err(|e| frame_error::<S>(b, [normal, xdir, d], dims, e))?;
+                let shape = if b.entity == Entity::FPlane {
+                    Shape::Finite(frame)
+                } else {
+                    Shape::Tiled {
+                        frame,
+                        alt: self.material_index(b, "altmaterial")?,
+                    }
+                };
+                self.push(b, shape, material)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn push(&mut self, b: &Block<'a>, shape: Shape<S>, material: u8) -> Result<()> {
+        self.scene
+            .objects
+            .push(Object { shape, material })
+            .map_err(|_| {
+                b.error(SceneErrorKind::TooMany {
+                    what: "objects",
+                    capacity: MAX_OBJECTS,
+                })
+            })
+    }
+}
+
+fn plane_error<S: Scalar>(b: &Block<'_>, normal: &Value<'_>, e: PlaneError) -> SceneError {
+    match e {
+        PlaneError::ZeroNormal => normal.pos.error(SceneErrorKind::ZeroNormal),
+        PlaneError::OffsetOutOfRange => b.error(SceneErrorKind::DerivedDoesNotFit {
+            what: "the plane's offset N·point",
+            format: S::NAME,
+        }),
+    }
+}
+
+/// A spotlight's cone: the unit axis towards `point` and cos θ (θ in degrees, (0, 90]).
+fn cone<S: Scalar>(b: &Block<'_>, location: Vec3<S>) -> Result<Cone<S>> {
+    let point = b.required("point")?;
+    let axis = vector::<S>(point)?
+        .diff(location)
+        .and_then(Vec3::unit)
+        .ok_or_else(|| {
+            point.pos.error(SceneErrorKind::OutOfDomain {
+                attribute: "point",
+                rule: "a point other than the spotlight's location",
+            })
+        })?;
+    let theta = &b.required("theta")?.nums[0];
+    let ok = |d: &Decimal| positive_value(d) && d.cmp_int(90) != Ordering::Greater;
+    in_domain(theta, ok, "theta", "in (0, 90]")?;
+    // θ π / 180 in the format, π from its decimal digits (no float on the way).
+    let pi = Decimal {
+        negative: false,
+        mantissa: 3_141_592_653_589_793_238,
+        exponent: -18,
+    };
+    let cos_theta = S::from_decimal(pi)
+        .and_then(|pi| convert::<S>(theta, 1).ok()?.checked_mul(pi))
+        .and_then(|x| x.checked_div(S::from_i32(180)?))
+        .and_then(S::cos)
+        .ok_or_else(|| {
+            theta.pos.error(SceneErrorKind::DerivedDoesNotFit {
+                what: "cos θ",
+                format: S::NAME,
+            })
+        })?;
+    Ok(Cone { axis, cos_theta })
+}
+
+/// Converts a number into the format, times `scale` (exact, in decimal).
+fn convert<S: Scalar>(n: &Number<'_>, scale: u64) -> Result<S> {
+    S::from_decimal(n.value.times(scale)).ok_or_else(|| {
+        n.pos.error(SceneErrorKind::DoesNotFit {
+            value: quote(n.text),
+            format: S::NAME,
+        })
+    })
+}
+
+fn vector<S: Scalar>(v: &Value<'_>) -> Result<Vec3<S>> {
+    Ok(Vec3::new(
+        convert(&v.nums[0], 1)?,
+        convert(&v.nums[1], 1)?,
+        convert(&v.nums[2], 1)?,
+    ))
+}
+
+/// `> 0`.
+fn positive_value(d: &Decimal) -> bool {
+    !d.negative && !d.is_zero()
+}
+
+/// `>= 0` (`-0` included).
+fn non_negative_value(d: &Decimal) -> bool {
+    !d.negative || d.is_zero()
+}
+
+fn in_domain(
+    n: &Number<'_>,
+    ok: impl Fn(&Decimal) -> bool,
+    attribute: &'static str,
+    rule: &'static str,
+) -> Result<()> {
+    if ok(&n.value) {
+        Ok(())
+    } else {
+        Err(n.pos.error(SceneErrorKind::OutOfDomain { attribute, rule }))
+    }
+}
+
+/// A number that must be > 0 and stay > 0 in the format.
+fn positive<S: Scalar>(n: &Number<'_>, attribute: &'static str) -> Result<S> {
+    in_domain(n, positive_value, attribute, "> 0")?;
+    let x = convert::<S>(n, 1)?;
+    if x > S::ZERO {
+        Ok(x)
+    } else {
+        Err(n.pos.error(SceneErrorKind::OutOfDomain {
+            attribute,
+            rule: "> 0 (it rounds to 0 in this number format)",
+        }))
+    }
+}
+
+/// Three reals ≥ 0.
+fn non_negative3<S: Scalar>(v: &Value<'_>, attribute: &'static str) -> Result<[S; 3]> {
+    let mut c = [S::ZERO; 3];
+    for (ck, n) in c.iter_mut().zip(&v.nums) {
+        in_domain(n, non_negative_value, attribute, ">= 0")?;
+        *ck = convert(n, 1)?;
+    }
+    Ok(c)
+}
+
+/// A displayed colour (ambient, background) in channel units: 255 × the value, computed
+/// exactly in decimal. The value itself must fit the format; if 255 × it does not, it
+/// saturates at the format's maximum, which displays as 255 exactly like the value would.
+pub(super) fn channel_colour<S: Scalar>(
+    nums: &[Number<'_>; 3],
+    attribute: &'static str,
+) -> Result<Color<S>> {
+    let mut c = [S::ZERO; 3];
+    for (ck, n) in c.iter_mut().zip(nums) {
+        in_domain(n, non_negative_value, attribute, ">= 0")?;
+        convert::<S>(n, 1)?;
+        *ck = convert(n, 255).unwrap_or(S::MAX);
+    }
+    Ok(c)
+}
+
+fn camera<S: Scalar>(b: &Block<'_>) -> Result<Camera<S>> {
+    let pixeldim = b.required("pixeldim")?;
+    let mut dims = [0u16; 2];
+    for (d, n) in dims.iter_mut().zip(&pixeldim.nums) {
+        *d = n
+            .value
+            .to_integer()
+            .and_then(|i| u16::try_from(i).ok())
+            .filter(|i| (1..=MAX_PIXELDIM).contains(i))
+            .ok_or_else(|| {
+                n.pos.error(SceneErrorKind::OutOfDomain {
+                    attribute: "pixeldim",
+                    rule: "integers in 1..=4096",
+                })
+            })?;
+    }
+    let worlddim = b.required("worlddim")?;
+    let viewpoint = b.required("viewpoint")?;
+    let eye = vector::<S>(viewpoint)?;
+    in_domain(&viewpoint.nums[2], positive_value, "viewpoint", "at z > 0")?;
+    Ok(Camera {
+        width: dims[0],
+        height: dims[1],
+        world_width: positive(&worlddim.nums[0], "worlddim")?,
+        world_height: positive(&worlddim.nums[1], "worlddim")?,
+        viewpoint: Vec3::new(eye.x, eye.y, positive(&viewpoint.nums[2], "viewpoint")?),
+    })
+}
+
+fn material_of<S: Scalar>(b: &Block<'_>) -> Result<Material<S>> {
+    let mut m = Material::new();
+    if let Some(v) = b.get("ambient") {
+        m.ambient = channel_colour(&v.nums, "ambient")?;
+    }
+    if let Some(v) = b.get("diffuse") {
+        m.diffuse = non_negative3(v, "diffuse")?;
+    }
+    if let Some(v) = b.get("specular") {
+        in_domain(&v.nums[0], non_negative_value, "specular", ">= 0")?;
+        m.specular = convert(&v.nums[0], 1)?;
+        if m.specular > S::ZERO && !cfg!(feature = "lighting") {
+            return Err(v.pos.error(SceneErrorKind::NotBuiltIn {
+                what: "specular is",
+                feature: "lighting",
+            }));
+        }
+    }
+    if let Some(v) = b.get("shininess") {
+        let ok = |d: &Decimal| d.cmp_int(1) != Ordering::Less;
+        in_domain(&v.nums[0], ok, "shininess", ">= 1")?;
+        m.shininess = convert(&v.nums[0], 1)?;
+    }
+    if let Some(v) = b.get("reflective") {
+        let ok = |d: &Decimal| non_negative_value(d) && d.cmp_int(1) != Ordering::Greater;
+        in_domain(&v.nums[0], ok, "reflective", "in [0, 1]")?;
+        m.reflective = convert(&v.nums[0], 1)?;
+        if m.reflective > S::ZERO && !cfg!(feature = "reflection") {
+            return Err(v.pos.error(SceneErrorKind::NotBuiltIn {
+                what: "reflective materials are",
+                feature: "reflection",
+            }));
+        }
+    }
+    Ok(m)
+}
+
+/// The precision epsilon: a real > 0 that must stay > 0 in the format.
+pub(super) fn precision<S: Scalar>(n: &Number<'_>) -> Result<S> {
+    in_domain(n, positive_value, "precision", "> 0")?;
+    let eps = convert::<S>(n, 1)?;
+    if eps > S::ZERO {
+        Ok(eps)
+    } else {
+        Err(n.pos.error(SceneErrorKind::OutOfDomain {
+            attribute: "precision",
+            rule: "at least the number format's resolution (it rounds to 0)",
+        }))
+    }
+}
+
+/// The error of a tiled or finite plane's frame, at the attribute at fault: the normal
+/// (or the block, for the offset), `xdir`, or the dimensions `dims`.
+fn frame_error<S: Scalar>(
+    b: &Block<'_>,
+    [normal, xdir, dims]: [&Value<'_>; 3],
+    dims_name: &'static str,
+    e: FrameError,
+) -> SceneError {
+    match e {
+        FrameError::Plane(e) => plane_error::<S>(b, normal, e),
+        FrameError::XdirInvalid => xdir.pos.error(SceneErrorKind::OutOfDomain {
+            attribute: "xdir",
+            rule: "a direction with a component in the plane (not along the normal)",
+        }),
+        FrameError::NonPositiveSize => dims.pos.error(SceneErrorKind::OutOfDomain {
+            attribute: dims_name,
+            rule: "> 0",
+        }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::error::Pos;
+    use super::*;
+
+    /// Regression: a non-positive tile or side length was reported against `xdir`.
+    #[test]
+    fn a_frame_size_error_points_at_the_dimensions() {
+        let at = |line, column| Value {
+            pos: Pos { line, column },
+            ..Value::default()
+        };
+        let (normal, xdir, dims) = (at(1, 10), at(1, 20), at(1, 30));
+        let name = super::super::lexer::Lexer::new("t").next_token().unwrap();
+        let b = Block {
+            entity: Entity::FPlane,
+            pos: Pos { line: 1, column: 1 },
+            name,
+            values: Default::default(),
+        };
+        let e = frame_error::<crate::I16F16>(
+            &b,
+            [&normal, &xdir, &dims],
+            "dimensions",
+            FrameError::NonPositiveSize,
+        );
+        assert_eq!((e.line, e.column), (1, 30));
+        assert_eq!(e.to_string(), "1:30: `dimensions` must be > 0");
+        let e = frame_error::<crate::I16F16>(
+            &b,
+            [&normal, &xdir, &dims],
+            "dimensions",
+            FrameError::XdirInvalid,
+        );
+        assert_eq!((e.line, e.column), (1, 20));
+    }
+}

@@ -1,0 +1,185 @@
+//! [`SceneError`]: what is wrong with a scene file, and where (line and column).
+
+use core::fmt;
+
+use heapless::String;
+
+/// Longest token quoted in an error message; longer ones are cut and end in `…`.
+pub const MAX_QUOTED: usize = 24;
+
+/// A token quoted in an error message (cut to [`MAX_QUOTED`] bytes).
+pub type Quoted = String<MAX_QUOTED>;
+
+/// A scene file error at a line and column.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneError {
+    /// 1-based line of the token at fault (for "end of input" errors: the last line).
+    pub line: u32,
+    /// 1-based column, in characters.
+    pub column: u32,
+    /// What is wrong.
+    pub kind: SceneErrorKind,
+}
+
+/// What is wrong with a scene file.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SceneErrorKind {
+    /// A word where an entity keyword (`camera`, `plane`, ...) was expected.
+    UnknownKeyword(Quoted),
+    /// A word inside a block that is not one of the entity's attributes.
+    UnknownAttribute {
+        /// The entity keyword.
+        entity: &'static str,
+        /// The word found.
+        found: Quoted,
+    },
+    /// An attribute given twice in one block.
+    DuplicateAttribute(&'static str),
+    /// A required attribute is missing from a block.
+    MissingAttribute {
+        /// The entity keyword.
+        entity: &'static str,
+        /// The missing attribute.
+        attribute: &'static str,
+    },
+    /// Something else where a name was expected (names are `[A-Za-z_][A-Za-z0-9_]*`).
+    ExpectedName(Quoted),
+    /// Something else where `{` was expected.
+    ExpectedOpenBrace(Quoted),
+    /// Something else where a number was expected.
+    ExpectedNumber(Quoted),
+    /// The input ended in the middle of something.
+    UnexpectedEnd(&'static str),
+    /// A number is outside what the chosen number format can hold.
+    DoesNotFit {
+        /// The number as written.
+        value: Quoted,
+        /// The number format.
+        format: &'static str,
+    },
+    /// A number outside the attribute's domain (`pixeldim 0`, `radius -1`, ...).
+    OutOfDomain {
+        /// The attribute.
+        attribute: &'static str,
+        /// The rule it breaks, as the format states it.
+        rule: &'static str,
+    },
+    /// A name used twice for one kind of entity.
+    DuplicateName {
+        /// The entity keyword.
+        entity: &'static str,
+        /// The name.
+        name: Quoted,
+    },
+    /// A material named before it was defined, or never.
+    UnknownMaterial(Quoted),
+    /// A normal that is zero (or rounds to zero in the number format).
+    ZeroNormal,
+    /// A derived quantity (such as a plane's `N·point`) does not fit the number format.
+    DerivedDoesNotFit {
+        /// What it is.
+        what: &'static str,
+        /// The number format.
+        format: &'static str,
+    },
+    /// A second `camera`, `background` or `precision`.
+    Duplicate(&'static str),
+    /// No `camera` in the file.
+    MissingCamera,
+    /// More entities of a kind than the crate's capacity.
+    TooMany {
+        /// The kind.
+        what: &'static str,
+        /// The capacity ([`MAX_MATERIALS`](crate::scene::MAX_MATERIALS),
+        /// [`MAX_LIGHTS`](crate::scene::MAX_LIGHTS), [`MAX_OBJECTS`](crate::scene::MAX_OBJECTS)).
+        capacity: usize,
+    },
+    /// A valid entity or attribute whose stage this build leaves out (a firmware built
+    /// without one of the cargo features `lighting`, `spheres`, `reflection`).
+    NotBuiltIn {
+        /// What the scene asks for.
+        what: &'static str,
+        /// The cargo feature that builds it in.
+        feature: &'static str,
+    },
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}: {}", self.line, self.column, self.kind)
+    }
+}
+
+impl core::error::Error for SceneError {}
+
+impl fmt::Display for SceneErrorKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use SceneErrorKind as K;
+        match self {
+            K::UnknownKeyword(w) => {
+                write!(f, "unknown keyword `{w}` (expected ")?;
+                let keywords = super::schema::keywords();
+                let last = keywords.clone().count().saturating_sub(1);
+                for (i, k) in keywords.enumerate() {
+                    let sep = match i {
+                        0 => "",
+                        _ if i == last => " or ",
+                        _ => ", ",
+                    };
+                    write!(f, "{sep}{k}")?;
+                }
+                write!(f, ")")
+            }
+            K::UnknownAttribute { entity, found } => {
+                write!(f, "`{found}` is not an attribute of {entity}")
+            }
+            K::DuplicateAttribute(a) => write!(f, "`{a}` given twice in one block"),
+            K::MissingAttribute { entity, attribute } => {
+                write!(f, "{entity} is missing its `{attribute}`")
+            }
+            K::ExpectedName(w) => write!(f, "expected a name, found `{w}`"),
+            K::ExpectedOpenBrace(w) => write!(f, "expected `{{`, found `{w}`"),
+            K::ExpectedNumber(w) => write!(f, "expected a number, found `{w}`"),
+            K::UnexpectedEnd(what) => write!(f, "unexpected end of input: expected {what}"),
+            K::DoesNotFit { value, format } => {
+                write!(f, "`{value}` does not fit in the {format} number format")
+            }
+            K::OutOfDomain { attribute, rule } => write!(f, "`{attribute}` must be {rule}"),
+            K::DuplicateName { entity, name } => write!(f, "{entity} `{name}` is defined twice"),
+            K::UnknownMaterial(m) => write!(
+                f,
+                "unknown material `{m}` (a material must be defined before it is named)"
+            ),
+            K::ZeroNormal => write!(f, "the normal is zero"),
+            K::DerivedDoesNotFit { what, format } => {
+                write!(f, "{what} does not fit in the {format} number format")
+            }
+            K::Duplicate(what) => write!(f, "a second `{what}` (only one is allowed)"),
+            K::MissingCamera => write!(f, "the scene has no camera"),
+            K::TooMany { what, capacity } => {
+                write!(f, "too many {what} (this build holds {capacity})")
+            }
+            K::NotBuiltIn { what, feature } => write!(
+                f,
+                "{what} not built into this program (cargo feature `{feature}`)"
+            ),
+        }
+    }
+}
+
+/// A position in the source text.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(super) struct Pos {
+    pub(super) line: u32,
+    pub(super) column: u32,
+}
+
+impl Pos {
+    pub(super) fn error(self, kind: SceneErrorKind) -> SceneError {
+        SceneError {
+            line: self.line,
+            column: self.column,
+            kind,
+        }
+    }
+}

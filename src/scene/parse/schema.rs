@@ -1,0 +1,232 @@
+//! The schema of the scene format: every entity with its keyword and attributes, as
+//! `scene-format.md` lists them, in one table ([`SCHEMA`]). The lexer's keywords, the
+//! unknown-keyword message and the size of a block's value table all come from it.
+//!
+//! A new entity is a variant of [`Entity`], a row of [`SCHEMA`] and an arm of the builder
+//! (`builder.rs`).
+
+/// The entity kinds of the scene format (in the order of [`SCHEMA`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Entity {
+    Camera,
+    Material,
+    Light,
+    Spotlight,
+    Plane,
+    Sphere,
+    TiledPlane,
+    FPlane,
+}
+
+/// How an attribute's value is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Arity {
+    /// A material name.
+    Name,
+    /// This many numbers.
+    Numbers(usize),
+}
+
+/// One attribute of an entity.
+pub(super) struct AttrSpec {
+    pub(super) name: &'static str,
+    pub(super) arity: Arity,
+    pub(super) required: bool,
+}
+
+const fn numbers(name: &'static str, n: usize) -> AttrSpec {
+    AttrSpec {
+        name,
+        arity: Arity::Numbers(n),
+        required: true,
+    }
+}
+const fn optional(name: &'static str, n: usize) -> AttrSpec {
+    AttrSpec {
+        name,
+        arity: Arity::Numbers(n),
+        required: false,
+    }
+}
+const fn material(name: &'static str) -> AttrSpec {
+    AttrSpec {
+        name,
+        arity: Arity::Name,
+        required: true,
+    }
+}
+
+/// An entity: its kind, keyword and attributes.
+pub(super) struct EntitySpec {
+    pub(super) entity: Entity,
+    pub(super) keyword: &'static str,
+    pub(super) attributes: &'static [AttrSpec],
+}
+
+/// Every entity of the format.
+pub(super) const SCHEMA: [EntitySpec; 8] = [
+    EntitySpec {
+        entity: Entity::Camera,
+        keyword: "camera",
+        attributes: &[
+            numbers("pixeldim", 2),
+            numbers("worlddim", 2),
+            numbers("viewpoint", 3),
+        ],
+    },
+    EntitySpec {
+        entity: Entity::Material,
+        keyword: "material",
+        attributes: &[
+            optional("ambient", 3),
+            optional("diffuse", 3),
+            optional("specular", 1),
+            optional("shininess", 1),
+            optional("reflective", 1),
+        ],
+    },
+    EntitySpec {
+        entity: Entity::Light,
+        keyword: "light",
+        attributes: &[numbers("location", 3), numbers("emissivity", 3)],
+    },
+    EntitySpec {
+        entity: Entity::Spotlight,
+        keyword: "spotlight",
+        attributes: &[
+            numbers("location", 3),
+            numbers("emissivity", 3),
+            numbers("point", 3),
+            numbers("theta", 1),
+        ],
+    },
+    EntitySpec {
+        entity: Entity::Plane,
+        keyword: "plane",
+        attributes: &[
+            material("material"),
+            numbers("normal", 3),
+            numbers("point", 3),
+        ],
+    },
+    EntitySpec {
+        entity: Entity::Sphere,
+        keyword: "sphere",
+        attributes: &[
+            material("material"),
+            numbers("center", 3),
+            numbers("radius", 1),
+        ],
+    },
+    EntitySpec {
+        entity: Entity::TiledPlane,
+        keyword: "tiled_plane",
+        attributes: &[
+            material("material"),
+            material("altmaterial"),
+            numbers("normal", 3),
+            numbers("point", 3),
+            numbers("xdir", 3),
+            numbers("dimension", 2),
+        ],
+    },
+    EntitySpec {
+        entity: Entity::FPlane,
+        keyword: "fplane",
+        attributes: &[
+            material("material"),
+            numbers("normal", 3),
+            numbers("point", 3),
+            numbers("xdir", 3),
+            numbers("dimensions", 2),
+        ],
+    },
+];
+
+/// The statements outside blocks (`background R G B`, `precision EPS`).
+pub(super) const STATEMENTS: [&str; 2] = ["background", "precision"];
+
+/// The most attributes any entity has: the size of a block's value table.
+pub(super) const MAX_ATTRS: usize = {
+    let mut max = 0;
+    let mut i = 0;
+    while i < SCHEMA.len() {
+        if SCHEMA[i].attributes.len() > max {
+            max = SCHEMA[i].attributes.len();
+        }
+        i += 1;
+    }
+    max
+};
+
+/// The most numbers any attribute has: the size of an attribute's number table.
+pub(super) const MAX_NUMBERS: usize = {
+    let mut max = 0;
+    let mut i = 0;
+    while i < SCHEMA.len() {
+        let mut j = 0;
+        while j < SCHEMA[i].attributes.len() {
+            if let Arity::Numbers(n) = SCHEMA[i].attributes[j].arity
+                && n > max
+            {
+                max = n;
+            }
+            j += 1;
+        }
+        i += 1;
+    }
+    max
+};
+
+impl Entity {
+    /// The entity whose keyword is `word`.
+    pub(super) fn from_keyword(word: &str) -> Option<Self> {
+        SCHEMA.iter().find(|s| s.keyword == word).map(|s| s.entity)
+    }
+
+    fn spec(self) -> &'static EntitySpec {
+        // SCHEMA is in the order of the variants (checked by a test).
+        &SCHEMA[self as usize]
+    }
+
+    /// The keyword.
+    pub(super) fn keyword(self) -> &'static str {
+        self.spec().keyword
+    }
+
+    /// The attributes, as `scene-format.md` lists them.
+    pub(super) fn attributes(self) -> &'static [AttrSpec] {
+        self.spec().attributes
+    }
+}
+
+/// Every keyword that may start a statement: the entities', then the statements'.
+pub(super) fn keywords() -> impl Iterator<Item = &'static str> + Clone {
+    SCHEMA
+        .iter()
+        .map(|s| s.keyword)
+        .chain(STATEMENTS.iter().copied())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_is_in_the_order_of_the_variants() {
+        for (i, spec) in SCHEMA.iter().enumerate() {
+            assert_eq!(spec.entity as usize, i, "{}", spec.keyword);
+            assert_eq!(Entity::from_keyword(spec.keyword), Some(spec.entity));
+        }
+    }
+
+    /// Regression: the block's value table was sized by a constant kept in step with the
+    /// attribute lists by hand.
+    #[test]
+    fn table_sizes_come_from_the_schema() {
+        let most = SCHEMA.iter().map(|s| s.attributes.len()).max();
+        assert_eq!(Some(MAX_ATTRS), most);
+        assert_eq!(MAX_ATTRS, 6);
+        assert_eq!(MAX_NUMBERS, 3);
+    }
+}

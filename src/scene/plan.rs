@@ -1,0 +1,83 @@
+//! [`Plan`]: which stages of shading and which kernels a scene needs.
+
+use super::{Material, Scene};
+use crate::{Scalar, Shape};
+
+/// Which stages of shading and which kernels a scene needs ([`Scene::plan`], computed
+/// from the scene whenever it is asked for, so it cannot go stale). The renderer picks a
+/// shading loop compiled for the stages planned and nothing else: a scene without lights
+/// never evaluates lighting, one without specular materials never computes a half
+/// vector, and so on. The shapes (`tiles`, `finite_planes`, `spheres`) decide which
+/// primary-ray kernels apply.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Plan {
+    /// Any light at all (diffuse term).
+    pub lighting: bool,
+    /// Shadow rays: lights and something that can stand between a point and a light
+    /// (two objects, or any sphere).
+    pub shadows: bool,
+    /// Some material has a specular glint (and there are lights).
+    pub specular: bool,
+    /// Some light is a spotlight.
+    pub spotlights: bool,
+    /// Some material is reflective.
+    pub reflection: bool,
+    /// Some object is a tiled plane.
+    pub tiles: bool,
+    /// Some object is a finite plane.
+    pub finite_planes: bool,
+    /// Some object is a sphere.
+    pub spheres: bool,
+}
+
+impl Plan {
+    /// Whether every object is an infinite plane (no sphere, tile or finite plane): what
+    /// the pure-geometry kernel draws.
+    pub(crate) fn planes_only(&self) -> bool {
+        !(self.spheres || self.tiles || self.finite_planes)
+    }
+
+    /// Whether every object is plane-like (infinite, tiled or finite): what the fast
+    /// primary-ray kernel takes.
+    pub(crate) fn planes_like(&self) -> bool {
+        !self.spheres
+    }
+}
+
+impl<S: Scalar> Scene<S> {
+    /// What the scene needs of the renderer, worked out from its contents now (a few
+    /// comparisons per object; the renderer asks once per frame or line).
+    pub fn plan(&self) -> Plan {
+        let material = |i: u8| self.materials.get(usize::from(i));
+        let lighting = !self.lights.is_empty();
+        let spheres = self
+            .objects
+            .iter()
+            .any(|o| matches!(o.shape, Shape::Sphere(_)));
+        let used = |f: &dyn Fn(&Material<S>) -> bool| {
+            self.objects.iter().any(|o| {
+                let alt = match o.shape {
+                    Shape::Tiled { alt, .. } => material(alt).is_some_and(f),
+                    _ => false,
+                };
+                material(o.material).is_some_and(f) || alt
+            })
+        };
+        Plan {
+            lighting,
+            shadows: lighting && (self.objects.len() > 1 || spheres),
+            specular: lighting && used(&|m| m.specular > S::ZERO),
+            spotlights: self.lights.iter().any(|l| l.cone.is_some()),
+            reflection: used(&|m| m.reflective > S::ZERO),
+            tiles: self
+                .objects
+                .iter()
+                .any(|o| matches!(o.shape, Shape::Tiled { .. })),
+            finite_planes: self
+                .objects
+                .iter()
+                .any(|o| matches!(o.shape, Shape::Finite(_))),
+            spheres,
+        }
+    }
+}

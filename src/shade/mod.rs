@@ -1,0 +1,237 @@
+//! Shading: the colour of a hit, and tracing a ray to its nearest hit and colour.
+//!
+//! A pixel shows the object with the smallest accepted `t` along its primary ray, or the
+//! background. Its colour is the material's ambient colour plus, for every light not in
+//! shadow, `diffuse × emissivity × max(0, N·L) / dist` (see `scene-format.md`), and for a
+//! mirror its share of what the reflected ray sees. The stages a scene needs are compiled
+//! in sets (`stages.rs`); the lights' share is `light.rs`, colour arithmetic `color.rs`.
+//! Lighting work is done only when the scene has lights; a scene without lights costs one
+//! intersection per object per pixel and nothing more.
+
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+pub(crate) mod color;
+mod light;
+pub(crate) mod stages;
+
+use crate::stats::{Counters, count};
+use crate::{Color, Hit, Object, Ray, Scalar, Scene, Shape, Vec3};
+use color::{add_sat, to_rgb888};
+use light::light_with;
+use stages::{Stages, shading_for, with_stages};
+
+/// How deep mirror reflections go: a ray reflected this many times sees no further
+/// reflection (its own colour only).
+pub const MAX_REFLECTION_DEPTH: u8 = 4;
+
+/// The ray that arrives at a hit, as shading sees it: where it came from and its
+/// direction. On the reference path `dir` is the ray's unit direction; the fast
+/// primary-ray kernel hands its unnormalised `screen point − eye` instead, and takes only
+/// stage sets without specular glints and mirrors, the two stages that need `dir`'s
+/// length (diffuse light needs only the side of the surface it comes from).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Incoming<S> {
+    /// Where the ray started (secondary rays' offsets are bounded by its magnitude).
+    pub(crate) base: Vec3<S>,
+    /// Its direction (see above for its length).
+    pub(crate) dir: Vec3<S>,
+}
+
+impl<S: Scalar> From<&Ray<S>> for Incoming<S> {
+    fn from(ray: &Ray<S>) -> Self {
+        Self {
+            base: ray.base,
+            dir: ray.dir,
+        }
+    }
+}
+
+/// The nearest accepted hit of a ray among the scene's objects, with the object's index.
+pub fn nearest_hit<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Option<(usize, Hit<S>)> {
+    let mut best: Option<(usize, Hit<S>)> = None;
+    for (i, object) in scene.objects.iter().enumerate() {
+        if let Ok(hit) = object.shape.intersect(ray, scene.epsilon)
+            && best.is_none_or(|(_, b)| hit.t < b.t)
+        {
+            best = Some((i, hit));
+        }
+    }
+    best
+}
+
+/// Whether any object lies on the segment from `ray.base` to `ray.base + dist·ray.dir`
+/// (a shadow test: the first hit is enough, and planes need no division:
+/// [`Shape::occludes`]). Shadow rays start off the surface they leave
+/// by its computed error bound ([`Shape::spawn`]), so that surface cannot shadow itself.
+#[inline(never)] // its locals stay out of the recursive shading frames (stack: see below)
+pub(crate) fn occludes<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, dist: S) -> bool {
+    scene
+        .objects
+        .iter()
+        .any(|object| object.shape.occludes(ray, scene.epsilon, dist))
+}
+
+/// The material index an object shows at a point (a tiled plane's odd squares show its
+/// alternate material).
+fn material_at<S: Scalar>(object: &Object<S>, point: Vec3<S>, counters: &mut Counters) -> u8 {
+    match object.shape {
+        Shape::Tiled { frame, alt } => {
+            count(&mut counters.tile_lookups);
+            if frame.odd_tile(point) == Some(true) {
+                alt
+            } else {
+                object.material
+            }
+        }
+        _ => object.material,
+    }
+}
+
+/// The colour of a hit on `objects[index]` in channel units, with the stages of `T`.
+///
+/// Per light: `255 × (diffuse × emissivity × cos + specular × emissivity × (N·H)^shininess)
+/// / dist`, evaluated in overflow-free steps (the distance divides in its two parts,
+/// [`crate::Normalized::divide`]); a light exactly at the hit point gives no direction and
+/// lights nothing there. A reflective material mixes `(1 − K)` of that with `K` of what
+/// the mirrored ray sees, to [`MAX_REFLECTION_DEPTH`].
+pub(crate) fn shade_with<S: Scalar, T: Stages>(
+    scene: &Scene<S>,
+    ray: &Incoming<S>,
+    index: usize,
+    hit: &Hit<S>,
+    depth: u8,
+    counters: &mut Counters,
+) -> Color<S> {
+    let Some(object) = scene.objects.get(index) else {
+        return scene.background;
+    };
+    let Some(material) = scene
+        .materials
+        .get(usize::from(material_at(object, hit.point, counters)))
+    else {
+        return [S::ZERO; 3];
+    };
+    let mut color = material.ambient;
+    let lit = T::LIGHTING && !scene.lights.is_empty();
+    let mirror = T::REFLECTION && material.reflective > S::ZERO && depth < MAX_REFLECTION_DEPTH;
+    if !lit && !mirror {
+        return color;
+    }
+    let Some(surface_normal) = object.shape.normal_at(hit.point) else {
+        return color;
+    };
+    // The normal facing the incoming ray.
+    let facing = if surface_normal.dot(ray.dir).is_some_and(|d| d > S::ZERO) {
+        surface_normal.checked_neg().unwrap_or(surface_normal)
+    } else {
+        surface_normal
+    };
+    if lit {
+        light_with::<S, T>(
+            scene, ray, object, material, hit, facing, &mut color, counters,
+        );
+    }
+    if mirror {
+        count(&mut counters.reflection_rays);
+        // r = d − 2 (N·d) N
+        let reflected = surface_normal
+            .dot(ray.dir)
+            .and_then(|nd| nd.checked_add(nd))
+            .and_then(|two_nd| surface_normal.scale(two_nd))
+            .and_then(|n2| ray.dir.diff(n2))
+            .and_then(Vec3::unit)
+            .and_then(|r| object.shape.spawn_from(ray.base, hit, r));
+        let seen = match reflected {
+            Some(r) => trace_with::<S, T>(scene, &r, depth + 1, counters).color,
+            None => scene.background,
+        };
+        let k = material.reflective;
+        let own = S::ONE.checked_sub(k).unwrap_or(S::ZERO);
+        for (c, s) in color.iter_mut().zip(seen) {
+            *c = add_sat(
+                c.checked_mul(own).unwrap_or(S::MAX),
+                s.checked_mul(k).unwrap_or(S::MAX),
+            );
+        }
+    }
+    color
+}
+
+/// Traces a ray with the stages of `T`.
+pub(crate) fn trace_with<S: Scalar, T: Stages>(
+    scene: &Scene<S>,
+    ray: &Ray<S>,
+    depth: u8,
+    counters: &mut Counters,
+) -> Traced<S> {
+    let hit = nearest_hit(scene, ray);
+    let color = match &hit {
+        Some((i, h)) => shade_with::<S, T>(scene, &Incoming::from(ray), *i, h, depth, counters),
+        None => scene.background,
+    };
+    Traced { hit, color }
+}
+
+/// The colour of a hit on `objects[index]`, lit by the scene's lights, in channel units
+/// (the stages the scene's plan needs).
+pub fn shade<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, index: usize, hit: &Hit<S>) -> Color<S> {
+    let counters = &mut Counters::default();
+    let ray = &Incoming::from(ray);
+    with_stages!(
+        shading_for(&scene.plan()),
+        shade_one::<S>(scene, ray, index, hit, counters)
+    )
+}
+
+fn shade_one<S: Scalar, T: Stages>(
+    scene: &Scene<S>,
+    ray: &Incoming<S>,
+    index: usize,
+    hit: &Hit<S>,
+    counters: &mut Counters,
+) -> Color<S> {
+    shade_with::<S, T>(scene, ray, index, hit, 0, counters)
+}
+
+/// What a primary ray found: the nearest hit (object index and hit) and the colour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Traced<S> {
+    /// The nearest accepted hit, or `None` for the background.
+    pub hit: Option<(usize, Hit<S>)>,
+    /// The colour in channel units.
+    pub color: Color<S>,
+}
+
+/// Traces one ray: its nearest hit and colour, with the stages the scene's plan needs.
+pub fn trace<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Traced<S> {
+    let counters = &mut Counters::default();
+    with_stages!(
+        shading_for(&scene.plan()),
+        trace_one::<S>(scene, ray, counters)
+    )
+}
+
+fn trace_one<S: Scalar, T: Stages>(
+    scene: &Scene<S>,
+    ray: &Ray<S>,
+    counters: &mut Counters,
+) -> Traced<S> {
+    trace_with::<S, T>(scene, ray, 0, counters)
+}
+
+/// Traces the primary ray of pixel (`column`, `row`), row 0 at the top. A ray that cannot
+/// be formed in the format (see [`crate::Camera::primary_ray`]) sees the background.
+pub fn trace_pixel<S: Scalar>(scene: &Scene<S>, column: u16, row: u16) -> Traced<S> {
+    match scene.camera.primary_ray(column, row) {
+        Some(ray) => trace(scene, &ray),
+        None => Traced {
+            hit: None,
+            color: scene.background,
+        },
+    }
+}
+
+/// The colour of pixel (`column`, `row`), row 0 at the top.
+pub fn pixel<S: Scalar>(scene: &Scene<S>, column: u16, row: u16) -> Rgb888 {
+    to_rgb888(trace_pixel(scene, column, row).color)
+}

@@ -1,0 +1,107 @@
+//! Stage sets: the shading loop is compiled once per set, and the plan picks one.
+
+use crate::Plan;
+
+/// A set of shading stages, fixed at compile time: the renderer is instantiated once per
+/// set, and a stage that is `false` is not in that loop at all (no per-pixel test). The
+/// plan of a scene picks the set ([`shading_for`]). Each stage is also compiled out of
+/// every set when its cargo feature (`lighting`, `reflection`) is off.
+pub trait Stages {
+    /// Diffuse lighting.
+    const LIGHTING: bool;
+    /// Shadow rays.
+    const SHADOWS: bool;
+    /// Specular glints.
+    const SPECULAR: bool;
+    /// Spotlight cones.
+    const CONES: bool;
+    /// Mirror reflection.
+    const REFLECTION: bool;
+}
+
+/// Ambient only: pure geometry.
+pub struct AmbientOnly;
+/// Diffuse point lights, nothing between them and the surface.
+pub struct Diffuse;
+/// Diffuse point lights with shadow rays.
+pub struct DiffuseShadows;
+/// Everything the scene format has.
+pub struct Full;
+
+impl Stages for AmbientOnly {
+    const LIGHTING: bool = false;
+    const SHADOWS: bool = false;
+    const SPECULAR: bool = false;
+    const CONES: bool = false;
+    const REFLECTION: bool = false;
+}
+impl Stages for Diffuse {
+    const LIGHTING: bool = cfg!(feature = "lighting");
+    const SHADOWS: bool = false;
+    const SPECULAR: bool = false;
+    const CONES: bool = false;
+    const REFLECTION: bool = false;
+}
+impl Stages for DiffuseShadows {
+    const LIGHTING: bool = cfg!(feature = "lighting");
+    const SHADOWS: bool = cfg!(feature = "lighting");
+    const SPECULAR: bool = false;
+    const CONES: bool = false;
+    const REFLECTION: bool = false;
+}
+impl Stages for Full {
+    const LIGHTING: bool = cfg!(feature = "lighting");
+    const SHADOWS: bool = cfg!(feature = "lighting");
+    const SPECULAR: bool = cfg!(feature = "lighting");
+    const CONES: bool = cfg!(feature = "lighting");
+    const REFLECTION: bool = cfg!(feature = "reflection");
+}
+
+/// Which compiled stage set a plan needs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Shading {
+    /// [`AmbientOnly`].
+    AmbientOnly,
+    /// [`Diffuse`].
+    Diffuse,
+    /// [`DiffuseShadows`].
+    DiffuseShadows,
+    /// [`Full`].
+    Full,
+}
+
+/// The smallest stage set that covers a plan.
+pub(crate) fn shading_for(plan: &Plan) -> Shading {
+    if plan.reflection || plan.specular || plan.spotlights {
+        Shading::Full
+    } else if plan.lighting && plan.shadows {
+        Shading::DiffuseShadows
+    } else if plan.lighting {
+        Shading::Diffuse
+    } else {
+        Shading::AmbientOnly
+    }
+}
+
+/// `with_stages!(shading, f::<S, More…>(args))` calls `f::<S, Set, More…>(args)` for the
+/// stage set `Set` that `shading` names: the plan is looked at once per call, never per
+/// pixel. The one 4-way dispatch of the crate.
+macro_rules! with_stages {
+    ($shading:expr, $($f:ident)::+::<$s:ty $(, $more:ty)*>($($arg:expr),*)) => {
+        match $shading {
+            $crate::shade::stages::Shading::AmbientOnly => {
+                $($f)::+::<$s, $crate::shade::stages::AmbientOnly $(, $more)*>($($arg),*)
+            }
+            $crate::shade::stages::Shading::Diffuse => {
+                $($f)::+::<$s, $crate::shade::stages::Diffuse $(, $more)*>($($arg),*)
+            }
+            $crate::shade::stages::Shading::DiffuseShadows => {
+                $($f)::+::<$s, $crate::shade::stages::DiffuseShadows $(, $more)*>($($arg),*)
+            }
+            $crate::shade::stages::Shading::Full => {
+                $($f)::+::<$s, $crate::shade::stages::Full $(, $more)*>($($arg),*)
+            }
+        }
+    };
+}
+pub(crate) use with_stages;
