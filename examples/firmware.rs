@@ -281,7 +281,7 @@ mod firmware {
             hash_cost,
             BOARD.0,
             name,
-            frame.mode()
+            MODE
         );
         #[cfg(fw_ppm)]
         write_ppm(name, &scene, line);

@@ -22,17 +22,16 @@ use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use fixray::compare::{Comparison, compare, heat_color};
-use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, SceneError, render_line};
+use fixray::num::formats::{self, MAIN};
+use fixray::{Scalar, Scene, SceneError, render_line};
 
 /// The built-in default scene, compiled in.
 const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
 const DEFAULT_SCENE_NAME: &str = "scenes/default.scene";
 
-const USAGE: &str = "usage: render [SCENE_FILE] [--format i16f16|i20f12|i32f32|f32|f64] \
-                     [--out FILE.png] [--compare FILE.png]";
-
-/// Every format, in the order of the report.
-const FORMATS: [&str; 5] = ["i16f16", "i20f12", "i32f32", "f32", "f64"];
+const USAGE: &str = "usage: render [SCENE_FILE] [--format FORMAT] [--out FILE.png] \
+                     [--compare FILE.png]   (FORMAT: one of fixray::num::formats::FORMATS; \
+                     without it, every main format)";
 
 struct Args {
     scene: Option<String>,
@@ -54,9 +53,7 @@ fn parse_args() -> Result<Args, String> {
         match a.as_str() {
             "--format" => {
                 let f = value("--format")?;
-                if !FORMATS.contains(&f.as_str()) {
-                    return Err(format!("unknown format `{f}`"));
-                }
+                formats::check(&f).map_err(|e| e.to_string())?;
                 args.format = Some(f);
             }
             "--out" => args.out = value("--out")?,
@@ -159,13 +156,11 @@ fn run<S: Scalar>(text: &str, reference: &Scene<f64>) -> Result<Run, SceneError>
     })
 }
 
+/// Renders in the format named `format`, which `parse_args` checked against the one list.
 fn run_format(format: &str, text: &str, reference: &Scene<f64>) -> Result<Run, SceneError> {
-    match format {
-        "i16f16" => run::<I16F16>(text, reference),
-        "i20f12" => run::<I20F12>(text, reference),
-        "i32f32" => run::<I32F32>(text, reference),
-        "f32" => run::<f32>(text, reference),
-        _ => run::<f64>(text, reference),
+    match fixray::with_format!(format, run(text, reference)) {
+        Ok(run) => run,
+        Err(unknown) => unreachable!("{unknown}: checked when the arguments were read"),
     }
 }
 
@@ -262,7 +257,7 @@ fn main() -> ExitCode {
         None => {
             print_header(&scene_name, &reference);
             // Every format first, so that each row's ratio uses the f64 time of this run.
-            let runs: Vec<_> = FORMATS
+            let runs: Vec<_> = MAIN
                 .iter()
                 .map(|f| (*f, run_format(f, &text, &reference)))
                 .collect();

@@ -42,10 +42,10 @@ mod window {
         OutputSettings, OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
     };
     use fixray::compare::heat_color;
-    use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, Vec3, render_line};
+    use fixray::num::formats::MAIN as FORMATS;
+    use fixray::{Scalar, Scene, Vec3, render_line};
 
     const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
-    const FORMATS: [&str; 5] = ["i16f16", "i20f12", "i32f32", "f32", "f64"];
     /// Height of the status line under the picture.
     const STATUS: u32 = 12;
 
@@ -183,13 +183,7 @@ mod window {
         eye: Eye,
         size: Option<(u16, u16)>,
     ) -> Result<Frame, String> {
-        match format {
-            "i16f16" => frame_in::<I16F16>(text, eye, size),
-            "i20f12" => frame_in::<I20F12>(text, eye, size),
-            "i32f32" => frame_in::<I32F32>(text, eye, size),
-            "f32" => frame_in::<f32>(text, eye, size),
-            _ => frame_in::<f64>(text, eye, size),
-        }
+        fixray::with_format!(format, frame_in(text, eye, size)).map_err(|e| e.to_string())?
     }
 
     /// 4×4 Bayer thresholds for ordered dithering to black and white.

@@ -16,7 +16,7 @@ use embedded_graphics_core::prelude::{DrawTarget, Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
 
 use crate::kernel::flat::PlaneMode;
-use crate::kernel::{self, Kernel};
+use crate::kernel::{self, Drawing, Kernel};
 use crate::shade::stages::{Shading, Stages, shading_for, with_stages};
 use crate::stats::Counters;
 use crate::{Plan, Scalar, Scene};
@@ -46,10 +46,8 @@ use crate::{Plan, Scalar, Scene};
 #[derive(Debug, Clone)]
 pub struct Frame<'a, S> {
     scene: &'a Scene<S>,
-    plan: Plan,
     shading: Shading,
-    mode: PlaneMode,
-    kernel: Kernel<S>,
+    drawing: Drawing<S>,
 }
 
 impl<'a, S: Scalar> Frame<'a, S> {
@@ -67,16 +65,14 @@ impl<'a, S: Scalar> Frame<'a, S> {
         let kernel = with_stages!(shading, select::<S>(scene, &plan));
         Self {
             scene,
-            plan,
             shading,
-            mode,
-            kernel,
+            drawing: Drawing { plan, kernel, mode },
         }
     }
 
     /// How pure-geometry plane scenes are drawn in this frame.
     pub fn mode(&self) -> PlaneMode {
-        self.mode
+        self.drawing.mode
     }
 
     /// Renders scanline `row` into `line`: pixel `i` of `line` is column `i`. Columns
@@ -99,15 +95,7 @@ impl<'a, S: Scalar> Frame<'a, S> {
         }
         with_stages!(
             self.shading,
-            kernel::line::<S, C>(
-                self.scene,
-                &self.plan,
-                &self.kernel,
-                self.mode,
-                row,
-                line,
-                counters
-            )
+            kernel::line::<S, C>(self.scene, &self.drawing, row, line, counters)
         );
     }
 
@@ -160,9 +148,7 @@ where
         );
         kernel::stream::<S, T, D::Color, D::Error>(
             frame.scene,
-            &frame.plan,
-            &frame.kernel,
-            frame.mode,
+            &frame.drawing,
             row,
             x0..x1 + 1,
             counters,
@@ -262,15 +248,11 @@ pub fn render_line_stages<S: Scalar, T: Stages, C: From<Rgb888>>(
 ) {
     if row < scene.camera.height {
         let plan = scene.plan();
-        let kernel = kernel::select::<S, T>(scene, &plan);
-        kernel::line::<S, T, C>(
-            scene,
-            &plan,
-            &kernel,
-            PlaneMode::PerPixel,
-            row,
-            line,
-            counters,
-        );
+        let drawing = Drawing {
+            kernel: kernel::select::<S, T>(scene, &plan),
+            plan,
+            mode: PlaneMode::PerPixel,
+        };
+        kernel::line::<S, T, C>(scene, &drawing, row, line, counters);
     }
 }

@@ -70,7 +70,14 @@ fn a_scene_error_prints_file_line_column_and_fails() {
 fn bad_arguments_fail_with_usage() {
     let out = run(&["--format", "i8f8"]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("usage: render"));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("usage: render"), "{stderr}");
+    // Regression: an unknown name was refused without saying which ones exist (and in
+    // the other tools it silently became f64).
+    assert!(
+        stderr.contains("unknown number format `i8f8` (known: i16f16, i16f16n,"),
+        "{stderr}"
+    );
 }
 
 #[test]
@@ -109,7 +116,7 @@ fn without_a_format_every_format_is_reported() {
     let out = run(&["--out", png.to_str().unwrap()]);
     assert!(out.status.success(), "{out:?}");
     let stdout = String::from_utf8(out.stdout).unwrap();
-    for format in ["i16f16", "i20f12", "i32f32", "f32", "f64"] {
+    for format in fixray::num::formats::MAIN {
         // A row of figures: the name, then eight numeric columns (an error row would
         // carry a message instead).
         let row = stdout

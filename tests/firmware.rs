@@ -11,17 +11,14 @@
 //! flash size is that format's alone; the report table goes to stdout and to
 //! `target/firmware-report.md`.
 
-// Shared with examples/accuracy.rs, which uses other parts of it.
-#[allow(dead_code)]
-#[path = "../examples/support/qemu.rs"]
-mod qemu;
+mod common;
+use common::qemu;
 
 use std::fmt::Write as _;
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::hash::FrameHash;
-use fixray::num::variants::{F32Micro, I16F16Narrow, I16F16Recip};
-use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render_line};
+use fixray::{Scalar, Scene, render_line};
 
 const SCENE: &str = include_str!("../scenes/default.scene");
 
@@ -39,19 +36,32 @@ fn host_hash<S: Scalar>() -> u32 {
     hash.value()
 }
 
+/// Regression: a field the firmware did not report read as 0, so the `full/bare ≤ 1.05`
+/// check of `absent_effects_cost_nothing_on_the_chip` passed when nothing was reported.
+#[test]
+fn a_missing_report_field_is_not_a_zero() {
+    let line = "format=i16f16 size=160x120 hash=0x1 instructions=oops";
+    let frame = qemu::Frame(
+        line.split_whitespace()
+            .filter_map(|kv| kv.split_once('='))
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect(),
+    );
+    assert_eq!(frame.number("instructions"), None);
+    assert_eq!(frame.number("stack"), None);
+    assert_eq!(frame.pixels(), 19_200);
+}
+
 #[test]
 #[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
 fn firmware_frames_match_the_host_bit_for_bit() {
     assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
-    let host: [(&str, u32); 7] = [
-        ("i16f16", host_hash::<I16F16>()),
-        ("i16f16n", host_hash::<I16F16Narrow>()),
-        ("i16f16r", host_hash::<I16F16Recip>()),
-        ("i20f12", host_hash::<I20F12>()),
-        ("i32f32", host_hash::<I32F32>()),
-        ("f32", host_hash::<f32>()),
-        ("f32m", host_hash::<F32Micro>()),
-    ];
+    // Every format of the one list but the f64 reference (soft float on both cores).
+    let host: Vec<(&str, u32)> = fixray::num::formats::FORMATS
+        .into_iter()
+        .filter(|f| *f != fixray::num::formats::REFERENCE)
+        .map(|f| (f, fixray::with_format!(f, host_hash()).unwrap()))
+        .collect();
     let mut report = String::from(
         "| core | format | instructions/frame | instructions/pixel | of which hashing | \
          parse instructions | flash bytes | RAM bytes (static + stack) | hash | equal to host |\n\
@@ -59,14 +69,15 @@ fn firmware_frames_match_the_host_bit_for_bit() {
     );
     let mut mismatches = Vec::new();
     for (target, core) in qemu::CORES {
-        for (format, host_hash) in host {
+        for &(format, host_hash) in &host {
             let run = qemu::run(target, format, "default").unwrap();
             assert_eq!(run.frames.len(), 1, "{target} {format}: {:?}", run.frames);
             let f = &run.frames[0];
             assert_eq!((f.get("format"), f.get("core")), (format, core));
             let equal = host_hash == f.hash();
-            let hashing = f.number("hash_instructions") as f64 / f.pixels() as f64;
-            let (ram, stack) = (run.static_ram, f.number("stack"));
+            let hashing =
+                f.number("hash_instructions").expect("reported") as f64 / f.pixels() as f64;
+            let (ram, stack) = (run.static_ram, f.number("stack").expect("reported"));
             writeln!(
                 report,
                 "| {core} | {format} | {} | {} | {hashing:.1} | {} | {} | {} ({ram} + {stack}) | {} | {} |",
@@ -142,7 +153,12 @@ fn absent_effects_cost_nothing_on_the_chip() {
             run.frames[0].get("instructions")
         )
         .unwrap();
-        flash.push((run.flash, run.frames[0].number("instructions")));
+        // A count that was not reported is a failure, not a 0 (which would make the ratio
+        // below pass whatever the renderer costs).
+        let instructions = run.frames[0]
+            .number("instructions")
+            .expect("the firmware reports its instructions");
+        flash.push((run.flash, instructions));
     }
     println!("{report}");
     std::fs::write(
@@ -155,6 +171,13 @@ fn absent_effects_cost_nothing_on_the_chip() {
     assert!(
         bare.0 < flash[1].0 && flash[1].0 < flash[2].0 && flash[2].0 <= full.0,
         "{flash:?}"
+    );
+    // Regression: the `spheres` feature gated only the parser's arm (312 bytes), and the
+    // sphere intersection, normal and spawn were linked without it. Now they are not.
+    assert!(
+        flash[2].0 - flash[1].0 >= 1024,
+        "the sphere code is {} bytes: is it gated by its feature? {flash:?}",
+        flash[2].0 - flash[1].0
     );
     // The full renderer on an ambient-only scene: within 5 % of the compiled-out one.
     let ratio = full.1 as f64 / bare.1 as f64;

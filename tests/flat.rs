@@ -3,9 +3,8 @@
 //! through `render` (the `fill_contiguous` path, also clipped) against `render_line`.
 //! On the shipped plane scenes and on seeded random plane scenes, in every format.
 
-#[allow(dead_code)]
-#[path = "../examples/support/sampling.rs"]
-mod sampling;
+mod common;
+use common::sampling;
 
 use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::Rgb888;

@@ -9,9 +9,8 @@
 //!   patterns (any normal, point, base, direction and epsilon the format can hold), and
 //!   the renderer on 2 000 one-pixel scenes made of random numbers.
 
-#[allow(dead_code)]
-#[path = "../examples/support/sampling.rs"]
-mod sampling;
+mod common;
+use common::sampling;
 
 use embedded_graphics::pixelcolor::Rgb888;
 use fixray::num::variants::{F32Micro, I16F16Narrow};

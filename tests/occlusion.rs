@@ -4,9 +4,8 @@
 //! fall on different sides of `dist` (within the division's rounding) or where
 //! `intersect` finds `t` or the hit point out of range.
 
-#[allow(dead_code)]
-#[path = "../examples/support/sampling.rs"]
-mod sampling;
+mod common;
+use common::sampling;
 
 use fixray::{I16F16, I20F12, I32F32, Miss, Plane, Ray, RayKind, Scalar, Shape, Vec3};
 use sampling::SplitMix;

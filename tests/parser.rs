@@ -1,9 +1,8 @@
 //! The scene parser: every error kind with its line and column, the lexical rules of
 //! `scene-format.md`, and a seeded storm of mangled inputs that must never panic.
 
-#[allow(dead_code)]
-#[path = "../examples/support/sampling.rs"]
-mod sampling;
+mod common;
+use common::sampling;
 use sampling::SplitMix;
 
 use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, SceneError};

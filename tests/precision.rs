@@ -4,9 +4,8 @@
 //!
 //! Run with `cargo test --release --test precision -- --nocapture` to see the figures.
 
-#[allow(dead_code)]
-#[path = "../examples/support/sampling.rs"]
-mod sampling;
+mod common;
+use common::sampling;
 use sampling::SplitMix;
 
 use embedded_graphics::pixelcolor::RgbColor;

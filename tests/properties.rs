@@ -8,9 +8,8 @@
 //! One million cases per format per run, in debug builds (every operation overflow-checked)
 //! and in release builds (`.ci/run` runs both).
 
-#[allow(dead_code)]
-#[path = "../examples/support/sampling.rs"]
-mod sampling;
+mod common;
+use common::sampling;
 
 use fixray::num::variants::I16F16Narrow;
 use fixray::{I16F16, I20F12, I32F32, Scalar};

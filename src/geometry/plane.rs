@@ -133,7 +133,7 @@ impl<S: Scalar> Plane<S> {
 
     /// A secondary ray leaving a hit on this plane in direction `dir`: its base is the hit
     /// point moved along the normal, to the side `dir` points to, by the residual bound
-    /// plus [`SPAWN_MARGIN_ULPS`], so that it can never hit this plane again (pbrt's
+    /// plus [`SPAWN_MARGIN_ULPS`](super::SPAWN_MARGIN_ULPS), so that it can never hit this plane again (pbrt's
     /// offset by a computed error bound, not a magic number). A `dir` parallel to the
     /// plane keeps the hit point (such a ray cannot meet the plane).
     ///

@@ -53,7 +53,9 @@ const fn ratio_shift<S: Scalar>() -> u32 {
 /// stack (256 bytes in I16F16).
 pub const BLOCK: usize = 64;
 
-/// How a pure-geometry plane scene is drawn (see the [module](self) documentation).
+/// How a pure-geometry plane scene is drawn (a scene of infinite planes without lights
+/// or mirrors; other scenes draw the same either way). Choose it with
+/// [`Frame::with_mode`](crate::Frame::with_mode).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum PlaneMode {
     /// Every pixel compares the planes accepted there.

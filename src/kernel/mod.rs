@@ -39,6 +39,15 @@ pub(crate) enum Kernel<S> {
     Reference,
 }
 
+/// What a frame draws with: the scene's plan, the kernel [`select`] chose for it, and the
+/// mode of the pure-geometry kernel.
+#[derive(Debug, Clone)]
+pub(crate) struct Drawing<S> {
+    pub(crate) plan: Plan,
+    pub(crate) kernel: Kernel<S>,
+    pub(crate) mode: PlaneMode,
+}
+
 /// The kernel for a frame of `scene` drawn with stage set `T`: the cheapest that draws
 /// the scene's definition. The only place that decides which kernel applies.
 pub(crate) fn select<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Kernel<S> {
@@ -69,13 +78,13 @@ fn fast<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Option<Primary<S
 /// Fills `line` (at most the camera's width) with scanline `row` drawn by `kernel`.
 pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
     scene: &Scene<S>,
-    plan: &Plan,
-    kernel: &Kernel<S>,
-    mode: PlaneMode,
+    drawing: &Drawing<S>,
     row: u16,
     line: &mut [C],
     counters: &mut Counters,
 ) {
+    let Drawing { plan, kernel, mode } = drawing;
+    let mode = *mode;
     let width = line.len().min(usize::from(scene.camera.width));
     let line = &mut line[..width];
     let primary = match kernel {
@@ -110,9 +119,7 @@ fn fallback_line<S: Scalar, T: Stages, C: From<Rgb888>>(
 /// `kernel`: the pixels of [`line`], without a line buffer.
 pub(crate) fn stream<S, T, C, E>(
     scene: &Scene<S>,
-    plan: &Plan,
-    kernel: &Kernel<S>,
-    mode: PlaneMode,
+    drawing: &Drawing<S>,
     row: u16,
     columns: core::ops::Range<u16>,
     counters: &mut Counters,
@@ -123,6 +130,8 @@ where
     T: Stages,
     C: From<Rgb888> + Clone,
 {
+    let Drawing { plan, kernel, mode } = drawing;
+    let mode = *mode;
     let fallback;
     let primary = match kernel {
         Kernel::Flat(flat) => match flat.row(scene, row) {

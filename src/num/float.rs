@@ -6,7 +6,7 @@ use core::cmp::Ordering;
 use super::{Decimal, EPSILON_DELTAS, Scalar};
 
 macro_rules! impl_float {
-    ($t:ty, $name:literal, $sqrt:path, $round:path, $floor:path, $exact_cmp:path) => {
+    ($t:ty, $name:literal, $sqrt:path, $round:path, $floor:path, $tie:path) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
             const ZERO: Self = 0.0;
@@ -83,15 +83,17 @@ macro_rules! impl_float {
             fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> Option<core::cmp::Ordering> {
                 // In the format itself: each product rounds once (½ ulp). Widening f32 to
                 // f64 would be exact but is soft-float on an FPU that has only f32, so it
-                // is kept for the two cases the format cannot decide: both products
-                // overflowing to the same infinity (not a tie: the finite operands say
-                // which is larger) and a NaN product (an infinite times a zero operand).
-                match (a * b).partial_cmp(&(c * d)) {
-                    Some(core::cmp::Ordering::Equal) if !(a * b).is_finite() => {
-                        $exact_cmp(a, b, c, d)
-                    }
-                    None => $exact_cmp(a, b, c, d),
-                    order => order,
+                // is kept for what the format cannot decide (out of line, and rare): both
+                // products overflowing to the same infinity (not a tie: the finite
+                // operands say which is larger) and a NaN product (an infinity times a
+                // zero operand).
+                let (p, q) = (a * b, c * d);
+                if p < q {
+                    Some(core::cmp::Ordering::Less)
+                } else if p > q {
+                    Some(core::cmp::Ordering::Greater)
+                } else {
+                    $tie(a, b, c, d)
                 }
             }
             #[inline]
@@ -130,22 +132,29 @@ macro_rules! impl_float {
     };
 }
 
-impl_float!(
-    f32,
-    "f32",
-    libm::sqrtf,
-    libm::roundf,
-    libm::floorf,
-    cmp_products_f32
-);
-impl_float!(
-    f64,
-    "f64",
-    libm::sqrt,
-    libm::round,
-    libm::floor,
-    cmp_products_f64
-);
+impl_float!(f32, "f32", libm::sqrtf, libm::roundf, libm::floorf, tie_f32);
+impl_float!(f64, "f64", libm::sqrt, libm::round, libm::floor, tie_f64);
+
+/// `a·b` and `c·d` compared neither less nor greater in `f32`: equal when that is a
+/// finite value, otherwise decided exactly.
+#[cold]
+#[inline(never)]
+fn tie_f32(a: f32, b: f32, c: f32, d: f32) -> Option<Ordering> {
+    if (a * b).is_finite() && (c * d).is_finite() {
+        return Some(Ordering::Equal);
+    }
+    cmp_products_f32(a, b, c, d)
+}
+
+/// As [`tie_f32`] for `f64`.
+#[cold]
+#[inline(never)]
+fn tie_f64(a: f64, b: f64, c: f64, d: f64) -> Option<Ordering> {
+    if (a * b).is_finite() && (c * d).is_finite() {
+        return Some(Ordering::Equal);
+    }
+    cmp_products_f64(a, b, c, d)
+}
 
 /// `a·b` against `c·d` exactly for `f32` operands: in `f64` a product of two `f32`s is exact
 /// (24 + 24 significant bits) and finite. `None` when an operand is NaN or a product is

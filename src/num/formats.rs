@@ -28,6 +28,22 @@ pub const FORMATS: [&str; 8] = [
     "i16f16", "i16f16n", "i16f16r", "i20f12", "i32f32", "f32", "f32m", "f64",
 ];
 
+/// Every format with what it is, in the order of [`FORMATS`] (for reports and help
+/// texts).
+pub const DESCRIBED: [(&str, &str); 8] = [
+    ("i16f16", "I16F16, wide dot products"),
+    ("i16f16n", "I16F16, narrow dot products"),
+    (
+        "i16f16r",
+        "I16F16, division by reciprocal (table + 2 Newton steps)",
+    ),
+    ("i20f12", "I20F12"),
+    ("i32f32", "I32F32"),
+    ("f32", "f32, correctly rounded libm sqrt"),
+    ("f32m", "f32, micromath sqrt (≤ 6.1 % off)"),
+    ("f64", "f64 (the reference)"),
+];
+
 /// The main formats ([`for_each_format!`](crate::for_each_format) runs these): the
 /// three fixed formats, `f32` and the `f64` reference.
 pub const MAIN: [&str; 5] = ["i16f16", "i20f12", "i32f32", "f32", "f64"];
@@ -80,23 +96,27 @@ pub fn check(name: &str) -> Result<&'static str, UnknownFormat<'_>> {
 
 /// Calls a generic function with the number format named at run time:
 /// `with_format!(name, path::to::f(args…))` is `Ok(f::<Format>(args…))`, or
-/// `Err(UnknownFormat)` naming the known formats.
+/// `Err(UnknownFormat)` naming the known formats. A function with more type parameters
+/// after the format's is called as `with_format!(name, f::<_, More>(args…))`.
 #[macro_export]
 macro_rules! with_format {
-    ($name:expr, $($f:ident)::+ ($($arg:expr),* $(,)?)) => {{
+    ($name:expr, $($f:ident)::+ ::<_ $(, $more:ty)*> ($($arg:expr),* $(,)?)) => {{
         let name: &str = $name;
         match name {
-            "i16f16" => Ok($($f)::+::<$crate::I16F16>($($arg),*)),
-            "i16f16n" => Ok($($f)::+::<$crate::num::variants::I16F16Narrow>($($arg),*)),
-            "i16f16r" => Ok($($f)::+::<$crate::num::variants::I16F16Recip>($($arg),*)),
-            "i20f12" => Ok($($f)::+::<$crate::I20F12>($($arg),*)),
-            "i32f32" => Ok($($f)::+::<$crate::I32F32>($($arg),*)),
-            "f32" => Ok($($f)::+::<f32>($($arg),*)),
-            "f32m" => Ok($($f)::+::<$crate::num::variants::F32Micro>($($arg),*)),
-            "f64" => Ok($($f)::+::<f64>($($arg),*)),
+            "i16f16" => Ok($($f)::+::<$crate::I16F16 $(, $more)*>($($arg),*)),
+            "i16f16n" => Ok($($f)::+::<$crate::num::variants::I16F16Narrow $(, $more)*>($($arg),*)),
+            "i16f16r" => Ok($($f)::+::<$crate::num::variants::I16F16Recip $(, $more)*>($($arg),*)),
+            "i20f12" => Ok($($f)::+::<$crate::I20F12 $(, $more)*>($($arg),*)),
+            "i32f32" => Ok($($f)::+::<$crate::I32F32 $(, $more)*>($($arg),*)),
+            "f32" => Ok($($f)::+::<f32 $(, $more)*>($($arg),*)),
+            "f32m" => Ok($($f)::+::<$crate::num::variants::F32Micro $(, $more)*>($($arg),*)),
+            "f64" => Ok($($f)::+::<f64 $(, $more)*>($($arg),*)),
             _ => Err($crate::num::formats::UnknownFormat::new(name)),
         }
     }};
+    ($name:expr, $($f:ident)::+ ($($arg:expr),* $(,)?)) => {
+        $crate::with_format!($name, $($f)::+::<_>($($arg),*))
+    };
 }
 
 /// Calls `f::<Format>(args…)` for every main format ([`MAIN`], in its order), or with
@@ -134,6 +154,8 @@ mod tests {
         for name in MAIN {
             assert!(FORMATS.contains(&name), "{name}");
         }
+        let described: std::vec::Vec<&str> = DESCRIBED.iter().map(|(n, _)| *n).collect();
+        assert_eq!(described, FORMATS);
         assert!(FORMATS.contains(&REFERENCE));
         let mut seen = std::vec::Vec::new();
         crate::for_each_format!(all: push_name(&mut seen));

@@ -2,7 +2,7 @@
 //! and the one list of formats.
 //!
 //! Geometry, scene and renderer are generic over `Scalar`. It is implemented for the
-//! fixed-point formats [`I16F16`], [`I20F12`] and [`I32F32`] of the [`fixed`] crate
+//! fixed-point formats [`I16F16`], [`I20F12`] and [`I32F32`] of the [`fixed`](::fixed) crate
 //! (`fixed.rs`) and for `f32` and `f64` (`float.rs`); the `f64` instantiation is the
 //! reference every other format is measured against. [`variants`] holds formats that differ
 //! from a main one in a single choice, [`formats`] the list every tool takes its format

@@ -23,7 +23,7 @@ impl<S: Scalar> Camera<S> {
     /// `(WX (i + ½) / W, WY (1 − (j + ½) / H), 0)`.
     ///
     /// `None` when the direction cannot be formed in the format (the pixel then shows the
-    /// background); never for a scene that [`Scene::parse`] accepted with an eye within
+    /// background); never for a scene that [`Scene::parse`](crate::Scene::parse) accepted with an eye within
     /// the format's range of the screen.
     pub fn primary_ray(&self, column: u16, row: u16) -> Option<Ray<S>> {
         let y = self.screen_y(row)?;

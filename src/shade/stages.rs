@@ -4,7 +4,7 @@ use crate::Plan;
 
 /// A set of shading stages, fixed at compile time: the renderer is instantiated once per
 /// set, and a stage that is `false` is not in that loop at all (no per-pixel test). The
-/// plan of a scene picks the set ([`shading_for`]). Each stage is also compiled out of
+/// plan of a scene picks the set (`shading_for`). Each stage is also compiled out of
 /// every set when its cargo feature (`lighting`, `reflection`) is off.
 pub trait Stages {
     /// Diffuse lighting.

@@ -5,17 +5,14 @@
 //! `docs/accuracy.png`. Never edit those by hand: run
 //!
 //! ```text
-//! cargo run --release --example accuracy
+//! cargo xtask accuracy
 //! ```
 //!
 //! The firmware columns need `qemu-system-arm` and the thumb targets (`.ci/run` installs
 //! both); without them the report says so and leaves those columns empty. `--quick` skips
 //! the firmware and shortens the host timing (for CI, which checks the command runs).
 
-// Shared with tests/firmware.rs, which uses other parts of it.
-#[allow(dead_code)]
-#[path = "support/qemu.rs"]
-mod qemu;
+use crate::qemu;
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -30,67 +27,54 @@ use embedded_graphics::primitives::{Circle, Line, PrimitiveStyle, Rectangle};
 use embedded_graphics::text::{Alignment, Text};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use fixray::compare::{Comparison, compare};
-use fixray::num::variants::{F32Micro, I16F16Narrow, I16F16Recip};
-use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render_line, trace_pixel};
+use fixray::{Scalar, Scene, render_line, trace_pixel};
 
 /// The scenes: name, what it is, text. The grazing scene is third (the epsilon sweep).
 const SCENES: [(&str, &str, &str); 8] = [
     (
         "default",
         "the default scene: five planes, ambient + one light with shadows",
-        include_str!("../scenes/default.scene"),
+        include_str!("../../scenes/default.scene"),
     ),
     (
         "planes",
         "planes only: a corridor of five planes, ambient only",
-        include_str!("../scenes/planes.scene"),
+        include_str!("../../scenes/planes.scene"),
     ),
     (
         "horizon",
         "grazing: an infinite floor to the horizon, ambient only",
-        include_str!("../scenes/horizon.scene"),
+        include_str!("../../scenes/horizon.scene"),
     ),
     (
         "spheres",
         "spheres on a floor, one light with shadows",
-        include_str!("../scenes/spheres.scene"),
+        include_str!("../../scenes/spheres.scene"),
     ),
     (
         "tiles",
         "a tiled checkerboard floor and a finite plane, ambient only",
-        include_str!("../scenes/tiles.scene"),
+        include_str!("../../scenes/tiles.scene"),
     ),
     (
         "specular",
         "specular glints (shininess 4 and 40)",
-        include_str!("../scenes/specular.scene"),
+        include_str!("../../scenes/specular.scene"),
     ),
     (
         "spotlight",
         "a spotlight's cone beside a point light",
-        include_str!("../scenes/spotlight.scene"),
+        include_str!("../../scenes/spotlight.scene"),
     ),
     (
         "mirror",
         "reflection: a mirror sphere and a half-mirror floor",
-        include_str!("../scenes/mirror.scene"),
+        include_str!("../../scenes/mirror.scene"),
     ),
 ];
 
-/// Every format, with what it is.
-const FORMATS: [(&str, &str); 8] = [
-    ("i16f16", "I16F16, wide dot products"),
-    ("i16f16n", "I16F16, narrow dot products"),
-    (
-        "i16f16r",
-        "I16F16, division by reciprocal (table + 2 Newton steps)",
-    ),
-    ("i20f12", "I20F12"),
-    ("i32f32", "I32F32"),
-    ("f32", "f32, correctly rounded libm sqrt"),
-    ("f32m", "f32, micromath sqrt (≤ 6.1 % off)"),
-    ("f64", "f64 (the reference)"),
-];
+/// Every format of the one list, with what it is.
+const FORMATS: [(&str, &str); 8] = fixray::num::formats::DESCRIBED;
 
 /// Something to do in one number format, chosen at run time by name.
 trait PerFormat {
@@ -98,17 +82,14 @@ trait PerFormat {
     fn run<S: Scalar>(&mut self) -> Self::Out;
 }
 
+/// Runs `v` in the format named `format` (one of the one list's; an unknown name is an
+/// error naming the known ones, never silently f64).
 fn with_format<V: PerFormat>(format: &str, v: &mut V) -> V::Out {
-    match format {
-        "i16f16" => v.run::<I16F16>(),
-        "i16f16n" => v.run::<I16F16Narrow>(),
-        "i16f16r" => v.run::<I16F16Recip>(),
-        "i20f12" => v.run::<I20F12>(),
-        "i32f32" => v.run::<I32F32>(),
-        "f32" => v.run::<f32>(),
-        "f32m" => v.run::<F32Micro>(),
-        _ => v.run::<f64>(),
-    }
+    fixray::with_format!(format, run_in::<_, V>(v)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn run_in<S: Scalar, V: PerFormat>(v: &mut V) -> V::Out {
+    v.run::<S>()
 }
 
 /// Renders a frame into an RGB image.
@@ -249,7 +230,7 @@ fn per_pixel(run: &qemu::Run) -> BTreeMap<String, f64> {
     run.frames
         .iter()
         .map(|f| {
-            let px = f.number("instructions") as f64 / f.pixels() as f64;
+            let px = f.number("instructions").expect("reported") as f64 / f.pixels() as f64;
             (f.get("scene").to_string(), px)
         })
         .collect()
@@ -272,9 +253,18 @@ fn measure_firmware(log: &mut String) -> BTreeMap<(String, String), Firmware> {
                     let instructions = run
                         .frames
                         .iter()
-                        .map(|f| (f.get("scene").to_string(), f.number("instructions")))
+                        .map(|f| {
+                            (
+                                f.get("scene").to_string(),
+                                f.number("instructions").expect("reported"),
+                            )
+                        })
                         .collect();
-                    let stack = run.frames.iter().map(|f| f.number("stack")).max();
+                    let stack = run
+                        .frames
+                        .iter()
+                        .map(|f| f.number("stack").expect("reported"))
+                        .max();
                     out.insert(
                         (core.to_string(), format.to_string()),
                         Firmware {
@@ -518,9 +508,9 @@ fn fmt_sci(v: f64) -> String {
     }
 }
 
-fn main() {
-    let quick = std::env::args().any(|a| a == "--quick");
-    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
+pub fn main(args: &[String]) {
+    let quick = args.iter().any(|a| a == "--quick");
+    let manifest = crate::root();
     let docs = manifest.join("docs");
     let _ = std::fs::create_dir_all(&docs);
 
@@ -631,7 +621,7 @@ fn write_report(
     let _ = writeln!(
         r,
         "# What accuracy costs\n\n\
-         Generated by `cargo run --release --example accuracy` ({date}). Do not edit by hand: \
+         Generated by `cargo xtask accuracy` ({date}). Do not edit by hand: \
          every figure here is measured by that command.\n\n\
          - **Accuracy** is against the f64 render of the same scene, pixel by pixel \
          (`fixray::compare`): |Δt| and hit-point error over pixels where both see the same \

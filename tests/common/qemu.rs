@@ -1,6 +1,7 @@
 //! Builds `examples/firmware.rs` for a Cortex-M target, runs it under QEMU through the
-//! cargo runner (`.cargo/config.toml`), and reads what it reports. Shared by
-//! `tests/firmware.rs` and `examples/accuracy.rs` (included with `#[path]`).
+//! cargo runner (`.cargo/config.toml`), and reads what it reports. Part of the
+//! test-support module (`tests/firmware.rs`), shared with `xtask` (the accuracy report
+//! and `cargo xtask firmware`).
 
 use std::collections::BTreeMap;
 use std::process::Command;
@@ -23,9 +24,9 @@ impl Frame {
         self.0.get(key).map_or("", String::as_str)
     }
 
-    /// A numeric field (0 when absent or malformed).
-    pub fn number(&self, key: &str) -> u64 {
-        self.get(key).parse().unwrap_or(0)
+    /// A numeric field; `None` when absent or malformed (never a silent 0).
+    pub fn number(&self, key: &str) -> Option<u64> {
+        self.get(key).parse().ok()
     }
 
     /// The frame hash.
@@ -51,6 +52,15 @@ pub struct Run {
     pub flash: u64,
     /// data + bss in bytes (the stack is in each frame's `stack`).
     pub static_ram: u64,
+}
+
+/// The repository's root (this file is compiled into the tests and into `xtask/`).
+pub fn root() -> std::path::PathBuf {
+    let here = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    match here.file_name() {
+        Some(name) if name == "xtask" => here.parent().unwrap_or(here).to_path_buf(),
+        _ => here.to_path_buf(),
+    }
 }
 
 /// Whether `qemu-system-arm` can be started.
@@ -90,7 +100,8 @@ fn run_with(
     features: Option<&str>,
     spans: bool,
 ) -> Result<Run, String> {
-    let manifest = env!("CARGO_MANIFEST_DIR");
+    let root = root();
+    let manifest = root.to_str().ok_or("the repository path is not UTF-8")?;
     let mut args = vec![
         "run",
         "--quiet",

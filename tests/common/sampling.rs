@@ -1,6 +1,6 @@
 //! Seeded random rays and planes, checked against f64: the property tests
-//! (`tests/properties.rs`) assert on these statistics and `examples/numerics.rs` writes
-//! them into `docs/numerics.md`. Included with `#[path]` by both.
+//! (`tests/properties.rs`) assert on these statistics and `cargo xtask numerics` writes
+//! them into `docs/numerics.md`. Part of the test-support module, shared with `xtask`.
 
 use fixray::{Hit, Miss, Plane, Ray, RayKind, Scalar, Vec3};
 

@@ -1,0 +1,42 @@
+//! `cargo xtask`: fixray's tools (the usual Rust `xtask` pattern; the alias is in
+//! `.cargo/config.toml`). They run on the host, never on a chip:
+//!
+//! ```text
+//! cargo xtask accuracy [--quick]   # docs/accuracy.md and docs/accuracy.png (needs qemu-system-arm)
+//! cargo xtask numerics             # docs/numerics.md
+//! cargo xtask firmware [FORMATS]   # every core × format under QEMU: instructions, flash, hash
+//! ```
+
+// The test-support module's helpers, shared with the integration tests.
+#[allow(dead_code)]
+#[path = "../../tests/common/qemu.rs"]
+mod qemu;
+#[allow(dead_code)]
+#[path = "../../tests/common/sampling.rs"]
+mod sampling;
+
+mod accuracy;
+mod firmware;
+mod numerics;
+
+const USAGE: &str = "usage: cargo xtask accuracy [--quick] | numerics | firmware [FORMAT,...]";
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match args.first().map(String::as_str) {
+        Some("accuracy") => accuracy::main(&args[1..]),
+        Some("numerics") => numerics::main(),
+        Some("firmware") => firmware::main(&args[1..]),
+        _ => {
+            eprintln!("{USAGE}");
+            std::process::exit(2);
+        }
+    }
+}
+
+/// The repository's root (this crate lives in `xtask/`).
+fn root() -> &'static std::path::Path {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask/ has a parent")
+}
