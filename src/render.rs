@@ -16,7 +16,7 @@ use embedded_graphics_core::prelude::{DrawTarget, Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
 
 use crate::kernel::flat::PlaneMode;
-use crate::kernel::{self, Drawing, Kernel};
+use crate::kernel::{self, Drawing, Kernel, RowSink};
 use crate::shade::stages::{Shading, Stages, shading_for, with_stages};
 use crate::stats::Counters;
 use crate::{Plan, Scalar, Scene};
@@ -146,16 +146,30 @@ where
             Point::new(area.top_left.x, i32::from(row)),
             Size::new(area.size.width, 1),
         );
-        kernel::stream::<S, T, D::Color, D::Error>(
+        kernel::stream::<S, T, D::Color, _>(
             frame.scene,
             &frame.drawing,
             row,
             x0..x1 + 1,
             counters,
-            &mut |pixels| target.fill_contiguous(&line, pixels),
+            &mut Row { target, area: line },
         )?;
     }
     Ok(())
+}
+
+/// One row of a target, as the kernels stream into it.
+struct Row<'t, D> {
+    target: &'t mut D,
+    area: Rectangle,
+}
+
+impl<D: DrawTarget> RowSink<D::Color> for Row<'_, D> {
+    type Error = D::Error;
+
+    fn fill(&mut self, pixels: impl Iterator<Item = D::Color>) -> Result<(), D::Error> {
+        self.target.fill_contiguous(&self.area, pixels)
+    }
 }
 
 /// Renders scanline `row` into `line`: pixel `i` of `line` is column `i`. Columns beyond

@@ -399,6 +399,33 @@ impl<S: Scalar> FlatRow<S> {
         }
     }
 
+    /// Columns `0..line.len()` in per-pixel mode into a line of any colour type, block by
+    /// block through [`FlatRow::fill`].
+    pub fn fill_line<C: From<Rgb888>>(&self, line: &mut [C]) {
+        let mut block = [Rgb888::default(); BLOCK];
+        let mut at = 0u16;
+        for slots in line.chunks_mut(BLOCK) {
+            let colors = &mut block[..slots.len()];
+            self.fill(at, colors);
+            for (slot, c) in slots.iter_mut().zip(colors.iter()) {
+                *slot = C::from(*c);
+            }
+            at = at.saturating_add(u16::try_from(slots.len()).unwrap_or(0));
+        }
+    }
+
+    /// Columns `columns` in per-pixel mode as an iterator, computed a block at a time
+    /// through [`FlatRow::fill`] as it is pulled (for a streaming `fill_contiguous`).
+    pub fn blocks(&self, columns: core::ops::Range<u16>) -> impl Iterator<Item = Rgb888> + '_ {
+        let end = columns.end;
+        columns.step_by(BLOCK).flat_map(move |start| {
+            let n = usize::from(end - start).min(BLOCK);
+            let mut colors = [Rgb888::default(); BLOCK];
+            self.fill(start, &mut colors[..n]);
+            colors.into_iter().take(n)
+        })
+    }
+
     /// One block of [`FlatRow::fill`] (`out.len() <= BLOCK`).
     fn fill_block(&self, from: u16, out: &mut [Rgb888]) {
         // Below every accepted plane's w̃ (which is ≥ 0: σN·D > 0 and r > 0).

@@ -24,7 +24,7 @@ use crate::shade::stages::Stages;
 use crate::stats::{Counters, count_primary};
 use crate::{Plan, Scalar, Scene};
 use fast::Primary;
-use flat::{Flat, FlatRow, PlaneMode};
+use flat::{Flat, PlaneMode};
 
 pub(crate) use reference::scanline;
 
@@ -115,29 +115,45 @@ fn fallback_line<S: Scalar, T: Stages, C: From<Rgb888>>(
     primary_line::<S, T, C>(scene, primary.as_ref(), row, line, counters);
 }
 
-/// Streams columns `columns` of scanline `row` to `sink` (a `fill_contiguous`), drawn by
-/// `kernel`: the pixels of [`line`], without a line buffer.
-pub(crate) fn stream<S, T, C, E>(
+/// Where a streamed scanline goes: a `fill_contiguous` of one row. Generic in the
+/// iterator, so that a display driver's `fill_contiguous` is compiled for the kernel's own
+/// iterator (no dynamic call per pixel).
+pub(crate) trait RowSink<C> {
+    /// The target's error.
+    type Error;
+    /// Takes the row's pixels, left to right.
+    fn fill(&mut self, pixels: impl Iterator<Item = C>) -> Result<(), Self::Error>;
+}
+
+/// Streams columns `columns` of scanline `row` to `sink`, drawn by the frame's kernel:
+/// the pixels of [`line`], without a line buffer.
+pub(crate) fn stream<S, T, C, K>(
     scene: &Scene<S>,
     drawing: &Drawing<S>,
     row: u16,
     columns: core::ops::Range<u16>,
     counters: &mut Counters,
-    sink: &mut dyn FnMut(&mut dyn Iterator<Item = C>) -> Result<(), E>,
-) -> Result<(), E>
+    sink: &mut K,
+) -> Result<(), K::Error>
 where
     S: Scalar,
     T: Stages,
     C: From<Rgb888> + Clone,
+    K: RowSink<C>,
 {
     let Drawing { plan, kernel, mode } = drawing;
-    let mode = *mode;
     let fallback;
     let primary = match kernel {
         Kernel::Flat(flat) => match flat.row(scene, row) {
             Some(r) => {
                 count_primary(counters, columns.end.saturating_sub(columns.start));
-                return stream_flat(&r, mode, columns, sink);
+                return match mode {
+                    PlaneMode::PerPixel => sink.fill(r.blocks(columns).map(C::from)),
+                    PlaneMode::Spans => sink.fill(
+                        r.spans(columns.start, columns.end)
+                            .flat_map(|(n, c)| core::iter::repeat_n(C::from(c), n.into())),
+                    ),
+                };
             }
             None => {
                 fallback = fast::<S, T>(scene, plan);
@@ -147,36 +163,7 @@ where
         Kernel::Fast(p) => Some(p),
         Kernel::Reference => None,
     };
-    sink(&mut scanline::<S, T, C>(
-        scene, primary, row, columns, counters,
-    ))
-}
-
-/// A pure-geometry scanline streamed: block by block (per-pixel mode, as [`line`] fills
-/// its buffer) or run by run (span mode).
-fn stream_flat<S: Scalar, C: From<Rgb888> + Clone, E>(
-    r: &FlatRow<S>,
-    mode: PlaneMode,
-    columns: core::ops::Range<u16>,
-    sink: &mut dyn FnMut(&mut dyn Iterator<Item = C>) -> Result<(), E>,
-) -> Result<(), E> {
-    let (x0, x1) = (columns.start, columns.end);
-    match mode {
-        PlaneMode::PerPixel => {
-            let mut blocks = (x0..x1).step_by(flat::BLOCK).flat_map(|start| {
-                let n = usize::from(x1 - start).min(flat::BLOCK);
-                let mut colors = [Rgb888::default(); flat::BLOCK];
-                r.fill(start, &mut colors[..n]);
-                colors.into_iter().take(n)
-            });
-            sink(&mut (&mut blocks).map(C::from))
-        }
-        PlaneMode::Spans => sink(
-            &mut r
-                .spans(x0, x1)
-                .flat_map(|(n, c)| core::iter::repeat_n(C::from(c), n.into())),
-        ),
-    }
+    sink.fill(scanline::<S, T, C>(scene, primary, row, columns, counters))
 }
 
 /// Fills `line` with columns `0..line.len()` of a pure-geometry scanline; `false` when
@@ -196,18 +183,7 @@ fn flat_line<S: Scalar, C: From<Rgb888>>(
     };
     let width = u16::try_from(line.len()).unwrap_or(u16::MAX);
     match mode {
-        PlaneMode::PerPixel => {
-            let mut block = [Rgb888::default(); flat::BLOCK];
-            let mut at = 0u16;
-            for slots in line.chunks_mut(flat::BLOCK) {
-                let colors = &mut block[..slots.len()];
-                r.fill(at, colors);
-                for (slot, c) in slots.iter_mut().zip(colors.iter()) {
-                    *slot = C::from(*c);
-                }
-                at = at.saturating_add(u16::try_from(slots.len()).unwrap_or(0));
-            }
-        }
+        PlaneMode::PerPixel => r.fill_line(line),
         PlaneMode::Spans => {
             let mut rest = line;
             for (n, color) in r.spans(0, width) {

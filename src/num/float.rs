@@ -81,19 +81,16 @@ macro_rules! impl_float {
             }
             #[inline]
             fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> Option<core::cmp::Ordering> {
-                // In the format itself: each product rounds once (½ ulp). Widening f32 to
-                // f64 would be exact but is soft-float on an FPU that has only f32, so it
-                // is kept for what the format cannot decide (out of line, and rare): both
-                // products overflowing to the same infinity (not a tie: the finite
-                // operands say which is larger) and a NaN product (an infinity times a
-                // zero operand).
-                let (p, q) = (a * b, c * d);
-                if p < q {
-                    Some(core::cmp::Ordering::Less)
-                } else if p > q {
-                    Some(core::cmp::Ordering::Greater)
-                } else {
+                // In the format itself: each product rounds once (½ ulp); a NaN product
+                // (an infinity times a zero operand) is `None`. Equal products go out of
+                // line (rare, and a call here would cost every inlined caller a frame): a
+                // finite tie is a tie, but two products overflowing to the same infinity
+                // are decided exactly (the finite operands say which is larger).
+                let order = (a * b).partial_cmp(&(c * d));
+                if order == Some(core::cmp::Ordering::Equal) {
                     $tie(a, b, c, d)
+                } else {
+                    order
                 }
             }
             #[inline]

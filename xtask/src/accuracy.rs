@@ -437,10 +437,10 @@ fn fast_section(
          reference time / path time) and, for I16F16 and its reciprocal variant, its cost on \
          the chips (instructions per pixel including about 11–13 of frame hashing; the default renderer's path is the \
          firmware table's, span mode is the same firmware built with `FIXRAY_FW_SPANS=1`).\n\n\
-         - *fast: cross-products* is `fixray::fast`: unnormalised directions, the epsilon and \
+         - *fast: cross-products* is the fast kernel (`kernel/fast.rs`): unnormalised directions, the epsilon and \
          screen tests in squared and cross-multiplied form, one division per pixel (for the \
          hit point); shadow rays against planes without division (`Plane::occludes`).\n\
-         - *pure geometry* is `fixray::flat`, the renderer's path for scenes of infinite planes \
+         - *pure geometry* is the pure-geometry kernel (`kernel/flat.rs`), the renderer's path for scenes of infinite planes \
          without lighting: per scanline the interval where each plane is accepted (settled by \
          the per-pixel test) and `1/t'` as a line; per pixel a multiply-add per plane (per-pixel \
          mode) or per run of equal pixels a few comparisons (span mode). Span mode is \
@@ -635,11 +635,15 @@ fn write_report(
          with `-icount shift=0` (deterministic), per pixel of the frame, including about \
          11–13 instructions per pixel of frame hashing. **Flash** is the firmware with that \
          one format and the scenes' text; **RAM** is static data plus the deepest stack.\n\
-         - The accuracy columns follow the per-pixel reference path (the definition of \
-         `scene-format.md`); the host and chip costs are those of the default renderer, in \
-         which primary rays of plane scenes take the fast path (`fixray::fast`) and scenes of \
-         infinite planes without lighting the pure-geometry kernel (`fixray::flat`, per-pixel \
-         mode). The last section compares every path with the reference path, with its \
+         - The pixel columns (differing pixels, PSNR, SSIM) are the pixels the renderer \
+         draws (`render` / `render_line`, which the kernel chooses once per frame: \
+         `tests/kernels.rs` checks they agree), so they and the host and chip costs \
+         describe the same path, in which primary rays of plane scenes take the fast kernel \
+         (`kernel/fast.rs`) and scenes of infinite planes without lighting the pure-geometry \
+         kernel (`kernel/flat.rs`, per-pixel mode). |Δt|, the hit-point error and hit/miss \
+         disagreement are properties of the primary ray, defined by the reference path \
+         (`trace_pixel`, the definition of `scene-format.md`). The last section gives the \
+         reference path a row of its own and compares every kernel with it, with its \
          cost.\n"
     );
 
@@ -665,7 +669,7 @@ fn write_report(
                 if met {
                     ""
                 } else {
-                    "Primary rays take the fast path (`fixray::fast`: no normalisation, one \
+                    "Primary rays take the fast kernel (`kernel/fast.rs`: no normalisation, one \
                      division per pixel), shadow rays against planes divide no more \
                      (`Plane::occludes`), and on the M0 double-width products are formed \
                      from 16-bit halves instead of the 64-bit multiply helper. What remains \
