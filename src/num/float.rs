@@ -83,7 +83,7 @@ macro_rules! impl_float {
             fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> Option<core::cmp::Ordering> {
                 // In the format itself: each product rounds once (½ ulp); a NaN product
                 // (an infinity times a zero operand) is `None`. Equal products go out of
-                // line (rare, and a call here would cost every inlined caller a frame): a
+                // line (a cold function: they are rare): a
                 // finite tie is a tie, but two products overflowing to the same infinity
                 // are decided exactly (the finite operands say which is larger).
                 let order = (a * b).partial_cmp(&(c * d));
