@@ -4,7 +4,7 @@
 //!
 //! ```text
 //! cargo run --release --example render
-//! cargo run --release --example render -- [SCENE_FILE] [--format i16f16|i20f12|i32f32|f32|f64]
+//! cargo run --release --example render -- [SCENE_FILE] [--format FORMAT]
 //!                                         [--out FILE.png] [--compare FILE.png]
 //! ```
 //!
