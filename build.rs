@@ -23,22 +23,25 @@ use std::env;
 use std::fs;
 use std::path::PathBuf;
 
-/// The number formats, read from the one list (`src/num/formats.rs`, `pub const FORMATS`):
-/// the build script cannot use the crate it builds, so it reads the list's text.
+/// The number formats, read from the one list (`src/num/formats.rs`, `pub const
+/// DESCRIBED`, rows `("name", "what it is")`): the build script cannot use the crate it
+/// builds, so it reads the list's text.
 fn formats(dir: &str) -> Vec<String> {
     let path = format!("{dir}/src/num/formats.rs");
     println!("cargo:rerun-if-changed={path}");
     let text = fs::read_to_string(&path).expect("src/num/formats.rs is readable");
     let start = text
-        .find("pub const FORMATS")
-        .expect("src/num/formats.rs defines FORMATS");
+        .find("pub const DESCRIBED")
+        .expect("src/num/formats.rs defines DESCRIBED");
     let list = &text[start..];
-    let open = list.find("= [").expect("FORMATS is an array") + 3;
-    let close = list[open..].find("];").expect("FORMATS ends") + open;
+    let open = list.find("= [").expect("DESCRIBED is an array") + 3;
+    let close = list[open..].find("];").expect("DESCRIBED ends") + open;
+    // The quoted strings alternate: name, what it is, name, … (no string holds a quote).
     list[open..close]
-        .split(',')
-        .map(|n| n.trim().trim_matches('"').to_string())
-        .filter(|n| !n.is_empty())
+        .split('"')
+        .skip(1)
+        .step_by(4)
+        .map(str::to_string)
         .collect()
 }
 

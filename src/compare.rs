@@ -1,8 +1,8 @@
 //! Accuracy of one number format against another (normally the `f64` reference), pixel by
 //! pixel: the pixels are those the renderer draws (a [`Frame`] per scene, line by line),
 //! the hit errors those of the reference path's primary rays ([`trace_pixel`]), which is
-//! what `t` and the hit point are defined by. No image is stored: one line per scene
-//! ([`crate::scene::MAX_PIXELDIM`] pixels each, 24 KB of stack for both).
+//! what `t` and the hit point are defined by. No image and no line is stored: 64 columns
+//! of each scene at a time (384 bytes of stack for both).
 //!
 //! ```
 //! use fixray::{compare::compare, Scene, I16F16};
@@ -20,7 +20,6 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
-use crate::scene::MAX_PIXELDIM;
 use crate::{Frame, Scalar, Scene, Traced, trace_pixel};
 
 /// How a render in one format differs from a reference render of the same scene.
@@ -113,6 +112,11 @@ pub fn heat_color(pixel: Rgb888, reference: Rgb888) -> Rgb888 {
     }
 }
 
+/// Columns compared at a time: the pure-geometry kernel's block (a multiple of the fast
+/// kernel's resync step), so that each chunk is drawn exactly as `render_line` draws it.
+const CHUNK: usize = crate::kernel::flat::BLOCK;
+const _: () = assert!(CHUNK.is_multiple_of(crate::kernel::fast::RESYNC_PIXELS as usize));
+
 /// Renders both scenes and compares them (the pixels [`crate::render`] draws, the hits of
 /// the reference path); `on_pixel(column, row, pixel,
 /// reference_pixel)` sees every pair (for a heat map), row by row.
@@ -125,15 +129,17 @@ pub fn compare<S: Scalar, R: Scalar>(
     let width = scene.camera.width.min(reference.camera.width);
     let height = scene.camera.height.min(reference.camera.height);
     let (frame, ref_frame) = (Frame::new(scene), Frame::new(reference));
-    let mut line = [Rgb888::BLACK; MAX_PIXELDIM as usize];
-    let mut ref_line = [Rgb888::BLACK; MAX_PIXELDIM as usize];
+    let (mut chunk, mut ref_chunk) = ([Rgb888::BLACK; CHUNK], [Rgb888::BLACK; CHUNK]);
     for row in 0..height {
-        frame.render_line(row, &mut line);
-        ref_frame.render_line(row, &mut ref_line);
         for column in 0..width {
+            let at = usize::from(column) % CHUNK;
+            if at == 0 {
+                frame.render_columns(row, column, &mut chunk);
+                ref_frame.render_columns(row, column, &mut ref_chunk);
+            }
             let Traced { hit, .. } = trace_pixel(scene, column, row);
             let Traced { hit: ref_hit, .. } = trace_pixel(reference, column, row);
-            let (px, ref_px) = (line[usize::from(column)], ref_line[usize::from(column)]);
+            let (px, ref_px) = (chunk[at], ref_chunk[at]);
             match (hit, ref_hit) {
                 (Some((i, h)), Some((j, g))) if i == j => {
                     let dt = libm::fabs(h.t.to_f64() - g.t.to_f64());

@@ -114,6 +114,54 @@ impl<'a, S: Scalar> Frame<'a, S> {
     }
 }
 
+impl<S: Scalar> Frame<'_, S> {
+    /// Columns `start..start + out.len()` of scanline `row` into `out`, streamed as
+    /// [`Frame::draw`] computes them (no line buffer of the frame's width: a tool compares
+    /// two frames chunk by chunk). Chunks that start at multiples of 64 give exactly the
+    /// pixels of [`Frame::render_line`] (its block and resync points).
+    pub(crate) fn render_columns(&self, row: u16, start: u16, out: &mut [Rgb888]) {
+        let end = u16::try_from(out.len())
+            .ok()
+            .and_then(|n| start.checked_add(n))
+            .unwrap_or(u16::MAX)
+            .min(self.scene.camera.width);
+        if row >= self.scene.camera.height || start >= end {
+            return;
+        }
+        with_stages!(self.shading, columns_with::<S>(self, row, start..end, out));
+    }
+}
+
+/// Writes a streamed scanline into a slice.
+struct Slice<'o>(&'o mut [Rgb888]);
+
+impl RowSink<Rgb888> for Slice<'_> {
+    type Error = core::convert::Infallible;
+
+    fn fill(&mut self, pixels: impl Iterator<Item = Rgb888>) -> Result<(), Self::Error> {
+        for (slot, c) in self.0.iter_mut().zip(pixels) {
+            *slot = c;
+        }
+        Ok(())
+    }
+}
+
+fn columns_with<S: Scalar, T: Stages>(
+    frame: &Frame<'_, S>,
+    row: u16,
+    columns: core::ops::Range<u16>,
+    out: &mut [Rgb888],
+) {
+    let _ = kernel::stream::<S, T, Rgb888, _>(
+        frame.scene,
+        &frame.drawing,
+        row,
+        columns,
+        &mut Counters::default(),
+        &mut Slice(out),
+    );
+}
+
 fn select<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Kernel<S> {
     kernel::select::<S, T>(scene, plan)
 }

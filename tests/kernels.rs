@@ -86,6 +86,19 @@ fn agree<S: Scalar>(name: &str, text: &str, mode: PlaneMode) -> (Vec<Rgb888>, us
         lines.extend_from_slice(&framed);
     }
     let drawn: Vec<Rgb888> = streamed.pixels.iter().map(|p| p.unwrap()).collect();
+    if mode == PlaneMode::PerPixel {
+        // The accuracy report's pixels (`compare`, 64 columns at a time) are these too.
+        let mut compared = vec![Rgb888::BLACK; drawn.len()];
+        fixray::compare::compare(&scene, &scene, |x, y, px, _| {
+            compared[usize::from(y) * usize::from(w) + usize::from(x)] = px;
+        });
+        assert_eq!(
+            compared,
+            drawn,
+            "{name} {}: compare against render_line",
+            S::NAME
+        );
+    }
     assert_eq!(
         drawn,
         lines,

@@ -5,6 +5,21 @@ use core::cmp::Ordering;
 
 use super::{Decimal, EPSILON_DELTAS, Scalar};
 
+/// An integral float (already rounded) as an `i32`, in its own width (a wider type would
+/// be soft float on an f32-only FPU); `None` outside the range, and for NaN, which the
+/// range test refuses.
+macro_rules! integral_to_i32 {
+    ($r:expr) => {{
+        let r = $r;
+        if (-2_147_483_648.0..2_147_483_648.0).contains(&r) {
+            #[allow(clippy::cast_possible_truncation)]
+            Some(r as i32)
+        } else {
+            None
+        }
+    }};
+}
+
 macro_rules! impl_float {
     ($t:ty, $name:literal, $sqrt:path, $round:path, $floor:path, $tie:path) => {
         impl Scalar for $t {
@@ -101,24 +116,11 @@ macro_rules! impl_float {
             }
             #[inline]
             fn round_to_i32(self) -> Option<i32> {
-                let r = $round(self);
-                // The range test also refuses NaN.
-                if (-2_147_483_648.0..2_147_483_648.0).contains(&r) {
-                    #[allow(clippy::cast_possible_truncation)]
-                    Some(r as i32)
-                } else {
-                    None
-                }
+                integral_to_i32!($round(self))
             }
             #[inline]
             fn floor_to_i32(self) -> Option<i32> {
-                let r = $floor(self);
-                if (-2_147_483_648.0..2_147_483_648.0).contains(&r) {
-                    #[allow(clippy::cast_possible_truncation)]
-                    Some(r as i32)
-                } else {
-                    None
-                }
+                integral_to_i32!($floor(self))
             }
             #[inline]
             fn ulp(self) -> Self {

@@ -143,6 +143,18 @@ pub(super) const SCHEMA: [EntitySpec; 8] = [
     },
 ];
 
+// The table is in the order of the variants, so `Entity::spec` indexes it in bounds.
+const _: () = {
+    let mut i = 0;
+    while i < SCHEMA.len() {
+        assert!(
+            SCHEMA[i].entity as usize == i,
+            "SCHEMA is out of the variants' order"
+        );
+        i += 1;
+    }
+};
+
 /// The statements outside blocks (`background R G B`, `precision EPS`).
 pub(super) const STATEMENTS: [&str; 2] = ["background", "precision"];
 
@@ -185,7 +197,7 @@ impl Entity {
     }
 
     fn spec(self) -> &'static EntitySpec {
-        // SCHEMA is in the order of the variants (checked by a test).
+        // SCHEMA is in the order of the variants (checked at compile time, above).
         &SCHEMA[self as usize]
     }
 
