@@ -1,6 +1,6 @@
 //! Accuracy of one number format against another (normally the `f64` reference), pixel by
 //! pixel: the pixels are those the renderer draws (a [`Frame`] per scene, line by line),
-//! the hit errors those of the reference path's primary rays ([`trace_pixel`]), which is
+//! the hit errors those of the reference path's primary rays ([`Frame::trace_pixel`](crate::Frame::trace_pixel)), which is
 //! what `t` and the hit point are defined by. No image and no line is stored: 64 columns
 //! of each scene at a time (384 bytes of stack for both).
 //!
@@ -20,7 +20,7 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
-use crate::{Frame, Scalar, Scene, Traced, trace_pixel};
+use crate::{Frame, Scalar, Scene, Traced};
 
 /// How a render in one format differs from a reference render of the same scene.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -137,8 +137,8 @@ pub fn compare<S: Scalar, R: Scalar>(
                 frame.render_columns(row, column, &mut chunk);
                 ref_frame.render_columns(row, column, &mut ref_chunk);
             }
-            let Traced { hit, .. } = trace_pixel(scene, column, row);
-            let Traced { hit: ref_hit, .. } = trace_pixel(reference, column, row);
+            let Traced { hit, .. } = frame.trace_pixel(column, row);
+            let Traced { hit: ref_hit, .. } = ref_frame.trace_pixel(column, row);
             let (px, ref_px) = (chunk[at], ref_chunk[at]);
             match (hit, ref_hit) {
                 (Some((i, h)), Some((j, g))) if i == j => {

@@ -19,7 +19,7 @@ use crate::kernel::flat::PlaneMode;
 use crate::kernel::{self, Drawing, Kernel, RowSink};
 use crate::shade::stages::{Shading, Stages, shading_for, with_stages};
 use crate::stats::Counters;
-use crate::{Plan, Scalar, Scene};
+use crate::{Plan, Scalar, Scene, Traced};
 
 /// A frame of a scene: what is constant for the frame (the plan, the kernel, its
 /// per-plane terms and reciprocals) computed once in [`Frame::new`], then drawn line by
@@ -68,6 +68,13 @@ impl<'a, S: Scalar> Frame<'a, S> {
             shading,
             drawing: Drawing { plan, kernel, mode },
         }
+    }
+
+    /// The primary ray of pixel (`column`, `row`) traced on the reference path (the
+    /// definition, a normalised ray), with the stage set this frame chose:
+    /// [`crate::trace_pixel`] without working out the plan again.
+    pub fn trace_pixel(&self, column: u16, row: u16) -> Traced<S> {
+        crate::shade::trace_pixel_with(self.scene, self.shading, column, row)
     }
 
     /// How pure-geometry plane scenes are drawn in this frame.

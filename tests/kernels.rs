@@ -87,6 +87,17 @@ fn agree<S: Scalar>(name: &str, text: &str, mode: PlaneMode) -> (Vec<Rgb888>, us
     }
     let drawn: Vec<Rgb888> = streamed.pixels.iter().map(|p| p.unwrap()).collect();
     if mode == PlaneMode::PerPixel {
+        // The frame's reference path is the free function's, with the plan worked out once.
+        for row in [0, h / 2, h - 1] {
+            for column in 0..w {
+                assert_eq!(
+                    frame.trace_pixel(column, row),
+                    fixray::trace_pixel(&scene, column, row),
+                    "{name} {}: ({column}, {row})",
+                    S::NAME
+                );
+            }
+        }
         // The accuracy report's pixels (`compare`, 64 columns at a time) are these too.
         let mut compared = vec![Rgb888::BLACK; drawn.len()];
         fixray::compare::compare(&scene, &scene, |x, y, px, _| {

@@ -219,11 +219,26 @@ fn trace_one<S: Scalar, T: Stages>(
     trace_with::<S, T>(scene, ray, 0, counters)
 }
 
-/// Traces the primary ray of pixel (`column`, `row`), row 0 at the top. A ray that cannot
-/// be formed in the format (see [`crate::Camera::primary_ray`]) sees the background.
+/// Traces the primary ray of pixel (`column`, `row`), row 0 at the top, on the reference
+/// path. A ray that cannot be formed in the format (see [`crate::Camera::primary_ray`])
+/// sees the background. It works out the scene's plan on every call: for many pixels,
+/// [`crate::Frame::trace_pixel`] does that once per frame.
 pub fn trace_pixel<S: Scalar>(scene: &Scene<S>, column: u16, row: u16) -> Traced<S> {
+    trace_pixel_with(scene, shading_for(&scene.plan()), column, row)
+}
+
+/// [`trace_pixel`] with the stage set already chosen.
+pub(crate) fn trace_pixel_with<S: Scalar>(
+    scene: &Scene<S>,
+    shading: stages::Shading,
+    column: u16,
+    row: u16,
+) -> Traced<S> {
     match scene.camera.primary_ray(column, row) {
-        Some(ray) => trace(scene, &ray),
+        Some(ray) => with_stages!(
+            shading,
+            trace_one::<S>(scene, &ray, &mut Counters::default())
+        ),
         None => Traced {
             hit: None,
             color: scene.background,
