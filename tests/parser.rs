@@ -119,8 +119,72 @@ fn missing_close_brace_at_end_of_input() {
 
 #[test]
 fn bad_name() {
-    check("camera 9lives { }", 1, 8, "expected a name, found `9lives`");
+    // A name is any token that is not a brace, a keyword or a number (scene-format.md).
+    check("camera 9 { }", 1, 8, "expected a name, found `9`");
+    check("camera -0.5e2 { }", 1, 8, "expected a name, found `-0.5e2`");
     check("camera {", 1, 8, "expected a name, found `{`");
+    check("camera plane { }", 1, 8, "expected a name, found `plane`");
+    check(
+        "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\nmaterial sphere { }",
+        2,
+        10,
+        "expected a name, found `sphere`",
+    );
+}
+
+/// Names as real course files write them (Blender exports: `Sphere.060`,
+/// `seg-your-fault.115`), and both spellings of a plane's dimensions.
+#[test]
+fn course_names_and_both_dimension_spellings_are_read() {
+    let text = "camera Camera.001 { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }
+        material Material.060 { ambient 0.5 0.5 0.5 }
+        material seg-your-fault.115 { ambient 0 0 1 }
+        tiled_plane Plane.002 { material Material.060 altmaterial seg-your-fault.115
+            normal 0 1 0 point 0 0 0 xdir 1 0 0 dimensions 1 1 }
+        fplane 9lives { material seg-your-fault.115 normal 0 0 1 point 0 0 -5 xdir 1 0 0
+            dimension 2 1 }";
+    let s = Scene::<I16F16>::parse(text).unwrap();
+    assert_eq!((s.materials.len(), s.objects.len()), (2, 2));
+    check(
+        &format!(
+            "{text}\nfplane f {{ material Material.060 normal 0 0 1 point 0 0 -5 xdir 1 0 0 dimension 2 1 dimensions 2 1 }}"
+        ),
+        8,
+        85,
+        "`dimensions` given twice in one block",
+    );
+}
+
+/// What real course files have that fixray does not draw yet is refused at its position,
+/// never silently ignored.
+#[test]
+fn course_entities_not_supported_yet_are_refused_where_they_are() {
+    let cam = "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n";
+    for entity in [
+        "triangle",
+        "tri",
+        "texture",
+        "texplane",
+        "projector",
+        "revsurf",
+    ] {
+        check(
+            &format!("{cam}{entity} t {{ }}"),
+            2,
+            1,
+            &format!(
+                "`{entity}` is not supported yet (fixray does not draw it; the scene is \
+                 refused rather than drawn without it)"
+            ),
+        );
+    }
+    check(
+        &format!("{cam}material glass {{ ambient 0 0 0 transparency 0.5 }}"),
+        2,
+        32,
+        "`transparency` is not supported yet (fixray does not draw it; the scene is \
+         refused rather than drawn without it)",
+    );
 }
 
 #[test]

@@ -94,6 +94,9 @@ pub enum SceneErrorKind {
         /// [`MAX_LIGHTS`](crate::scene::MAX_LIGHTS), [`MAX_OBJECTS`](crate::scene::MAX_OBJECTS)).
         capacity: usize,
     },
+    /// An entity or attribute of the course's format that this crate does not draw yet
+    /// (`triangle`, `texture`, `texplane`, `projector`, `revsurf`, `transparency`).
+    NotSupportedYet(&'static str),
     /// A valid entity or attribute whose stage this build leaves out (a firmware built
     /// without one of the cargo features `lighting`, `spheres`, `reflection`).
     NotBuiltIn {
@@ -159,6 +162,11 @@ impl fmt::Display for SceneErrorKind {
             K::TooMany { what, capacity } => {
                 write!(f, "too many {what} (this build holds {capacity})")
             }
+            K::NotSupportedYet(what) => write!(
+                f,
+                "`{what}` is not supported yet (fixray does not draw it; the scene is refused \
+                 rather than drawn without it)"
+            ),
             K::NotBuiltIn { what, feature } => write!(
                 f,
                 "{what} not built into this program (cargo feature `{feature}`)"

@@ -86,10 +86,15 @@ pub(super) fn quote(text: &str) -> Quoted {
     q
 }
 
+/// Whether a token can be a name (`scene-format.md`, "Lexical rules"): any token that is
+/// not a brace, a keyword or a number. Real course files write `Sphere.060` and
+/// `seg-your-fault.115`.
 pub(super) fn is_name(s: &str) -> bool {
-    let mut chars = s.chars();
-    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
-        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+    !s.is_empty()
+        && s != "{"
+        && s != "}"
+        && !super::schema::is_keyword(s)
+        && crate::num::Decimal::parse(s).is_none()
 }
 
 #[cfg(test)]
@@ -98,10 +103,32 @@ mod tests {
 
     #[test]
     fn names_follow_the_format_syntax() {
-        for ok in ["a", "_x", "floor_2", "Z9"] {
+        // Names as real course files write them (Blender exports), and ours.
+        for ok in [
+            "a",
+            "_x",
+            "floor_2",
+            "Z9",
+            "Sphere.060",
+            "seg-your-fault.115",
+            "2a",
+            "é",
+        ] {
             assert!(is_name(ok), "{ok}");
         }
-        for bad in ["", "2a", "a-b", "é", "{"] {
+        // Braces, keywords and numbers are not names.
+        for bad in [
+            "",
+            "{",
+            "}",
+            "plane",
+            "camera",
+            "background",
+            "7",
+            "-0.5",
+            ".25",
+            "1e3",
+        ] {
             assert!(!is_name(bad), "{bad}");
         }
     }

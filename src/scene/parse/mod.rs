@@ -151,7 +151,10 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
             if t.text == "}" {
                 break;
             }
-            let Some(i) = specs.iter().position(|s| s.name == t.text) else {
+            let Some(i) = specs.iter().position(|s| s.is(t.text)) else {
+                if let Some(what) = schema::NOT_YET.iter().find(|w| **w == t.text) {
+                    return Err(t.pos.error(SceneErrorKind::NotSupportedYet(what)));
+                }
                 return Err(t.pos.error(SceneErrorKind::UnknownAttribute {
                     entity: entity.keyword(),
                     found: quote(t.text),
@@ -250,6 +253,9 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
                     }
                 }
                 _ => {
+                    if let Some(what) = schema::NOT_YET.iter().find(|w| **w == t.text) {
+                        return Err(t.pos.error(SceneErrorKind::NotSupportedYet(what)));
+                    }
                     let Some(entity) = Entity::from_keyword(t.text) else {
                         return Err(t.pos.error(SceneErrorKind::UnknownKeyword(quote(t.text))));
                     };

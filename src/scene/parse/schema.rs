@@ -30,13 +30,23 @@ pub(super) enum Arity {
 /// One attribute of an entity.
 pub(super) struct AttrSpec {
     pub(super) name: &'static str,
+    /// Another spelling real files use (`dimension` / `dimensions`).
+    pub(super) alias: Option<&'static str>,
     pub(super) arity: Arity,
     pub(super) required: bool,
+}
+
+impl AttrSpec {
+    /// Whether `word` names this attribute.
+    pub(super) fn is(&self, word: &str) -> bool {
+        self.name == word || self.alias == Some(word)
+    }
 }
 
 const fn numbers(name: &'static str, n: usize) -> AttrSpec {
     AttrSpec {
         name,
+        alias: None,
         arity: Arity::Numbers(n),
         required: true,
     }
@@ -44,6 +54,7 @@ const fn numbers(name: &'static str, n: usize) -> AttrSpec {
 const fn optional(name: &'static str, n: usize) -> AttrSpec {
     AttrSpec {
         name,
+        alias: None,
         arity: Arity::Numbers(n),
         required: false,
     }
@@ -51,7 +62,17 @@ const fn optional(name: &'static str, n: usize) -> AttrSpec {
 const fn material(name: &'static str) -> AttrSpec {
     AttrSpec {
         name,
+        alias: None,
         arity: Arity::Name,
+        required: true,
+    }
+}
+/// Two numbers that real files spell either way.
+const fn dimensions(name: &'static str, alias: &'static str) -> AttrSpec {
+    AttrSpec {
+        name,
+        alias: Some(alias),
+        arity: Arity::Numbers(2),
         required: true,
     }
 }
@@ -127,7 +148,7 @@ pub(super) const SCHEMA: [EntitySpec; 8] = [
             numbers("normal", 3),
             numbers("point", 3),
             numbers("xdir", 3),
-            numbers("dimension", 2),
+            dimensions("dimension", "dimensions"),
         ],
     },
     EntitySpec {
@@ -138,7 +159,7 @@ pub(super) const SCHEMA: [EntitySpec; 8] = [
             numbers("normal", 3),
             numbers("point", 3),
             numbers("xdir", 3),
-            numbers("dimensions", 2),
+            dimensions("dimensions", "dimension"),
         ],
     },
 ];
@@ -157,6 +178,24 @@ const _: () = {
 
 /// The statements outside blocks (`background R G B`, `precision EPS`).
 pub(super) const STATEMENTS: [&str; 2] = ["background", "precision"];
+
+/// What real course files have that this crate does not draw yet: entities and material
+/// attributes, refused with [`super::SceneErrorKind::NotSupportedYet`] at their
+/// `line:column`, never silently ignored.
+pub(super) const NOT_YET: [&str; 7] = [
+    "triangle",
+    "tri",
+    "texture",
+    "texplane",
+    "projector",
+    "revsurf",
+    "transparency",
+];
+
+/// Whether `word` is a keyword of the format (it cannot be a name).
+pub(super) fn is_keyword(word: &str) -> bool {
+    keywords().any(|k| k == word) || NOT_YET.contains(&word)
+}
 
 /// The most attributes any entity has: the size of a block's value table.
 pub(super) const MAX_ATTRS: usize = {
@@ -229,6 +268,18 @@ mod tests {
         for (i, spec) in SCHEMA.iter().enumerate() {
             assert_eq!(spec.entity as usize, i, "{}", spec.keyword);
             assert_eq!(Entity::from_keyword(spec.keyword), Some(spec.entity));
+        }
+    }
+
+    #[test]
+    fn both_spellings_of_the_dimensions_are_one_attribute() {
+        for entity in [Entity::TiledPlane, Entity::FPlane] {
+            let dims: std::vec::Vec<_> = entity
+                .attributes()
+                .iter()
+                .filter(|a| a.is("dimension") && a.is("dimensions"))
+                .collect();
+            assert_eq!(dims.len(), 1, "{}", entity.keyword());
         }
     }
 
