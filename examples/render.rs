@@ -6,13 +6,16 @@
 //! cargo run --release --example render
 //! cargo run --release --example render -- [SCENE_FILE] [--format FORMAT]
 //!                                         [--out FILE.png] [--compare FILE.png]
+//!                                         [--rules course|fixray]
 //! ```
 //!
 //! Without `--format` every format is rendered and reported, and `--out` (default
 //! `render.png`) receives the I16F16 render. With `--format` only that format is rendered
 //! into `--out`, at the scene's pixeldim, scale 1, Rgb888. `--compare` writes one picture:
 //! the format | the f64 render | a heat map of the per-pixel channel error (black: equal;
-//! blue → red: 1 → 255 levels, log scale). A scene error prints `FILE:LINE:COL: message`
+//! blue → red: 1 → 255 levels, log scale). `--rules` draws the scene by that rule set
+//! whatever its file says (a file without a `rules` statement is a course file); the
+//! first line printed names the rule set used. A scene error prints `FILE:LINE:COL: message`
 //! and exits with status 1; bad arguments exit with status 2.
 
 use std::process::ExitCode;
@@ -23,21 +26,22 @@ use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use fixray::compare::{Comparison, compare, heat_color};
 use fixray::num::formats::{self, MAIN};
-use fixray::{Scalar, Scene, SceneError, render_line};
+use fixray::{Rules, Scalar, Scene, SceneError, render_line};
 
 /// The built-in default scene, compiled in.
 const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
 const DEFAULT_SCENE_NAME: &str = "scenes/default.scene";
 
 const USAGE: &str = "usage: render [SCENE_FILE] [--format FORMAT] [--out FILE.png] \
-                     [--compare FILE.png]   (FORMAT: one of fixray::num::formats::FORMATS; \
-                     without it, every main format)";
+                     [--compare FILE.png] [--rules course|fixray]   (FORMAT: one of \
+                     fixray::num::formats::FORMATS; without it, every main format)";
 
 struct Args {
     scene: Option<String>,
     format: Option<String>,
     out: String,
     compare: Option<String>,
+    rules: Option<Rules>,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -46,6 +50,7 @@ fn parse_args() -> Result<Args, String> {
         format: None,
         out: "render.png".into(),
         compare: None,
+        rules: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -58,6 +63,10 @@ fn parse_args() -> Result<Args, String> {
             }
             "--out" => args.out = value("--out")?,
             "--compare" => args.compare = Some(value("--compare")?),
+            "--rules" => {
+                let r = value("--rules")?;
+                args.rules = Some(r.parse().map_err(|e| format!("--rules `{r}`: {e}"))?);
+            }
             "-h" | "--help" => return Err(String::new()),
             s if s.starts_with("--") => return Err(format!("unknown option `{s}`")),
             s if args.scene.is_none() => args.scene = Some(s.into()),
@@ -140,8 +149,16 @@ fn time_frames<S: Scalar>(scene: &Scene<S>) -> (Image, Duration) {
     (image, times[times.len() / 2])
 }
 
+/// Reads a scene, drawn by `rules` if given (else by the file's own).
+fn read<S: Scalar>(text: &str, rules: Option<Rules>) -> Result<Scene<S>, SceneError> {
+    match rules {
+        Some(r) => Scene::<S>::parse_as(text, r),
+        None => Scene::<S>::parse(text),
+    }
+}
+
 fn run<S: Scalar>(text: &str, reference: &Scene<f64>) -> Result<Run, SceneError> {
-    let scene = Scene::<S>::parse(text)?;
+    let scene = read::<S>(text, Some(reference.rules()))?;
     let (image, frame) = time_frames(&scene);
     let mut heat = Vec::with_capacity(image.pixels.len());
     let comparison = compare(&scene, reference, |_, _, px, ref_px| {
@@ -234,10 +251,16 @@ fn main() -> ExitCode {
         eprintln!("{scene_name}:{e}");
         ExitCode::from(1)
     };
-    let reference = match Scene::<f64>::parse(&text) {
+    let reference = match read::<f64>(&text, args.rules) {
         Ok(s) => s,
         Err(e) => return scene_error(e),
     };
+    let from = if args.rules.is_some() {
+        "--rules"
+    } else {
+        "the file"
+    };
+    println!("rules: {} (from {from})", reference.rules());
     let reference_image = render_image(&reference);
     let outcome = match &args.format {
         Some(format) => {

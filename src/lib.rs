@@ -13,6 +13,7 @@
 //! use fixray::{render, Scene, I16F16};
 //!
 //! let text = "
+//!     rules fixray
 //!     camera cam { pixeldim 4 4 worlddim 4 4 viewpoint 2 2 5 }
 //!     material red { ambient 1 0 0 }
 //!     plane floor { material red normal 0 1 0 point 0 0.4 0 }   # y = 0.4: the lower half
@@ -54,16 +55,19 @@ pub struct ReadmeDoctests;
 
 pub use geometry::{
     FrameError, Hit, Miss, Normalized, Plane, PlaneError, PlaneFrame, Ray, RayKind, Shape, Sphere,
-    SphereError, Vec3,
+    SphereError, Tiling, Vec3,
 };
 pub use kernel::flat::PlaneMode;
 pub use num::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};
 pub use render::{Frame, render, render_counted, render_line, render_line_counted};
 pub use scene::{
-    Camera, Color, Cone, Light, Material, Object, Plan, Scene, SceneError, SceneErrorKind,
+    Camera, Color, Cone, Light, Material, Object, PixelGrid, Plan, Rules, Scene, SceneError,
+    SceneErrorKind,
 };
-pub use shade::color::to_rgb888;
-pub use shade::{MAX_REFLECTION_DEPTH, Traced, pixel, shade, trace, trace_pixel};
+pub use shade::color::{to_pixel, to_rgb888};
+pub use shade::{
+    MAX_COURSE_BOUNCES, MAX_PATH, MAX_REFLECTION_DEPTH, Traced, pixel, shade, trace, trace_pixel,
+};
 pub use stats::Counters;
 
 /// Kernel internals for the crate's own tests and benchmarks: not part of the API, and

@@ -7,7 +7,7 @@ use common::{assert_pattern_everywhere, top_left_pixel};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::compare::compare;
 use fixray::num::variants::F32Micro;
-use fixray::{Counters, I16F16, I20F12, I32F32, Scalar, Scene, render_line_counted};
+use fixray::{Counters, I16F16, I20F12, I32F32, Rules, Scalar, Scene, render_line_counted};
 
 #[test]
 fn a_sphere_is_a_disc() {
@@ -117,7 +117,7 @@ fn specular_follows_the_half_vector_formula() {
 
 /// The counters of a whole frame.
 fn counters<S: Scalar>(text: &str) -> Counters {
-    let scene = Scene::<S>::parse(text).unwrap();
+    let scene = Scene::<S>::parse_as(text, Rules::Fixray).unwrap();
     let mut line = vec![Rgb888::BLACK; usize::from(scene.camera.width)];
     let mut c = Counters::default();
     for row in 0..scene.camera.height {
@@ -182,7 +182,7 @@ fn no_acne<S: Scalar>() {
         light l { location 4 20 -10 emissivity 30 30 30 }
         plane floor { material floor_m normal 0 1 0 point 0 0 0 }
         sphere far { material s_m center 500 1 -100 radius 1 }";
-    let scene = Scene::<S>::parse(text).unwrap();
+    let scene = Scene::<S>::parse_as(text, Rules::Fixray).unwrap();
     assert!(scene.plan().shadows);
     let unlit = fixray::to_rgb888(scene.materials[0].ambient);
     let mut acne = 0;
@@ -241,25 +241,25 @@ fn effects_stay_within_their_budgets_against_f64() {
         ("mirror", include_str!("../scenes/mirror.scene"), 0.05, 0.03),
     ];
     for (name, text, fixed_budget, wide_budget) in scenes {
-        let reference = Scene::<f64>::parse(text).unwrap();
+        let reference = Scene::<f64>::parse_as(text, Rules::Fixray).unwrap();
         let share = |c: fixray::compare::Comparison| c.differing_share();
         let i16 = share(compare(
-            &Scene::<I16F16>::parse(text).unwrap(),
+            &Scene::<I16F16>::parse_as(text, Rules::Fixray).unwrap(),
             &reference,
             |_, _, _, _| {},
         ));
         let i32 = share(compare(
-            &Scene::<I32F32>::parse(text).unwrap(),
+            &Scene::<I32F32>::parse_as(text, Rules::Fixray).unwrap(),
             &reference,
             |_, _, _, _| {},
         ));
         let f32 = share(compare(
-            &Scene::<f32>::parse(text).unwrap(),
+            &Scene::<f32>::parse_as(text, Rules::Fixray).unwrap(),
             &reference,
             |_, _, _, _| {},
         ));
         let f32m = share(compare(
-            &Scene::<F32Micro>::parse(text).unwrap(),
+            &Scene::<F32Micro>::parse_as(text, Rules::Fixray).unwrap(),
             &reference,
             |_, _, _, _| {},
         ));

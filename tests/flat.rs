@@ -13,7 +13,8 @@ use fixray::internals::Primary;
 use fixray::internals::{Flat, applies};
 use fixray::to_rgb888;
 use fixray::{
-    Counters, Frame, I16F16, I20F12, I32F32, PlaneMode, Scalar, Scene, pixel, render, render_line,
+    Counters, Frame, I16F16, I20F12, I32F32, PlaneMode, Rules, Scalar, Scene, pixel, render,
+    render_line,
 };
 use sampling::SplitMix;
 
@@ -75,7 +76,7 @@ fn differ(a: &Image, b: &Image) -> usize {
 /// Per-pixel and span images of a scene, checked against each other and the fast path;
 /// returns (pixels, per-pixel vs fast path differences, spans vs per-pixel differences).
 fn compare<S: Scalar>(name: &str, text: &str) -> (usize, usize, usize) {
-    let scene = Scene::<S>::parse(text).unwrap();
+    let scene = Scene::<S>::parse_as(text, Rules::Fixray).unwrap();
     assert!(applies(&scene), "{name}: pure geometry");
     assert!(Flat::new(&scene).is_some(), "{name} {}", S::NAME);
     for row in 0..scene.camera.height {
@@ -164,7 +165,7 @@ fn random<S: Scalar>(exact_spans: bool) {
     let (mut total, mut vs_fast, mut vs_spans, mut seen) = (0, 0, 0, 0);
     for case in 0..60 {
         let text = random_scene(&mut rng);
-        let scene = Scene::<S>::parse(&text).unwrap();
+        let scene = Scene::<S>::parse_as(&text, Rules::Fixray).unwrap();
         if Flat::new(&scene).is_none() {
             continue;
         }
@@ -211,7 +212,7 @@ fn render_draws_what_render_line_draws_in_both_modes_and_clipped() {
         plane back  { material c normal 0.3 0.1 1 point 0 0 -12 }
     ";
     for mode in [PlaneMode::PerPixel, PlaneMode::Spans] {
-        let scene = Scene::<I16F16>::parse(text).unwrap();
+        let scene = Scene::<I16F16>::parse_as(text, Rules::Fixray).unwrap();
         let frame = Frame::with_mode(&scene, mode);
         let expected = lines_in(&scene, mode);
         let mut display = MockDisplay::<Rgb888>::new();
@@ -256,7 +257,7 @@ fn an_eye_on_a_plane_and_a_one_column_image() {
         plane floor { material b normal 0 1 0 point 0 1 0 }
     ";
     for mode in [PlaneMode::PerPixel, PlaneMode::Spans] {
-        let scene = Scene::<I16F16>::parse(text).unwrap();
+        let scene = Scene::<I16F16>::parse_as(text, Rules::Fixray).unwrap();
         let got = lines_in(&scene, mode);
         let want: Vec<Vec<Rgb888>> = (0..6).map(|row| vec![pixel(&scene, 0, row)]).collect();
         assert_eq!(got, want, "{mode:?}");

@@ -6,7 +6,7 @@
 //! plain-f64 plane caster.
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
-use fixray::{I16F16, Scene, render_line};
+use fixray::{I16F16, Rules, Scene, render_line};
 use std::collections::HashMap;
 
 type V3 = [f64; 3];
@@ -121,6 +121,15 @@ fn ref_parse(text: &str) -> RefScene {
             }
             "precision" => {
                 scene.eps = num(&toks[pos + 1]);
+                pos += 2;
+            }
+            // The shipped scenes say `rules fixray`: the rules this reference implements.
+            "rules" => {
+                assert_eq!(
+                    toks[pos + 1],
+                    "fixray",
+                    "reference parser: fixray rules only"
+                );
                 pos += 2;
             }
             "camera" | "material" | "plane" => {
@@ -259,8 +268,8 @@ fn away_from_boundary(r: &[Vec<RefPixel>], i: usize, j: usize) -> bool {
 
 fn check(name: &str, text: &str) {
     let reference = ref_render(&ref_parse(text));
-    let f = Scene::<f64>::parse(text).unwrap();
-    let q = Scene::<I16F16>::parse(text).unwrap();
+    let f = Scene::<f64>::parse_as(text, Rules::Fixray).unwrap();
+    let q = Scene::<I16F16>::parse_as(text, Rules::Fixray).unwrap();
     assert_eq!(usize::from(f.camera.height), reference.len());
     assert_eq!(usize::from(f.camera.width), reference[0].len());
     let f_img = f.render_all();

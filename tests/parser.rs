@@ -5,12 +5,23 @@ mod common;
 use common::sampling;
 use sampling::SplitMix;
 
-use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, SceneError};
+use fixray::{I16F16, I20F12, I32F32, Rules, Scalar, Scene, SceneError};
 
 const CAMERA: &str = "camera cam { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n";
 
+/// What these tests check is the format's `fixray` reading unless they say otherwise
+/// (the course's reading has its own tests, at the end).
+trait ParseFixray: Sized {
+    fn parse_fixray(text: &str) -> Result<Self, SceneError>;
+}
+impl<S: Scalar> ParseFixray for Scene<S> {
+    fn parse_fixray(text: &str) -> Result<Self, SceneError> {
+        Scene::parse_as(text, Rules::Fixray)
+    }
+}
+
 fn err<S: Scalar>(text: &str) -> SceneError {
-    match Scene::<S>::parse(text) {
+    match Scene::<S>::parse_fixray(text) {
         Ok(_) => panic!("accepted:\n{text}"),
         Err(e) => e,
     }
@@ -36,7 +47,7 @@ fn the_notes_scene_parses_with_every_feature_of_the_lexer() {
         light l { emissivity 1 1 1 location -7 2.5E1 3 }\n\
         plane p { point 0 0 -7 normal 0 0 1 material m }\n\
         background 0 0 0.5 precision 0.001";
-    let s = Scene::<I16F16>::parse(text).unwrap();
+    let s = Scene::<I16F16>::parse_fixray(text).unwrap();
     assert_eq!(s.camera.width, 8);
     // Diffuse reflectances are plain reals; displayed colours are in channel units.
     assert_eq!(s.materials[0].diffuse[0].to_f64(), 0.25);
@@ -46,7 +57,7 @@ fn the_notes_scene_parses_with_every_feature_of_the_lexer() {
     assert_eq!(s.epsilon, I16F16::from_f64(0.001).unwrap());
     assert_eq!(s.objects.len(), 1);
     // Without `precision` the format's default applies.
-    let s = Scene::<I32F32>::parse(CAMERA).unwrap();
+    let s = Scene::<I32F32>::parse_fixray(CAMERA).unwrap();
     assert_eq!(s.epsilon, I32F32::DEFAULT_EPSILON);
 }
 
@@ -57,7 +68,7 @@ fn unknown_keyword() {
         1,
         1,
         "unknown keyword `camer` (expected camera, material, light, spotlight, plane, sphere, \
-         tiled_plane, fplane, background or precision)",
+         tiled_plane, fplane, background, precision or rules)",
     );
 }
 
@@ -143,7 +154,7 @@ fn course_names_and_both_dimension_spellings_are_read() {
             normal 0 1 0 point 0 0 0 xdir 1 0 0 dimensions 1 1 }
         fplane 9lives { material seg-your-fault.115 normal 0 0 1 point 0 0 -5 xdir 1 0 0
             dimension 2 1 }";
-    let s = Scene::<I16F16>::parse(text).unwrap();
+    let s = Scene::<I16F16>::parse_fixray(text).unwrap();
     assert_eq!((s.materials.len(), s.objects.len()), (2, 2));
     check(
         &format!(
@@ -226,8 +237,8 @@ fn number_beyond_the_format() {
         "`40000` does not fit in the i16f16 number format",
     );
     // The same scene fits in I20F12 (±524288) and f32.
-    assert!(Scene::<I20F12>::parse(&text).is_ok());
-    assert!(Scene::<f32>::parse(&text).is_ok());
+    assert!(Scene::<I20F12>::parse_fixray(&text).is_ok());
+    assert!(Scene::<f32>::parse_fixray(&text).is_ok());
     // A colour must fit the format itself ...
     check(
         &format!("{CAMERA}background 40000 0 0"),
@@ -237,7 +248,7 @@ fn number_beyond_the_format() {
     );
     // ... but its 255-fold (channel units) may saturate: 200 × 255 = 51000 > 32768 is
     // stored as I16F16::MAX, which displays as 255 exactly like 51000 would.
-    let s = Scene::<I16F16>::parse(&format!("{CAMERA}background 200 0 0")).unwrap();
+    let s = Scene::<I16F16>::parse_fixray(&format!("{CAMERA}background 200 0 0")).unwrap();
     assert_eq!(s.background[0], I16F16::MAX);
     // Beyond even f64.
     check(
@@ -300,7 +311,7 @@ fn out_of_domain() {
         11,
         "`precision` must be at least the number format's resolution (it rounds to 0)",
     );
-    assert!(Scene::<f64>::parse(&format!("{CAMERA}precision 1e-9")).is_ok());
+    assert!(Scene::<f64>::parse_fixray(&format!("{CAMERA}precision 1e-9")).is_ok());
 }
 
 #[test]
@@ -322,7 +333,7 @@ fn duplicate_names() {
     );
     // Names are unique per kind: a plane and a material may share one.
     assert!(
-        Scene::<I16F16>::parse(&format!(
+        Scene::<I16F16>::parse_fixray(&format!(
             "{CAMERA}material a {{}}\nplane a {{ material a normal 0 1 0 point 0 0 0 }}"
         ))
         .is_ok()
@@ -428,7 +439,7 @@ fn too_many() {
 #[test]
 fn every_entity_of_the_format_is_read_and_checked() {
     let m = format!("{CAMERA}material m {{}}\nmaterial n {{}}\n");
-    let ok = |text: &str| Scene::<I16F16>::parse(text).unwrap();
+    let ok = |text: &str| Scene::<I16F16>::parse_fixray(text).unwrap();
     let s = ok(&format!(
         "{m}sphere s {{ material m center 0 0 -5 radius 1 }}
          spotlight l {{ location 0 5 0 emissivity 1 1 1 point 0 0 -5 theta 30 }}

@@ -11,7 +11,7 @@ use embedded_graphics::pixelcolor::raw::{LittleEndian, RawU16};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use fixray::{I16F16, Scene, render, render_line};
+use fixray::{I16F16, Rules, Scene, render, render_line};
 
 /// Camera for the 4×4 pattern scenes: screen [0,4]², eye at (2, 2, 5). Screen rows are at
 /// y = 3.5, 2.5, 1.5, 0.5 from the top.
@@ -86,7 +86,7 @@ fn rgb565_targets_get_the_same_picture() {
          plane wall {{ material green normal 0 0 1 point 0 0 -5 }}
          plane floor {{ material red normal 0 1 0 point 0 0.4 0 }}"
     );
-    let scene = Scene::<I16F16>::parse(&text).unwrap();
+    let scene = Scene::<I16F16>::parse_as(&text, Rules::Fixray).unwrap();
     let mut display = MockDisplay::<Rgb565>::new();
     render(&scene, &mut display).unwrap();
     display.assert_pattern(&["GGGG", "GGGG", "GGGG", "RRRR"]);
@@ -127,7 +127,7 @@ const DEFAULT: &str = include_str!("../scenes/default.scene");
 
 #[test]
 fn one_fill_contiguous_per_scanline_matching_render_line() {
-    let scene = Scene::<I16F16>::parse(DEFAULT).unwrap();
+    let scene = Scene::<I16F16>::parse_as(DEFAULT, Rules::Fixray).unwrap();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let mut target = Recorder {
         size: Size::new(u32::from(w), u32::from(h)),
@@ -150,7 +150,7 @@ fn one_fill_contiguous_per_scanline_matching_render_line() {
 fn a_smaller_target_gets_the_visible_part_only() {
     // 160×120 scene into a 64×64 MockDisplay (which panics on out-of-bounds writes and on
     // drawing a pixel twice).
-    let scene = Scene::<I16F16>::parse(DEFAULT).unwrap();
+    let scene = Scene::<I16F16>::parse_as(DEFAULT, Rules::Fixray).unwrap();
     let mut display = MockDisplay::<Rgb888>::new();
     render(&scene, &mut display).unwrap();
     assert_eq!(
@@ -172,7 +172,7 @@ fn a_smaller_target_gets_the_visible_part_only() {
 fn framebuffer_targets_hold_the_same_picture() {
     const W: usize = 160;
     const H: usize = 120;
-    let scene = Scene::<I16F16>::parse(DEFAULT).unwrap();
+    let scene = Scene::<I16F16>::parse_as(DEFAULT, Rules::Fixray).unwrap();
     let mut fb =
         Framebuffer::<Rgb565, RawU16, LittleEndian, W, H, { buffer_size::<Rgb565>(W, H) }>::new();
     render(&scene, &mut fb).unwrap();
@@ -188,7 +188,8 @@ fn framebuffer_targets_hold_the_same_picture() {
 
 #[test]
 fn render_line_leaves_pixels_outside_the_image_untouched() {
-    let scene = Scene::<I16F16>::parse(&format!("{CAM4}background 1 1 1")).unwrap();
+    let scene =
+        Scene::<I16F16>::parse_as(&format!("{CAM4}background 1 1 1"), Rules::Fixray).unwrap();
     let mut line = [Rgb888::RED; 6];
     render_line(&scene, 0, &mut line);
     assert_eq!(

@@ -15,6 +15,18 @@ pub enum FrameError {
     NonPositiveSize,
 }
 
+/// How a tiled plane lays out its checkerboard.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tiling {
+    /// Along the frame's `u` and `v` (`xdir` given): tile `(floor(a / W), floor(b / H))`
+    /// with the plane coordinates from the corner (`fixray` rules) or from the world
+    /// origin (`course` rules).
+    Frame,
+    /// The course's older form without `xdir`: tiles on world x and z,
+    /// `(trunc((x + 10000) / W), trunc((z + 10000) / H))`, whatever the normal.
+    WorldXz,
+}
+
 /// A plane with coordinates: the corner `point`, `u` = unit(xdir projected into the plane),
 /// `v` = unit(N × u), and two lengths along them. Tiled planes (tile size) and finite
 /// planes (side lengths) are built on it. The plane coordinates of a point `p` are
@@ -86,6 +98,30 @@ impl<S: Scalar> PlaneFrame<S> {
         let (a, b) = self.coords(p)?;
         let i = a.checked_div(self.size[0])?.floor_to_i32()?;
         let j = b.checked_div(self.size[1])?.floor_to_i32()?;
+        Some((i.wrapping_add(j)) & 1 == 1)
+    }
+
+    /// The course's checkerboard of the frame's axes, anchored at the world origin:
+    /// `floor(p·u / W) + floor(p·v / H)` odd.
+    pub fn odd_tile_from_origin(&self, p: Vec3<S>) -> Option<bool> {
+        let i = p.dot(self.u)?.checked_div(self.size[0])?.floor_to_i32()?;
+        let j = p.dot(self.v)?.checked_div(self.size[1])?.floor_to_i32()?;
+        Some((i.wrapping_add(j)) & 1 == 1)
+    }
+
+    /// The course's older checkerboard on world x and z:
+    /// `trunc((x + 10000) / W) + trunc((z + 10000) / H)` odd (the same as `floor` for
+    /// x, z > −10000, where it is used).
+    pub fn odd_tile_world_xz(&self, p: Vec3<S>) -> Option<bool> {
+        let shift = S::from_i32(10_000)?;
+        let i =
+            p.x.checked_add(shift)?
+                .checked_div(self.size[0])?
+                .floor_to_i32()?;
+        let j =
+            p.z.checked_add(shift)?
+                .checked_div(self.size[1])?
+                .floor_to_i32()?;
         Some((i.wrapping_add(j)) & 1 == 1)
     }
 

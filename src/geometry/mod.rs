@@ -39,7 +39,7 @@ mod spawn;
 mod sphere;
 mod vec3;
 
-pub use frame::{FrameError, PlaneFrame};
+pub use frame::{FrameError, PlaneFrame, Tiling};
 pub use plane::{Plane, PlaneError};
 pub use shape::Shape;
 pub use spawn::{RESIDUAL_ULPS, SPAWN_MARGIN_ULPS};

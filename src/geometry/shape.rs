@@ -20,6 +20,8 @@ pub enum Shape<S> {
         frame: PlaneFrame<S>,
         /// The material of the odd tiles (index into the scene's materials).
         alt: u8,
+        /// How the tiles are laid out.
+        tiling: super::Tiling,
     },
     /// A finite rectangle of a plane.
     Finite(PlaneFrame<S>),
@@ -73,6 +75,96 @@ impl<S: Scalar> Shape<S> {
             Shape::Sphere(_) | Shape::Finite(_) => {
                 self.intersect(ray, epsilon).is_ok_and(|hit| hit.t < dist)
             }
+        }
+    }
+
+    /// The course's intersection (`COURSE-RULES.md` §5), for every ray alike: planes
+    /// miss at `t <= 0` and reject a plane-type hit with `z > z_limit` (the screen rule,
+    /// 0.01 in the course) whatever the ray; spheres take only the near root, with no
+    /// screen rule. `epsilon` is the plane tests' precision epsilon, as in
+    /// [`Shape::intersect`] (the course compares `N·d` with zero exactly: an epsilon keeps
+    /// a grazing ray's `t` within the format).
+    ///
+    /// # Errors
+    /// The [`Miss`] reason when the ray does not hit.
+    pub fn intersect_course(&self, ray: &Ray<S>, epsilon: S, z_limit: S) -> Result<Hit<S>, Miss> {
+        let ray = Ray {
+            kind: super::RayKind::Secondary,
+            ..*ray
+        };
+        if let Shape::Sphere(s) = self {
+            return if SPHERES {
+                s.intersect_near(&ray)
+            } else {
+                Err(Miss::NotBuiltIn)
+            };
+        }
+        let hit = self.intersect(&ray, epsilon)?;
+        if hit.t <= S::ZERO {
+            Err(Miss::Behind)
+        } else if hit.point.z > z_limit {
+            Err(Miss::InFrontOfScreen)
+        } else {
+            Ok(hit)
+        }
+    }
+
+    /// Whether a point lies on the surface within `tol` (world units): on the plane of a
+    /// plane-like shape (its bounds aside), or on a sphere's surface.
+    pub fn holds(&self, point: Vec3<S>, tol: S) -> bool {
+        match self {
+            Shape::Sphere(s) => {
+                // |p − c|² − r² = (|p − c| − r)(|p − c| + r): within tol·(2r + tol).
+                let Some(pc) = point.diff(s.center()) else {
+                    return false;
+                };
+                let excess = S::sub_dot3(s.radius_sq(), pc.to_array(), pc.to_array());
+                let band = s
+                    .radius()
+                    .checked_add(s.radius())
+                    .and_then(|d| d.checked_add(tol))
+                    .and_then(|d| d.checked_mul(tol));
+                matches!((excess, band), (Some(e), Some(b)) if e.abs() <= b)
+            }
+            _ => self.plane().is_some_and(|p| {
+                S::sub_dot3(p.offset(), p.normal().to_array(), point.to_array())
+                    .is_some_and(|d| d.abs() <= tol)
+            }),
+        }
+    }
+
+    /// Whether the shape shadows a light at `light` from the shadow ray `ray` (unit
+    /// direction towards the light, which is `dist` away): [`Shape::occludes`] under the
+    /// `fixray` rules, the course's intersection with `t < dist` under the `course` rules
+    /// (`course_z`: its screen rule's limit). A light lying on the surface within `tol`
+    /// is the hard case where `t` and `dist` tie and the rounding would decide, pixel by
+    /// pixel: there a plane never shadows it (the segment to a point on a plane meets the
+    /// plane only at that point), and a sphere only when the ray leaves the sphere at the
+    /// light (it went through the sphere first). So every format draws the same clean
+    /// shadow as f64 (`docs/numerics.md`, "Lights on surfaces").
+    pub fn shadows(
+        &self,
+        ray: &Ray<S>,
+        epsilon: S,
+        dist: S,
+        light: Vec3<S>,
+        tol: S,
+        course_z: Option<S>,
+    ) -> bool {
+        if self.holds(light, tol) {
+            return match self {
+                Shape::Sphere(s) if SPHERES => light
+                    .diff(s.center())
+                    .and_then(|out| out.dot(ray.dir))
+                    .is_some_and(|d| d > S::ZERO),
+                _ => false,
+            };
+        }
+        match course_z {
+            None => self.occludes(ray, epsilon, dist),
+            Some(z) => self
+                .intersect_course(ray, epsilon, z)
+                .is_ok_and(|hit| hit.t < dist),
         }
     }
 

@@ -66,6 +66,11 @@ impl<S: Scalar> Sphere<S> {
         self.radius
     }
 
+    /// `radius²`, precomputed.
+    pub fn radius_sq(&self) -> S {
+        self.radius_sq
+    }
+
     /// Intersects a ray (unit direction): the smallest root `t >= 0`, the far root when the
     /// base is inside; no real root is [`Miss::NoRoot`]; the primary-ray screen rule
     /// applies as for planes.
@@ -73,6 +78,38 @@ impl<S: Scalar> Sphere<S> {
     /// # Errors
     /// The [`Miss`] reason when the ray does not hit.
     pub fn intersect(&self, ray: &Ray<S>) -> Result<Hit<S>, Miss> {
+        let (near, far) = self.roots(ray)?;
+        let t = if near >= S::ZERO {
+            near
+        } else if far >= S::ZERO {
+            far
+        } else {
+            return Err(Miss::Behind);
+        };
+        ray.hit_at(t)
+    }
+
+    /// The course's sphere test (`COURSE-RULES.md` §5): only the near root counts, and
+    /// only when the discriminant is positive; a negative near root (the base inside) is
+    /// [`Miss::Behind`]. No screen rule.
+    ///
+    /// # Errors
+    /// The [`Miss`] reason when the ray does not hit.
+    pub fn intersect_near(&self, ray: &Ray<S>) -> Result<Hit<S>, Miss> {
+        let (near, _) = self.roots(ray)?;
+        if near < S::ZERO {
+            return Err(Miss::Behind);
+        }
+        let secondary = Ray {
+            kind: RayKind::Secondary,
+            ..*ray
+        };
+        secondary.hit_at(near)
+    }
+
+    /// The two roots `(near, far)` of a ray (unit direction); a tangent ray (zero
+    /// discriminant) gives one double root, no real root is [`Miss::NoRoot`].
+    fn roots(&self, ray: &Ray<S>) -> Result<(S, S), Miss> {
         let oc = ray.base.diff(self.center).ok_or(Miss::OutOfRange)?;
         let b = oc.dot(ray.dir).ok_or(Miss::OutOfRange)?;
         let perp = ray
@@ -104,14 +141,7 @@ impl<S: Scalar> Sphere<S> {
         .ok_or(Miss::OutOfRange)?;
         let (t0, t1) = (q, other);
         let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-        let t = if near >= S::ZERO {
-            near
-        } else if far >= S::ZERO {
-            far
-        } else {
-            return Err(Miss::Behind);
-        };
-        ray.hit_at(t)
+        Ok((near, far))
     }
 
     /// The outward unit normal at a point on the surface.

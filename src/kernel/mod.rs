@@ -22,7 +22,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 use crate::shade::stages::Stages;
 use crate::stats::{Counters, count_primary};
-use crate::{Plan, Scalar, Scene};
+use crate::{Plan, Rules, Scalar, Scene};
 use fast::Primary;
 use flat::{Flat, PlaneMode};
 
@@ -51,6 +51,11 @@ pub(crate) struct Drawing<S> {
 /// The kernel for a frame of `scene` drawn with stage set `T`: the cheapest that draws
 /// the scene's definition. The only place that decides which kernel applies.
 pub(crate) fn select<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Kernel<S> {
+    // The course rules divide every colour by the distance travelled and look through
+    // the window's corners: only the reference path draws them.
+    if scene.rules() == Rules::Course {
+        return Kernel::Reference;
+    }
     // Pure geometry: only infinite planes, and stages that show ambient colours only.
     if !T::LIGHTING
         && !T::REFLECTION
@@ -69,7 +74,7 @@ pub(crate) fn select<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Ker
 /// the side of the surface a primary ray comes from (no specular half vector, no mirror
 /// direction). Also what a scanline the flat kernel hands back is drawn with.
 fn fast<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Option<Primary<S>> {
-    if T::SPECULAR || T::REFLECTION || !plan.planes_like() {
+    if scene.rules() == Rules::Course || T::SPECULAR || T::REFLECTION || !plan.planes_like() {
         return None;
     }
     Primary::new(scene)

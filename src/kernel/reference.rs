@@ -6,7 +6,7 @@
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::fast::{self, Primary, Row};
-use crate::shade::color::to_rgb888;
+use crate::shade::color::to_pixel;
 use crate::shade::stages::Stages;
 use crate::shade::{Incoming, shade_with, trace_with};
 use crate::stats::{Counters, count};
@@ -24,6 +24,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
     counters: &'a mut Counters,
 ) -> impl Iterator<Item = C> + 'a {
     let y = scene.camera.screen_y(row);
+    let rules = scene.rules();
     let mut state: Option<Row<S>> = None;
     columns.map(move |column| {
         count(&mut counters.primary_rays);
@@ -59,6 +60,6 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                 None => scene.background,
             },
         };
-        C::from(to_rgb888(color))
+        C::from(to_pixel(rules, color))
     })
 }

@@ -15,12 +15,25 @@ pub struct Camera<S> {
     pub world_height: S,
     /// The eye, `z > 0`.
     pub viewpoint: Vec3<S>,
+    /// Where pixels look through the window (set by the scene's [`crate::Rules`]).
+    pub grid: PixelGrid,
+}
+
+/// Where pixel (i, j) looks through the screen window `[0, WX] × [0, WY]`, row 0 at the
+/// top.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PixelGrid {
+    /// Pixel centres, `(WX (i + ½) / W, WY (1 − (j + ½) / H))` (the `fixray` rules).
+    Centres,
+    /// The window's corners are pixels, `(WX i / (W − 1), WY (H − 1 − j) / (H − 1))` (the
+    /// `course` rules; a single column or row looks through x = 0 or y = 0).
+    Corners,
 }
 
 impl<S: Scalar> Camera<S> {
-    /// The primary ray through the centre of pixel (`column`, `row`), row 0 at the top:
-    /// base = viewpoint, direction = unit(screen point − viewpoint) with the screen point
-    /// `(WX (i + ½) / W, WY (1 − (j + ½) / H), 0)`.
+    /// The primary ray of pixel (`column`, `row`), row 0 at the top: base = viewpoint,
+    /// direction = unit(screen point − viewpoint), the screen point as [`Camera::grid`]
+    /// says (`(WX (i + ½) / W, WY (1 − (j + ½) / H), 0)` for pixel centres).
     ///
     /// `None` when the direction cannot be formed in the format (the pixel then shows the
     /// background); never for a scene that [`Scene::parse`](crate::Scene::parse) accepted with an eye within
@@ -31,20 +44,29 @@ impl<S: Scalar> Camera<S> {
     }
 
     /// The screen y coordinate of a pixel row (constant along a scanline),
-    /// `WY (1 − (j + ½) / H)`, rounded once.
+    /// `WY (1 − (j + ½) / H)` (or `WY (H − 1 − j) / (H − 1)` on the corner grid), rounded
+    /// once.
     #[inline]
     pub fn screen_y(&self, row: u16) -> Option<S> {
         let h = i32::from(self.height);
         let j = i32::from(row);
-        self.world_height.mul_ratio(2 * (h - j) - 1, 2 * h)
+        match self.grid {
+            PixelGrid::Centres => self.world_height.mul_ratio(2 * (h - j) - 1, 2 * h),
+            PixelGrid::Corners => corner(self.world_height, h - 1 - j, h - 1),
+        }
     }
 
-    /// The screen x coordinate of a pixel column, `WX (i + ½) / W`, rounded once: every
-    /// kernel forms its primary rays from this (they must agree bit for bit).
+    /// The screen x coordinate of a pixel column, `WX (i + ½) / W` (or `WX i / (W − 1)`
+    /// on the corner grid), rounded once: every kernel forms its primary rays from this
+    /// (they must agree bit for bit).
     #[inline]
     pub fn screen_x(&self, column: u16) -> Option<S> {
-        self.world_width
-            .mul_ratio(2 * i32::from(column) + 1, 2 * i32::from(self.width))
+        let i = i32::from(column);
+        let w = i32::from(self.width);
+        match self.grid {
+            PixelGrid::Centres => self.world_width.mul_ratio(2 * i + 1, 2 * w),
+            PixelGrid::Corners => corner(self.world_width, i, w - 1),
+        }
     }
 
     /// The primary ray through pixel `column` of the scanline whose screen y is `y`.
@@ -56,5 +78,14 @@ impl<S: Scalar> Camera<S> {
             dir,
             kind: RayKind::Primary,
         })
+    }
+}
+
+/// `size · k / n` on the corner grid; a single pixel (`n = 0`) looks through 0.
+fn corner<S: Scalar>(size: S, k: i32, n: i32) -> Option<S> {
+    if n <= 0 {
+        Some(S::ZERO)
+    } else {
+        size.mul_ratio(k, n)
     }
 }

@@ -20,10 +20,12 @@ use crate::{Plane, Scalar, Shape, Vec3};
 mod camera;
 mod parse;
 mod plan;
+mod rules;
 
-pub use camera::Camera;
+pub use camera::{Camera, PixelGrid};
 pub use parse::{MAX_QUOTED, Quoted, SceneError, SceneErrorKind};
 pub use plan::Plan;
+pub use rules::{Rules, UnknownRules};
 
 /// Maximum number of materials in a scene.
 pub const MAX_MATERIALS: usize = 16;
@@ -131,19 +133,41 @@ pub struct Scene<S> {
     /// The precision epsilon of every intersection test in this scene: the scene's
     /// `precision`, or [`Scalar::DEFAULT_EPSILON`].
     pub epsilon: S,
+    /// The rule set ([`Scene::rules`]).
+    rules: Rules,
 }
 
 impl<S: Scalar> Scene<S> {
-    /// A scene with a camera and nothing in it: black background, default epsilon.
+    /// A scene with a camera and nothing in it: black background, default epsilon, the
+    /// crate's own rules ([`Rules::Fixray`]; the camera's grid is set to match).
     pub fn new(camera: Camera<S>) -> Self {
-        Self {
+        let mut scene = Self {
             camera,
             materials: Vec::new(),
             lights: Vec::new(),
             objects: Vec::new(),
             background: [S::ZERO; 3],
             epsilon: S::DEFAULT_EPSILON,
-        }
+            rules: Rules::Fixray,
+        };
+        scene.set_rules(Rules::Fixray);
+        scene
+    }
+
+    /// The rule set the scene is drawn by: the file's `rules` statement, [`Rules::Course`]
+    /// for a file without one, [`Rules::Fixray`] for a scene built in code.
+    pub fn rules(&self) -> Rules {
+        self.rules
+    }
+
+    /// Draws the scene by `rules` from now on (a tool's `--rules` override). The camera's
+    /// pixel grid follows: pixel centres for `fixray`, the window's corners for `course`.
+    pub fn set_rules(&mut self, rules: Rules) {
+        self.rules = rules;
+        self.camera.grid = match rules {
+            Rules::Course => PixelGrid::Corners,
+            Rules::Fixray => PixelGrid::Centres,
+        };
     }
 
     /// Adds a plane object; hands the object back when the scene is full.
@@ -172,8 +196,8 @@ mod tests {
     use crate::{I16F16, I32F32};
 
     /// What the README states (update both together).
-    const SIZE_I16F16: usize = 3168;
-    const SIZE_I32F32: usize = 6312;
+    const SIZE_I16F16: usize = 3176;
+    const SIZE_I32F32: usize = 6320;
 
     /// The RAM a scene takes, as the README states it (update both together).
     #[test]

@@ -1,6 +1,6 @@
 //! [`Plan`]: which stages of shading and which kernels a scene needs.
 
-use super::{Material, Scene};
+use super::{Material, Rules, Scene};
 use crate::{Scalar, Shape};
 
 /// Which stages of shading and which kernels a scene needs ([`Scene::plan`], computed
@@ -63,12 +63,26 @@ impl<S: Scalar> Scene<S> {
                 material(o.material).is_some_and(f) || alt
             })
         };
+        // Under the course rules `specular` is the mirror weight, and the glint needs a
+        // `shininess` too (`COURSE-RULES.md` §7, §8).
+        let course = self.rules() == Rules::Course;
+        let (specular, reflection) = if course {
+            (
+                lighting && used(&|m| m.specular != S::ZERO && m.shininess > S::ZERO),
+                used(&|m| m.specular != S::ZERO),
+            )
+        } else {
+            (
+                lighting && used(&|m| m.specular > S::ZERO),
+                used(&|m| m.reflective > S::ZERO),
+            )
+        };
         Plan {
             lighting,
             shadows: lighting && (self.objects.len() > 1 || spheres),
-            specular: lighting && used(&|m| m.specular > S::ZERO),
+            specular,
             spotlights: self.lights.iter().any(|l| l.cone.is_some()),
-            reflection: used(&|m| m.reflective > S::ZERO),
+            reflection,
             tiles: self
                 .objects
                 .iter()

@@ -2,7 +2,7 @@
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 
-use crate::{Color, Scalar};
+use crate::{Color, Rules, Scalar};
 
 /// Converts a colour in channel units to a pixel: `round(clamp(c, 0, 255))` per channel,
 /// ties away from zero.
@@ -15,6 +15,26 @@ pub fn to_rgb888<S: Scalar>(c: Color<S>) -> Rgb888 {
             .unwrap_or(u8::MAX)
     };
     Rgb888::new(channel(c[0]), channel(c[1]), channel(c[2]))
+}
+
+/// Converts a colour in channel units to a pixel by a scene's rules: [`to_rgb888`]
+/// (rounding) under the `fixray` rules, truncation `floor(clamp(c, 0, 255))` under the
+/// `course` rules (`COURSE-RULES.md` §3).
+pub fn to_pixel<S: Scalar>(rules: Rules, c: Color<S>) -> Rgb888 {
+    match rules {
+        Rules::Fixray => to_rgb888(c),
+        Rules::Course => {
+            let channel = |v: S| -> u8 {
+                let max = S::from_i32(255).unwrap_or(S::MAX);
+                v.max(S::ZERO)
+                    .min(max)
+                    .floor_to_i32()
+                    .and_then(|i| u8::try_from(i).ok())
+                    .unwrap_or(u8::MAX)
+            };
+            Rgb888::new(channel(c[0]), channel(c[1]), channel(c[2]))
+        }
+    }
 }
 
 /// Adds two non-negative colour terms; a sum beyond the format saturates (it is far above

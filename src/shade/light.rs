@@ -51,7 +51,7 @@ pub(super) fn light_with<S: Scalar, T: Stages>(
                 let shadow = object.shape.spawn_from(ray.base, hit, l);
                 // The distance itself may not fit (a far light): nothing lies beyond it.
                 let dist = to_light.length().unwrap_or(S::MAX);
-                if shadow.is_some_and(|r| occludes(scene, &r, dist)) {
+                if shadow.is_some_and(|r| occludes(scene, &r, dist, light.location, None, None)) {
                     continue;
                 }
             }

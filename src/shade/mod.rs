@@ -11,12 +11,14 @@
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 pub(crate) mod color;
+mod course;
+pub use course::{MAX_COURSE_BOUNCES, MAX_PATH};
 mod light;
 pub(crate) mod stages;
 
 use crate::stats::{Counters, count};
-use crate::{Color, Hit, Object, Ray, Scalar, Scene, Shape, Vec3};
-use color::{add_sat, to_rgb888};
+use crate::{Color, Hit, Object, Ray, Rules, Scalar, Scene, Shape, Tiling, Vec3};
+use color::{add_sat, to_pixel};
 use light::light_with;
 use stages::{Stages, shading_for, with_stages};
 
@@ -59,29 +61,61 @@ pub fn nearest_hit<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Option<(usize, 
     best
 }
 
-/// Whether any object lies on the segment from `ray.base` to `ray.base + dist·ray.dir`
-/// (a shadow test: the first hit is enough, and planes need no division:
-/// [`Shape::occludes`]). Shadow rays start off the surface they leave
-/// by its computed error bound ([`Shape::spawn`]), so that surface cannot shadow itself.
+/// Whether any object lies on the segment from `ray.base` to the light at `light`,
+/// `dist` along `ray.dir` (a shadow test: the first hit is enough, and planes need no
+/// division: [`Shape::occludes`]; a light on a surface: [`Shape::shadows`]). Under the
+/// `fixray` rules shadow rays start off the surface they leave by its computed error
+/// bound ([`Shape::spawn`]), so that surface cannot shadow itself; under the `course`
+/// rules they start on it and skip it (`skip`), and `course_z` is the screen rule's
+/// limit.
 #[inline(never)] // its locals stay out of the recursive shading frames (stack: see below)
-pub(crate) fn occludes<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, dist: S) -> bool {
+pub(crate) fn occludes<S: Scalar>(
+    scene: &Scene<S>,
+    ray: &Ray<S>,
+    dist: S,
+    light: Vec3<S>,
+    skip: Option<usize>,
+    course_z: Option<S>,
+) -> bool {
+    let tol = light_tolerance(scene.epsilon, light, ray.base);
     scene
         .objects
         .iter()
-        .any(|object| object.shape.occludes(ray, scene.epsilon, dist))
+        .enumerate()
+        .filter(|(i, _)| Some(*i) != skip)
+        .any(|(_, object)| {
+            object
+                .shape
+                .shadows(ray, scene.epsilon, dist, light, tol, course_z)
+        })
 }
 
-/// The material index an object shows at a point (a tiled plane's odd squares show its
-/// alternate material).
-fn material_at<S: Scalar>(object: &Object<S>, point: Vec3<S>, counters: &mut Counters) -> u8 {
+/// How close to a surface a light counts as lying on it ([`Shape::shadows`]): the
+/// scene's epsilon in units of the larger of 1 and the coordinates' magnitude (the
+/// rounding of the light's and the plane's positions grows with it).
+pub(crate) fn light_tolerance<S: Scalar>(epsilon: S, light: Vec3<S>, from: Vec3<S>) -> S {
+    let m = S::ONE.max(light.max_abs()).max(from.max_abs());
+    epsilon.checked_mul(m).unwrap_or(S::MAX)
+}
+
+/// The material index an object shows at a point: a tiled plane shows its alternate
+/// material on its odd squares, under the course rules on the even squares of the
+/// checkerboard anchored at the world origin (`COURSE-RULES.md` §10).
+pub(crate) fn material_at<S: Scalar>(
+    object: &Object<S>,
+    point: Vec3<S>,
+    rules: Rules,
+    counters: &mut Counters,
+) -> u8 {
     match object.shape {
-        Shape::Tiled { frame, alt } => {
+        Shape::Tiled { frame, alt, tiling } => {
             count(&mut counters.tile_lookups);
-            if frame.odd_tile(point) == Some(true) {
-                alt
-            } else {
-                object.material
-            }
+            let show_alt = match (tiling, rules) {
+                (Tiling::WorldXz, _) => frame.odd_tile_world_xz(point) == Some(true),
+                (Tiling::Frame, Rules::Fixray) => frame.odd_tile(point) == Some(true),
+                (Tiling::Frame, Rules::Course) => frame.odd_tile_from_origin(point) == Some(false),
+            };
+            if show_alt { alt } else { object.material }
         }
         _ => object.material,
     }
@@ -105,10 +139,12 @@ pub(crate) fn shade_with<S: Scalar, T: Stages>(
     let Some(object) = scene.objects.get(index) else {
         return scene.background;
     };
-    let Some(material) = scene
-        .materials
-        .get(usize::from(material_at(object, hit.point, counters)))
-    else {
+    let Some(material) = scene.materials.get(usize::from(material_at(
+        object,
+        hit.point,
+        scene.rules(),
+        counters,
+    ))) else {
         return [S::ZERO; 3];
     };
     let mut color = material.ambient;
@@ -157,13 +193,16 @@ pub(crate) fn shade_with<S: Scalar, T: Stages>(
     color
 }
 
-/// Traces a ray with the stages of `T`.
+/// Traces a ray with the stages of `T`, by the scene's rules.
 pub(crate) fn trace_with<S: Scalar, T: Stages>(
     scene: &Scene<S>,
     ray: &Ray<S>,
     depth: u8,
     counters: &mut Counters,
 ) -> Traced<S> {
+    if scene.rules() == Rules::Course {
+        return course::trace_course::<S, T>(scene, ray, counters);
+    }
     let hit = nearest_hit(scene, ray);
     let color = match &hit {
         Some((i, h)) => shade_with::<S, T>(scene, &Incoming::from(ray), *i, h, depth, counters),
@@ -248,5 +287,5 @@ pub(crate) fn trace_pixel_with<S: Scalar>(
 
 /// The colour of pixel (`column`, `row`), row 0 at the top.
 pub fn pixel<S: Scalar>(scene: &Scene<S>, column: u16, row: u16) -> Rgb888 {
-    to_rgb888(trace_pixel(scene, column, row).color)
+    to_pixel(scene.rules(), trace_pixel(scene, column, row).color)
 }

@@ -12,7 +12,7 @@ pub mod sampling;
 
 use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::Rgb888;
-use fixray::{Scalar, Scene, Vec3, render};
+use fixray::{Rules, Scalar, Scene, Vec3, render};
 
 /// A vector of format `S` from exact `f64` components.
 pub fn v<S: Scalar>(x: f64, y: f64, z: f64) -> Vec3<S> {
@@ -32,7 +32,7 @@ pub(crate) use every_format;
 /// A scene rendered in format `S` into a `MockDisplay` (which also catches overdraw and
 /// out-of-bounds writes).
 pub fn pattern<S: Scalar>(text: &str) -> MockDisplay<Rgb888> {
-    let scene = Scene::<S>::parse(text).unwrap();
+    let scene = Scene::<S>::parse_as(text, Rules::Fixray).unwrap();
     let mut display = MockDisplay::new();
     render(&scene, &mut display).unwrap();
     display
@@ -50,7 +50,7 @@ pub fn assert_pattern_everywhere(text: &str, expected: &[&str]) {
 /// the order of `fixray::num::formats::MAIN`: I16F16, I20F12, I32F32, f32, f64.
 pub fn top_left_pixel(text: &str) -> [Rgb888; 5] {
     fn one<S: Scalar>(text: &str) -> Rgb888 {
-        let scene = Scene::<S>::parse(text).unwrap();
+        let scene = Scene::<S>::parse_as(text, Rules::Fixray).unwrap();
         let mut line = vec![Rgb888::new(0, 0, 0); usize::from(scene.camera.width)];
         fixray::render_line(&scene, 0, &mut line);
         line[0]

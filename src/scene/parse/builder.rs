@@ -9,8 +9,8 @@ use super::{Block, Number, Parser, Result, Value, quote};
 use crate::num::Decimal;
 use crate::scene::{Cone, MAX_LIGHTS, MAX_MATERIALS, MAX_OBJECTS, MAX_PIXELDIM, Object};
 use crate::{
-    Camera, Color, FrameError, Light, Material, Plane, PlaneError, PlaneFrame, Scalar, Shape,
-    Sphere, Vec3,
+    Camera, Color, FrameError, Light, Material, Plane, PlaneError, PlaneFrame, Rules, Scalar,
+    Shape, Sphere, Tiling, Vec3,
 };
 
 impl<'a, S: Scalar> Parser<'a, '_, S> {
@@ -23,7 +23,8 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
                 self.camera = Some(camera(b)?);
             }
             Entity::Material => {
-                if self.material_names.contains(&b.name.text) {
+                // The course allows a name twice; a lookup takes the first.
+                if self.rules == Rules::Fixray && self.material_names.contains(&b.name.text) {
                     return Err(b.name.pos.error(SceneErrorKind::DuplicateName {
                         entity: "material",
                         name: quote(b.name.text),
@@ -41,7 +42,7 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
                 }
                 self.scene
                     .materials
-                    .push(material_of(b)?)
+                    .push(material_of(b, self.rules)?)
                     .map_err(|_| full())?;
                 self.material_names.push(b.name.text).map_err(|_| full())?;
             }
@@ -61,7 +62,7 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
                 };
                 let light = Light {
                     location,
-                    emissivity: non_negative3(b.required("emissivity")?, "emissivity")?,
+                    emissivity: colour3(b.required("emissivity")?, "emissivity", self.rules)?,
                     cone,
                 };
                 self.scene.lights.push(light).map_err(|_| {
@@ -107,21 +108,33 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
                     "dimension"
                 };
                 let normal = b.required("normal")?;
-                let xdir = b.required("xdir")?;
                 let d = b.required(dims)?;
                 let size = [
                     positive::<S>(&d.nums[0], dims)?,
                     positive::<S>(&d.nums[1], dims)?,
                 ];
                 let point = vector(b.required("point")?)?;
-                let frame = PlaneFrame::new(vector(normal)?, point, vector(xdir)?, size)
-                    .map_err(|e| frame_error::<S>(b, [normal, xdir, d], dims, e))?;
+                let n = vector::<S>(normal)?;
+                // A tiled plane without `xdir` (the course's older form) tiles world x/z;
+                // its frame's own axes are then unused, any direction in the plane does.
+                let (xdir, given, tiling) = match b.get("xdir") {
+                    Some(x) => (vector(x)?, x, Tiling::Frame),
+                    None => {
+                        let x = Vec3::new(S::ONE, S::ZERO, S::ZERO);
+                        let z = Vec3::new(S::ZERO, S::ZERO, S::ONE);
+                        let along_x = n.x.abs() >= n.y.abs().max(n.z.abs());
+                        (if along_x { z } else { x }, normal, Tiling::WorldXz)
+                    }
+                };
+                let frame = PlaneFrame::new(n, point, xdir, size)
+                    .map_err(|e| frame_error::<S>(b, [normal, given, d], dims, e))?;
                 let shape = if b.entity == Entity::FPlane {
                     Shape::Finite(frame)
                 } else {
                     Shape::Tiled {
                         frame,
                         alt: self.material_index(b, "altmaterial")?,
+                        tiling,
                     }
                 };
                 self.push(b, shape, material)?;
@@ -252,18 +265,40 @@ fn non_negative3<S: Scalar>(v: &Value<'_>, attribute: &'static str) -> Result<[S
     Ok(c)
 }
 
+/// Three colour reals: ≥ 0 under the `fixray` rules; the course reads any value (a
+/// negative one darkens, and a pixel below 0 shows 0).
+fn colour3<S: Scalar>(v: &Value<'_>, attribute: &'static str, rules: Rules) -> Result<[S; 3]> {
+    if rules == Rules::Fixray {
+        return non_negative3(v, attribute);
+    }
+    Ok([
+        convert(&v.nums[0], 1)?,
+        convert(&v.nums[1], 1)?,
+        convert(&v.nums[2], 1)?,
+    ])
+}
+
 /// A displayed colour (ambient, background) in channel units: 255 × the value, computed
 /// exactly in decimal. The value itself must fit the format; if 255 × it does not, it
-/// saturates at the format's maximum, which displays as 255 exactly like the value would.
+/// saturates at the format's maximum (or minimum), which displays as 255 (or 0) exactly
+/// like the value would. Negative values only under the course rules.
 pub(super) fn channel_colour<S: Scalar>(
     nums: &[Number<'_>; 3],
     attribute: &'static str,
+    rules: Rules,
 ) -> Result<Color<S>> {
     let mut c = [S::ZERO; 3];
     for (ck, n) in c.iter_mut().zip(nums) {
-        in_domain(n, non_negative_value, attribute, ">= 0")?;
+        if rules == Rules::Fixray {
+            in_domain(n, non_negative_value, attribute, ">= 0")?;
+        }
         convert::<S>(n, 1)?;
-        *ck = convert(n, 255).unwrap_or(S::MAX);
+        let limit = if n.value.negative {
+            S::MAX.checked_neg().unwrap_or(S::ZERO)
+        } else {
+            S::MAX
+        };
+        *ck = convert(n, 255).unwrap_or(limit);
     }
     Ok(c)
 }
@@ -294,18 +329,26 @@ fn camera<S: Scalar>(b: &Block<'_>) -> Result<Camera<S>> {
         world_width: positive(&worlddim.nums[0], "worlddim")?,
         world_height: positive(&worlddim.nums[1], "worlddim")?,
         viewpoint: Vec3::new(eye.x, eye.y, positive(&viewpoint.nums[2], "viewpoint")?),
+        // Set from the scene's rules once the file is read.
+        grid: crate::PixelGrid::Centres,
     })
 }
 
-fn material_of<S: Scalar>(b: &Block<'_>) -> Result<Material<S>> {
+fn material_of<S: Scalar>(b: &Block<'_>, rules: Rules) -> Result<Material<S>> {
     let mut m = Material::new();
+    if rules == Rules::Course {
+        // The course's glint needs `shininess`: without it there is none.
+        m.shininess = S::ZERO;
+    }
     if let Some(v) = b.get("ambient") {
-        m.ambient = channel_colour(&v.nums, "ambient")?;
+        m.ambient = channel_colour(&v.nums, "ambient", rules)?;
     }
     if let Some(v) = b.get("diffuse") {
-        m.diffuse = non_negative3(v, "diffuse")?;
+        m.diffuse = colour3(v, "diffuse", rules)?;
     }
-    if let Some(v) = b.get("specular") {
+    // `specular R G B` (older course files) is read and, as the course tracer that reads
+    // such files does, not used.
+    if let Some(v) = b.get("specular").filter(|v| v.count == 1) {
         in_domain(&v.nums[0], non_negative_value, "specular", ">= 0")?;
         m.specular = convert(&v.nums[0], 1)?;
         if m.specular > S::ZERO && !cfg!(feature = "lighting") {
@@ -316,11 +359,26 @@ fn material_of<S: Scalar>(b: &Block<'_>) -> Result<Material<S>> {
         }
     }
     if let Some(v) = b.get("shininess") {
-        let ok = |d: &Decimal| d.cmp_int(1) != Ordering::Less;
-        in_domain(&v.nums[0], ok, "shininess", ">= 1")?;
-        m.shininess = convert(&v.nums[0], 1)?;
+        let n = &v.nums[0];
+        if rules == Rules::Course && n.value.is_zero() {
+            m.shininess = S::ZERO;
+        } else {
+            let ok = |d: &Decimal| d.cmp_int(1) != Ordering::Less;
+            let rule = match rules {
+                Rules::Fixray => ">= 1",
+                Rules::Course => "0 (no glint) or >= 1",
+            };
+            in_domain(n, ok, "shininess", rule)?;
+            m.shininess = convert(n, 1)?;
+        }
     }
     if let Some(v) = b.get("reflective") {
+        if rules == Rules::Course {
+            return Err(v.pos.error(SceneErrorKind::OtherRules {
+                attribute: "reflective",
+                rules: "fixray",
+            }));
+        }
         let ok = |d: &Decimal| non_negative_value(d) && d.cmp_int(1) != Ordering::Greater;
         in_domain(&v.nums[0], ok, "reflective", "in [0, 1]")?;
         m.reflective = convert(&v.nums[0], 1)?;

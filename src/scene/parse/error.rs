@@ -94,6 +94,16 @@ pub enum SceneErrorKind {
         /// [`MAX_LIGHTS`](crate::scene::MAX_LIGHTS), [`MAX_OBJECTS`](crate::scene::MAX_OBJECTS)).
         capacity: usize,
     },
+    /// `rules` names no rule set (`course` or `fixray`).
+    UnknownRules(Quoted),
+    /// An attribute that only the other rule set has (`reflective` is the crate's own;
+    /// `specular R G B` the course's).
+    OtherRules {
+        /// The attribute.
+        attribute: &'static str,
+        /// The rule set that has it.
+        rules: &'static str,
+    },
     /// An entity or attribute of the course's format that this crate does not draw yet
     /// (`triangle`, `texture`, `texplane`, `projector`, `revsurf`, `transparency`).
     NotSupportedYet(&'static str),
@@ -162,6 +172,13 @@ impl fmt::Display for SceneErrorKind {
             K::TooMany { what, capacity } => {
                 write!(f, "too many {what} (this build holds {capacity})")
             }
+            K::UnknownRules(w) => {
+                write!(f, "unknown rule set `{w}` (expected `course` or `fixray`)")
+            }
+            K::OtherRules { attribute, rules } => write!(
+                f,
+                "`{attribute}` belongs to the {rules} rules (write `rules {rules}` to use it)"
+            ),
             K::NotSupportedYet(what) => write!(
                 f,
                 "`{what}` is not supported yet (fixray does not draw it; the scene is refused \

@@ -11,6 +11,7 @@ pub(super) struct Token<'a> {
 
 /// Splits the text into tokens: `{`, `}` and runs of other non-space characters; `#`
 /// comments run to the end of the line.
+#[derive(Clone)]
 pub(super) struct Lexer<'a> {
     rest: &'a str,
     pub(super) pos: Pos,

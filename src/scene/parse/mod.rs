@@ -33,7 +33,7 @@ pub use error::{MAX_QUOTED, Quoted, SceneError, SceneErrorKind};
 
 use super::{MAX_LIGHTS, MAX_MATERIALS, MAX_OBJECTS};
 use crate::num::Decimal;
-use crate::{Camera, Color, Scalar, Scene, Vec3};
+use crate::{Camera, Color, Rules, Scalar, Scene, Vec3};
 use builder::{channel_colour, precision};
 use error::Pos;
 use lexer::{Lexer, Token, is_name, quote};
@@ -53,6 +53,8 @@ struct Value<'a> {
     /// Where the attribute's keyword is.
     pos: Pos,
     nums: [Number<'a>; MAX_NUMBERS],
+    /// How many numbers were written (`specular S` or `specular R G B`).
+    count: usize,
     name: Option<Token<'a>>,
 }
 
@@ -98,6 +100,8 @@ struct Parser<'a, 's, S> {
     camera: Option<Camera<S>>,
     background: Option<Color<S>>,
     epsilon: Option<S>,
+    /// The rule set, found before the blocks are read ([`rules_of`]).
+    rules: Rules,
     /// The scene under construction (its camera is a placeholder until the end).
     scene: &'s mut Scene<S>,
     material_names: Vec<&'a str, MAX_MATERIALS>,
@@ -160,7 +164,8 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
                     found: quote(t.text),
                 }));
             };
-            if values[i].is_some() {
+            // The course reads a repeated attribute over the earlier one.
+            if values[i].is_some() && self.rules == Rules::Fixray {
                 return Err(t
                     .pos
                     .error(SceneErrorKind::DuplicateAttribute(specs[i].name)));
@@ -174,6 +179,25 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
                 Arity::Numbers(n) => {
                     for slot in v.nums.iter_mut().take(n) {
                         *slot = self.number()?;
+                    }
+                    v.count = n;
+                }
+                Arity::OneOrThree => {
+                    v.nums[0] = self.number()?;
+                    v.count = 1;
+                    let mut ahead = self.lexer.clone();
+                    if let Some(next) = ahead.next_token()
+                        && Decimal::parse(next.text).is_some()
+                    {
+                        if self.rules == Rules::Fixray {
+                            return Err(next.pos.error(SceneErrorKind::OtherRules {
+                                attribute: "specular R G B",
+                                rules: "course",
+                            }));
+                        }
+                        v.nums[1] = self.number()?;
+                        v.nums[2] = self.number()?;
+                        v.count = 3;
                     }
                 }
             }
@@ -197,6 +221,10 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
 
     /// Registers a name for the uniqueness rule (materials have their own list).
     fn register(&mut self, block: &Block<'a>) -> Result<()> {
+        // The course allows a name twice (a lookup takes the first).
+        if self.rules == Rules::Course {
+            return Ok(());
+        }
         let name = block.name.text;
         if self
             .names
@@ -241,10 +269,14 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
                     for n in &mut nums {
                         *n = self.number()?;
                     }
-                    let c = channel_colour(&nums, "background")?;
+                    let c = channel_colour(&nums, "background", self.rules)?;
                     if self.background.replace(c).is_some() {
                         return Err(t.pos.error(SceneErrorKind::Duplicate("background")));
                     }
+                }
+                "rules" => {
+                    // Read (and checked) before the blocks: `rules_of`.
+                    self.expect("a rule set")?;
                 }
                 "precision" => {
                     let eps = precision::<S>(&self.number()?)?;
@@ -270,8 +302,39 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
         self.scene.camera = camera;
         self.scene.background = self.background.unwrap_or([S::ZERO; 3]);
         self.scene.epsilon = self.epsilon.unwrap_or(S::DEFAULT_EPSILON);
+        self.scene.set_rules(self.rules);
         Ok(())
     }
+}
+
+/// The rule set of a scene text: its top-level `rules` statement, [`Rules::Course`]
+/// without one. Found before anything else is read, since it decides how the blocks are
+/// read (wherever the statement stands).
+fn rules_of(text: &str) -> Result<Rules> {
+    let mut lexer = Lexer::new(text);
+    let mut depth = 0u32;
+    let mut found: Option<Rules> = None;
+    while let Some(t) = lexer.next_token() {
+        match t.text {
+            "{" => depth = depth.saturating_add(1),
+            "}" => depth = depth.saturating_sub(1),
+            "rules" if depth == 0 => {
+                let end = lexer.pos;
+                let name = lexer
+                    .next_token()
+                    .ok_or_else(|| end.error(SceneErrorKind::UnexpectedEnd("a rule set")))?;
+                let rules = name.text.parse::<Rules>().map_err(|_| {
+                    name.pos
+                        .error(SceneErrorKind::UnknownRules(quote(name.text)))
+                })?;
+                if found.replace(rules).is_some() {
+                    return Err(t.pos.error(SceneErrorKind::Duplicate("rules")));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(found.unwrap_or(Rules::Course))
 }
 
 fn placeholder_camera<S: Scalar>() -> Camera<S> {
@@ -281,6 +344,7 @@ fn placeholder_camera<S: Scalar>() -> Camera<S> {
         world_width: S::ONE,
         world_height: S::ONE,
         viewpoint: Vec3::new(S::ZERO, S::ZERO, S::ONE),
+        grid: crate::PixelGrid::Centres,
     }
 }
 
@@ -292,6 +356,27 @@ impl<S: Scalar> Scene<S> {
     pub fn parse(text: &str) -> core::result::Result<Self, SceneError> {
         let mut scene = Scene::empty();
         scene.read(text)?;
+        Ok(scene)
+    }
+
+    /// Reads a scene by the rule set `rules`, whatever its `rules` statement says (a
+    /// tool's `--rules` override): the file is read as that rule set reads it (the
+    /// course's duplicates, `specular R G B`, its glint without `shininess`, ...) and
+    /// drawn by it.
+    ///
+    /// # Errors
+    /// A [`SceneError`] with the line and column of the first problem.
+    ///
+    /// ```
+    /// use fixray::{Rules, Scene, I16F16};
+    ///
+    /// let text = "rules course camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }";
+    /// let scene = Scene::<I16F16>::parse_as(text, Rules::Fixray).unwrap();
+    /// assert_eq!(scene.rules(), Rules::Fixray);
+    /// ```
+    pub fn parse_as(text: &str, rules: Rules) -> core::result::Result<Self, SceneError> {
+        let mut scene = Scene::empty();
+        scene.read_by(text, Some(rules))?;
         Ok(scene)
     }
 
@@ -308,6 +393,7 @@ impl<S: Scalar> Scene<S> {
         self.objects.clear();
         self.background = [S::ZERO; 3];
         self.epsilon = S::DEFAULT_EPSILON;
+        self.set_rules(Rules::Fixray);
     }
 
     /// Reads a scene text into `self`, in place: [`Scene::parse`] without moving the scene
@@ -324,19 +410,33 @@ impl<S: Scalar> Scene<S> {
     /// scene.read("camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }").unwrap();
     /// assert_eq!(scene.camera.width, 4);
     /// ```
-    #[inline(never)]
     pub fn read(&mut self, text: &str) -> core::result::Result<(), SceneError> {
+        self.read_by(text, None)
+    }
+
+    /// [`Scene::read`] by the rule set `rules` if given ([`Scene::parse_as`]), else by
+    /// the file's.
+    #[inline(never)]
+    fn read_by(
+        &mut self,
+        text: &str,
+        rules: Option<Rules>,
+    ) -> core::result::Result<(), SceneError> {
         self.clear();
-        let result = Parser {
-            lexer: Lexer::new(text),
-            camera: None,
-            background: None,
-            epsilon: None,
-            scene: self,
-            material_names: Vec::new(),
-            names: Vec::new(),
-        }
-        .parse();
+        let found = rules_of(text);
+        let result = found.map(|r| rules.unwrap_or(r)).and_then(|rules| {
+            Parser {
+                lexer: Lexer::new(text),
+                camera: None,
+                background: None,
+                epsilon: None,
+                rules,
+                scene: self,
+                material_names: Vec::new(),
+                names: Vec::new(),
+            }
+            .parse()
+        });
         if result.is_err() {
             self.clear();
         }

@@ -25,6 +25,9 @@ pub(super) enum Arity {
     Name,
     /// This many numbers.
     Numbers(usize),
+    /// One number, or three under the course rules (`specular R G B`, the course's
+    /// older files).
+    OneOrThree,
 }
 
 /// One attribute of an entity.
@@ -101,7 +104,12 @@ pub(super) const SCHEMA: [EntitySpec; 8] = [
         attributes: &[
             optional("ambient", 3),
             optional("diffuse", 3),
-            optional("specular", 1),
+            AttrSpec {
+                name: "specular",
+                alias: None,
+                arity: Arity::OneOrThree,
+                required: false,
+            },
             optional("shininess", 1),
             optional("reflective", 1),
         ],
@@ -147,7 +155,8 @@ pub(super) const SCHEMA: [EntitySpec; 8] = [
             material("altmaterial"),
             numbers("normal", 3),
             numbers("point", 3),
-            numbers("xdir", 3),
+            // Optional: without it the tiles lie on world x/z (the course's older form).
+            optional("xdir", 3),
             dimensions("dimension", "dimensions"),
         ],
     },
@@ -176,8 +185,8 @@ const _: () = {
     }
 };
 
-/// The statements outside blocks (`background R G B`, `precision EPS`).
-pub(super) const STATEMENTS: [&str; 2] = ["background", "precision"];
+/// The statements outside blocks (`background R G B`, `precision EPS`, `rules NAME`).
+pub(super) const STATEMENTS: [&str; 3] = ["background", "precision", "rules"];
 
 /// What real course files have that this crate does not draw yet: entities and material
 /// attributes, refused with [`super::SceneErrorKind::NotSupportedYet`] at their
@@ -217,9 +226,12 @@ pub(super) const MAX_NUMBERS: usize = {
     while i < SCHEMA.len() {
         let mut j = 0;
         while j < SCHEMA[i].attributes.len() {
-            if let Arity::Numbers(n) = SCHEMA[i].attributes[j].arity
-                && n > max
-            {
+            let n = match SCHEMA[i].attributes[j].arity {
+                Arity::Numbers(n) => n,
+                Arity::OneOrThree => 3,
+                Arity::Name => 0,
+            };
+            if n > max {
                 max = n;
             }
             j += 1;
