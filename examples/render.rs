@@ -26,7 +26,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use fixray::compare::{Comparison, compare, heat_color};
 use fixray::num::formats::{self, MAIN};
-use fixray::{Rules, Scalar, Scene, SceneError, render_line};
+use fixray::{LargeScene as Scene, Rules, Scalar, SceneError, render_line};
 
 /// The built-in default scene, compiled in.
 const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");

@@ -21,6 +21,8 @@
 //! - `--fly`: move the eye forward by itself every frame (a fly-through).
 //! - `--record DIR`: save every frame as `DIR/frame-NNNN.png` (a PNG sequence).
 //! - `--screenshot FILE`: save the last frame to FILE on quitting.
+//! - `--rules course|fixray`: draw by that rule set whatever the file says (a file
+//!   without a `rules` statement is a course file); the status line names the rules.
 
 fn main() {
     if let Err(e) = window::run() {
@@ -43,7 +45,7 @@ mod window {
     };
     use fixray::compare::heat_color;
     use fixray::num::formats::MAIN as FORMATS;
-    use fixray::{Scalar, Scene, Vec3, render_line};
+    use fixray::{LargeScene as Scene, Rules, Scalar, Vec3, render_line};
 
     const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
     /// Height of the status line under the picture.
@@ -64,6 +66,7 @@ mod window {
         fly: bool,
         record: Option<String>,
         screenshot: Option<String>,
+        rules: Option<Rules>,
     }
 
     fn options() -> Result<Options, String> {
@@ -75,6 +78,7 @@ mod window {
             fly: false,
             record: None,
             screenshot: None,
+            rules: None,
         };
         let mut args = std::env::args().skip(1);
         while let Some(a) = args.next() {
@@ -104,6 +108,10 @@ mod window {
                 "--fly" => o.fly = true,
                 "--record" => o.record = Some(value("--record")?),
                 "--screenshot" => o.screenshot = Some(value("--screenshot")?),
+                "--rules" => {
+                    let r = value("--rules")?;
+                    o.rules = Some(r.parse().map_err(|e| format!("--rules `{r}`: {e}"))?);
+                }
                 s if s.starts_with("--") => return Err(format!("unknown option `{s}`")),
                 s => o.scene = Some(s.to_string()),
             }
@@ -127,12 +135,21 @@ mod window {
         differ: f64,
     }
 
+    /// The scene drawn by `rules` if given, else by its file's rules.
+    fn read<S: Scalar>(text: &str, rules: Option<Rules>) -> Result<Scene<S>, fixray::SceneError> {
+        match rules {
+            Some(r) => Scene::<S>::parse_as(text, r),
+            None => Scene::<S>::parse(text),
+        }
+    }
+
     fn scene_for<S: Scalar>(
         text: &str,
+        rules: Option<Rules>,
         eye: Eye,
         size: Option<(u16, u16)>,
     ) -> Result<Scene<S>, String> {
-        let mut scene = Scene::<S>::parse(text).map_err(|e| e.to_string())?;
+        let mut scene = read::<S>(text, rules).map_err(|e| e.to_string())?;
         let v = scene.camera.viewpoint.to_f64();
         scene.camera.viewpoint =
             Vec3::from_f64([v[0] + eye.dx, v[1] + eye.dy, (v[2] + eye.dz).max(0.1)])
@@ -155,14 +172,15 @@ mod window {
 
     fn frame_in<S: Scalar>(
         text: &str,
+        rules: Option<Rules>,
         eye: Eye,
         size: Option<(u16, u16)>,
     ) -> Result<Frame, String> {
-        let scene = scene_for::<S>(text, eye, size)?;
+        let scene = scene_for::<S>(text, rules, eye, size)?;
         let start = Instant::now();
         let pixels = render_all(&scene);
         let ms = start.elapsed().as_secs_f64() * 1e3;
-        let reference = render_all(&scene_for::<f64>(text, eye, size)?);
+        let reference = render_all(&scene_for::<f64>(text, rules, eye, size)?);
         let differ = pixels
             .iter()
             .zip(&reference)
@@ -180,10 +198,11 @@ mod window {
     fn frame(
         format: &str,
         text: &str,
+        rules: Option<Rules>,
         eye: Eye,
         size: Option<(u16, u16)>,
     ) -> Result<Frame, String> {
-        fixray::with_format!(format, frame_in(text, eye, size)).map_err(|e| e.to_string())?
+        fixray::with_format!(format, frame_in(text, rules, eye, size)).map_err(|e| e.to_string())?
     }
 
     /// 4×4 Bayer thresholds for ordered dithering to black and white.
@@ -221,7 +240,7 @@ mod window {
             Some(path) => std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?,
             None => DEFAULT_SCENE.to_string(),
         };
-        let probe = Scene::<f64>::parse(&text).map_err(|e| {
+        let probe = read::<f64>(&text, o.rules).map_err(|e| {
             format!(
                 "{}:{e}",
                 o.scene.as_deref().unwrap_or("scenes/default.scene")
@@ -241,7 +260,7 @@ mod window {
             std::fs::create_dir_all(dir).map_err(|e| format!("{dir}: {e}"))?;
         }
         loop {
-            let f = frame(FORMATS[format], &text, eye, size)?;
+            let f = frame(FORMATS[format], &text, o.rules, eye, size)?;
             let wu = usize::from(w);
             for (i, (p, r)) in f.pixels.iter().zip(&f.reference).enumerate() {
                 let (x, y) = (i % wu, i / wu);
@@ -255,8 +274,9 @@ mod window {
                     .ok();
             }
             let status = format!(
-                "{} {:.1} ms {:.2}% differ{}",
+                "{} {} {:.1} ms {:.2}% differ{}",
                 FORMATS[format],
+                probe.rules(),
                 f.ms,
                 100.0 * f.differ,
                 if show_heat { " [heat]" } else { "" }

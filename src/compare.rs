@@ -20,7 +20,7 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
-use crate::{Frame, Scalar, Scene, Traced};
+use crate::{AsView, Frame, Scalar, Traced};
 
 /// How a render in one format differs from a reference render of the same scene.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -121,10 +121,11 @@ const _: () = assert!(CHUNK.is_multiple_of(crate::kernel::fast::RESYNC_PIXELS as
 /// the reference path); `on_pixel(column, row, pixel,
 /// reference_pixel)` sees every pair (for a heat map), row by row.
 pub fn compare<S: Scalar, R: Scalar>(
-    scene: &Scene<S>,
-    reference: &Scene<R>,
+    scene: &impl AsView<S>,
+    reference: &impl AsView<R>,
     mut on_pixel: impl FnMut(u16, u16, Rgb888, Rgb888),
 ) -> Comparison {
+    let (scene, reference) = (&scene.view(), &reference.view());
     let mut c = Comparison::default();
     let width = scene.camera.width.min(reference.camera.width);
     let height = scene.camera.height.min(reference.camera.height);

@@ -61,8 +61,8 @@ pub use kernel::flat::PlaneMode;
 pub use num::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};
 pub use render::{Frame, render, render_counted, render_line, render_line_counted};
 pub use scene::{
-    Camera, Color, Cone, Light, Material, Object, PixelGrid, Plan, Rules, Scene, SceneError,
-    SceneErrorKind,
+    AsView, Camera, Color, Cone, LargeScene, Light, Material, Object, PixelGrid, Plan, Rules,
+    Scene, SceneError, SceneErrorKind, SceneView,
 };
 pub use shade::color::{to_pixel, to_rgb888};
 pub use shade::{

@@ -19,7 +19,7 @@ use crate::kernel::flat::PlaneMode;
 use crate::kernel::{self, Drawing, Kernel, RowSink};
 use crate::shade::stages::{Shading, Stages, shading_for, with_stages};
 use crate::stats::Counters;
-use crate::{Plan, Scalar, Scene, Traced};
+use crate::{AsView, Plan, Scalar, SceneView, Traced};
 
 /// A frame of a scene: what is constant for the frame (the plan, the kernel, its
 /// per-plane terms and reciprocals) computed once in [`Frame::new`], then drawn line by
@@ -45,7 +45,7 @@ use crate::{Plan, Scalar, Scene, Traced};
 /// ```
 #[derive(Debug, Clone)]
 pub struct Frame<'a, S> {
-    scene: &'a Scene<S>,
+    scene: SceneView<'a, S>,
     shading: Shading,
     drawing: Drawing<S>,
 }
@@ -53,16 +53,17 @@ pub struct Frame<'a, S> {
 impl<'a, S: Scalar> Frame<'a, S> {
     /// Prepares a frame of `scene` (for the stages its plan needs), pure-geometry plane
     /// scenes drawn per pixel.
-    pub fn new(scene: &'a Scene<S>) -> Self {
+    pub fn new(scene: &'a impl AsView<S>) -> Self {
         Self::with_mode(scene, PlaneMode::PerPixel)
     }
 
     /// [`Frame::new`] with pure-geometry plane scenes drawn in `mode` (a drawing option:
     /// other scenes draw the same either way).
-    pub fn with_mode(scene: &'a Scene<S>, mode: PlaneMode) -> Self {
+    pub fn with_mode(scene: &'a impl AsView<S>, mode: PlaneMode) -> Self {
+        let scene = scene.view();
         let plan = scene.plan();
         let shading = shading_for(&plan);
-        let kernel = with_stages!(shading, select::<S>(scene, &plan));
+        let kernel = with_stages!(shading, select::<S>(&scene, &plan));
         Self {
             scene,
             shading,
@@ -74,7 +75,7 @@ impl<'a, S: Scalar> Frame<'a, S> {
     /// definition, a normalised ray), with the stage set this frame chose:
     /// [`crate::trace_pixel`] without working out the plan again.
     pub fn trace_pixel(&self, column: u16, row: u16) -> Traced<S> {
-        crate::shade::trace_pixel_with(self.scene, self.shading, column, row)
+        crate::shade::trace_pixel_with(&self.scene, self.shading, column, row)
     }
 
     /// How pure-geometry plane scenes are drawn in this frame.
@@ -102,7 +103,7 @@ impl<'a, S: Scalar> Frame<'a, S> {
         }
         with_stages!(
             self.shading,
-            kernel::line::<S, C>(self.scene, &self.drawing, row, line, counters)
+            kernel::line::<S, C>(&self.scene, &self.drawing, row, line, counters)
         );
     }
 
@@ -160,7 +161,7 @@ fn columns_with<S: Scalar, T: Stages>(
     out: &mut [Rgb888],
 ) {
     let _ = kernel::stream::<S, T, Rgb888, _>(
-        frame.scene,
+        &frame.scene,
         &frame.drawing,
         row,
         columns,
@@ -169,7 +170,7 @@ fn columns_with<S: Scalar, T: Stages>(
     );
 }
 
-fn select<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Kernel<S> {
+fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan) -> Kernel<S> {
     kernel::select::<S, T>(scene, plan)
 }
 
@@ -202,7 +203,7 @@ where
             Size::new(area.size.width, 1),
         );
         kernel::stream::<S, T, D::Color, _>(
-            frame.scene,
+            &frame.scene,
             &frame.drawing,
             row,
             x0..x1 + 1,
@@ -243,14 +244,14 @@ impl<D: DrawTarget> RowSink<D::Color> for Row<'_, D> {
 /// render_line(&scene, 0, &mut line);
 /// assert_eq!(line, [Rgb565::new(0, 0, 31); 4]);
 /// ```
-pub fn render_line<S: Scalar, C: From<Rgb888>>(scene: &Scene<S>, row: u16, line: &mut [C]) {
+pub fn render_line<S: Scalar, C: From<Rgb888>>(scene: &impl AsView<S>, row: u16, line: &mut [C]) {
     render_line_counted(scene, row, line, &mut Counters::default());
 }
 
 /// [`render_line`], adding the line's rays and stage evaluations to `counters` (counted
 /// with the `stats` feature; without it they stay 0).
 pub fn render_line_counted<S: Scalar, C: From<Rgb888>>(
-    scene: &Scene<S>,
+    scene: &impl AsView<S>,
     row: u16,
     line: &mut [C],
     counters: &mut Counters,
@@ -278,7 +279,7 @@ pub fn render_line_counted<S: Scalar, C: From<Rgb888>>(
 /// render(&scene, &mut display).unwrap();
 /// display.assert_pattern(&["RRR", "RRR"]);
 /// ```
-pub fn render<S, D>(scene: &Scene<S>, target: &mut D) -> Result<(), D::Error>
+pub fn render<S, D>(scene: &impl AsView<S>, target: &mut D) -> Result<(), D::Error>
 where
     S: Scalar,
     D: DrawTarget,
@@ -293,7 +294,7 @@ where
 /// # Errors
 /// The target's own error, from the first scanline it refused.
 pub fn render_counted<S, D>(
-    scene: &Scene<S>,
+    scene: &impl AsView<S>,
     target: &mut D,
     counters: &mut Counters,
 ) -> Result<(), D::Error>
@@ -310,11 +311,12 @@ where
 /// are simply not drawn.
 #[doc(hidden)]
 pub fn render_line_stages<S: Scalar, T: Stages, C: From<Rgb888>>(
-    scene: &Scene<S>,
+    scene: &impl AsView<S>,
     row: u16,
     line: &mut [C],
     counters: &mut Counters,
 ) {
+    let scene = &scene.view();
     if row < scene.camera.height {
         let plan = scene.plan();
         let drawing = Drawing {

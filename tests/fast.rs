@@ -10,7 +10,7 @@ use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render_line, trace_pixel};
 fn check<S: Scalar>(name: &str, text: &str, budget: f64) -> f64 {
     let scene = Scene::<S>::parse(text).unwrap();
     assert!(
-        fixray::internals::Primary::new(&scene).is_some(),
+        fixray::internals::Primary::new(&scene.view()).is_some(),
         "{name}: fast path applies"
     );
     let (w, h) = (

@@ -46,6 +46,7 @@ fn lines_in<S: Scalar>(scene: &Scene<S>, mode: PlaneMode) -> Image {
 /// The general fast path's picture of a pure-geometry scene (ambient colour of the plane
 /// `fast::Primary` picks; the reference path where it hands a pixel back).
 fn primary_image<S: Scalar>(scene: &Scene<S>) -> Image {
+    let scene = &scene.view();
     let p = Primary::new(scene).expect("a plane scene");
     (0..scene.camera.height)
         .map(|row| {
@@ -77,11 +78,14 @@ fn differ(a: &Image, b: &Image) -> usize {
 /// returns (pixels, per-pixel vs fast path differences, spans vs per-pixel differences).
 fn compare<S: Scalar>(name: &str, text: &str) -> (usize, usize, usize) {
     let scene = Scene::<S>::parse_as(text, Rules::Fixray).unwrap();
-    assert!(applies(&scene), "{name}: pure geometry");
-    assert!(Flat::new(&scene).is_some(), "{name} {}", S::NAME);
+    assert!(applies(&scene.view()), "{name}: pure geometry");
+    assert!(Flat::new(&scene.view()).is_some(), "{name} {}", S::NAME);
     for row in 0..scene.camera.height {
         assert!(
-            Flat::new(&scene).unwrap().row(&scene, row).is_some(),
+            Flat::new(&scene.view())
+                .unwrap()
+                .row(&scene.view(), row)
+                .is_some(),
             "{name} {}: row {row} fits",
             S::NAME
         );
@@ -166,7 +170,7 @@ fn random<S: Scalar>(exact_spans: bool) {
     for case in 0..60 {
         let text = random_scene(&mut rng);
         let scene = Scene::<S>::parse_as(&text, Rules::Fixray).unwrap();
-        if Flat::new(&scene).is_none() {
+        if Flat::new(&scene.view()).is_none() {
             continue;
         }
         let (n, f, s) = compare::<S>(&format!("random {case}"), &text);

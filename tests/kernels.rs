@@ -116,10 +116,10 @@ fn agree<S: Scalar>(name: &str, text: &str, mode: PlaneMode) -> (Vec<Rgb888>, us
         "{name} {} {mode:?}: draw against render_line",
         S::NAME
     );
-    let handed_back = match Flat::new(&scene) {
-        Some(flat) if fixray::internals::applies(&scene) => {
-            (0..h).filter(|&r| flat.row(&scene, r).is_none()).count()
-        }
+    let handed_back = match Flat::new(&scene.view()) {
+        Some(flat) if fixray::internals::applies(&scene.view()) => (0..h)
+            .filter(|&r| flat.row(&scene.view(), r).is_none())
+            .count(),
         _ => 0,
     };
     (drawn, handed_back)

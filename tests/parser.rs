@@ -415,7 +415,18 @@ fn too_many() {
         text.push_str(&format!("material m{i} {{}}\n"));
     }
     let line = u32::try_from(fixray::scene::MAX_MATERIALS).unwrap() + 2;
-    check(&text, line, 1, "too many materials (this build holds 16)");
+    let raise = |what: &str, n: usize, p: &str| {
+        format!(
+            "too many {what}: the scene type holds {n} (raise its `{p}` parameter, e.g. \
+             `fixray::LargeScene`)"
+        )
+    };
+    check(&text, line, 1, &raise("materials", 16, "MATERIALS"));
+    // A scene type with room for them reads the same file, in both rule sets.
+    for rules in Rules::ALL {
+        let big = Scene::<I16F16, 32, 17>::parse_as(&text, rules).unwrap();
+        assert_eq!(big.materials.len(), 17);
+    }
 
     let mut text = format!("{CAMERA}material m {{}}\n");
     for i in 0..=fixray::scene::MAX_OBJECTS {
@@ -424,7 +435,15 @@ fn too_many() {
         ));
     }
     let line = u32::try_from(fixray::scene::MAX_OBJECTS).unwrap() + 3;
-    check(&text, line, 1, "too many objects (this build holds 32)");
+    check(&text, line, 1, &raise("objects", 32, "OBJECTS"));
+    // The course rules (no name list) stop at the same place with the same error.
+    let e = Scene::<I16F16>::parse_as(&text, Rules::Course).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        format!("{line}:1: {}", raise("objects", 32, "OBJECTS"))
+    );
+    let big = Scene::<f64, 33>::parse_as(&text, Rules::Fixray).unwrap();
+    assert_eq!(big.objects.len(), 33);
 
     let mut text = String::from(CAMERA);
     for i in 0..=fixray::scene::MAX_LIGHTS {
@@ -433,7 +452,14 @@ fn too_many() {
         ));
     }
     let line = u32::try_from(fixray::scene::MAX_LIGHTS).unwrap() + 2;
-    check(&text, line, 1, "too many lights (this build holds 8)");
+    check(&text, line, 1, &raise("lights", 8, "LIGHTS"));
+    assert_eq!(
+        fixray::LargeScene::<I16F16>::parse(&text)
+            .unwrap()
+            .lights
+            .len(),
+        9
+    );
 }
 
 #[test]

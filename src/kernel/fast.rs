@@ -26,7 +26,7 @@ use heapless::Vec;
 use core::cmp::Ordering;
 
 use crate::scene::MAX_OBJECTS;
-use crate::{Scalar, Scene, Shape, Vec3};
+use crate::{Scalar, SceneView, Shape, Vec3};
 
 /// A plane term of the fast path: which object and `num = D' − N·eye` (the normal is read
 /// from the scene: on a 16 KB chip a copy of every normal is RAM the stack needs).
@@ -38,7 +38,7 @@ struct Term<S> {
 
 /// The unit normal of a plane-like object.
 #[inline]
-fn normal_of<S: Scalar>(scene: &Scene<S>, index: u8) -> Option<Vec3<S>> {
+fn normal_of<S: Scalar>(scene: &SceneView<'_, S>, index: u8) -> Option<Vec3<S>> {
     Some(
         scene
             .objects
@@ -104,9 +104,10 @@ pub(crate) fn accepts<S: Scalar>(num: S, nd: S, eps: S, eps_d2: S) -> bool {
 }
 
 impl<S: Scalar> Primary<S> {
-    /// Prepares a frame, or `None` when the fast path does not apply (a sphere, or a
-    /// quantity out of range): the caller then uses the reference path.
-    pub fn new(scene: &Scene<S>) -> Option<Self> {
+    /// Prepares a frame, or `None` when the fast path does not apply (a sphere, more than
+    /// [`MAX_OBJECTS`] objects, or a quantity out of range): the caller then uses the
+    /// reference path.
+    pub fn new(scene: &SceneView<'_, S>) -> Option<Self> {
         let eye = scene.camera.viewpoint;
         let step_x = scene
             .camera
@@ -127,7 +128,7 @@ impl<S: Scalar> Primary<S> {
     }
 
     /// Starts scanline `row` at column `column`.
-    pub fn row(&self, scene: &Scene<S>, row: u16, column: u16) -> Option<Row<S>> {
+    pub fn row(&self, scene: &SceneView<'_, S>, row: u16, column: u16) -> Option<Row<S>> {
         let eye = scene.camera.viewpoint;
         let y = scene.camera.screen_y(row)?;
         let x = scene.camera.screen_x(column)?;
@@ -149,7 +150,7 @@ impl<S: Scalar> Primary<S> {
     /// [`RESYNC_PIXELS`] pixels, so the drift stays below `RESYNC_PIXELS / 2` DELTAs), and
     /// `N·D` is recomputed from `D` (one wide dot product: consistent with `D`, so the hit
     /// point lies on the ray through that screen point).
-    pub fn advance(&self, scene: &Scene<S>, row: &mut Row<S>) -> Option<()> {
+    pub fn advance(&self, scene: &SceneView<'_, S>, row: &mut Row<S>) -> Option<()> {
         row.dir.x = row.dir.x.checked_add(self.step_x)?;
         for (nd, term) in row.nd.iter_mut().zip(&self.terms) {
             *nd = normal_of(scene, term.index)?.dot(row.dir)?;
@@ -162,7 +163,11 @@ impl<S: Scalar> Primary<S> {
     /// background, `Err(())` when the reference path must decide (the winner does not fit
     /// the format).
     #[allow(clippy::result_unit_err)]
-    pub fn nearest(&self, scene: &Scene<S>, row: &Row<S>) -> Result<Option<FastHit<S>>, ()> {
+    pub fn nearest(
+        &self,
+        scene: &SceneView<'_, S>,
+        row: &Row<S>,
+    ) -> Result<Option<FastHit<S>>, ()> {
         let eps = scene.epsilon;
         let d = row.dir;
         let eps_d2 = d.dot(d).and_then(|d2| eps.checked_mul(d2)).ok_or(())?;
@@ -201,7 +206,13 @@ impl<S: Scalar> Primary<S> {
     }
 
     /// The hit point `eye + t'·D` of a term and a bound on its world distance.
-    fn point(&self, scene: &Scene<S>, term: &Term<S>, nd: S, d: Vec3<S>) -> Option<(Vec3<S>, S)> {
+    fn point(
+        &self,
+        scene: &SceneView<'_, S>,
+        term: &Term<S>,
+        nd: S,
+        d: Vec3<S>,
+    ) -> Option<(Vec3<S>, S)> {
         let t = term.num.checked_div(nd)?;
         let point = scene.camera.viewpoint.sum(d.scale(t)?)?;
         // |D| ≤ √3 |D|∞ < 2 |D|∞: the world distance t'·|D| is below t'·2|D|∞.

@@ -39,7 +39,7 @@ use heapless::Vec;
 use super::fast::accepts;
 use crate::scene::MAX_OBJECTS;
 use crate::shade::color::to_rgb888;
-use crate::{Scalar, Scene, Shape, Vec3};
+use crate::{Scalar, SceneView, Shape, Vec3};
 
 /// How many bits a ratio of at most 1 is scaled up by, so that it keeps the format's full
 /// resolution: half the integer bits of a fixed format (I16F16: 8, so `2^8/|num|` still
@@ -129,7 +129,7 @@ pub struct FlatRow<S> {
 /// Whether a scene is pure geometry made of infinite planes: what [`Flat`] draws exactly.
 /// (The renderer also uses it for stage sets without lighting or mirrors, which draw
 /// ambient colours only.)
-pub fn applies<S: Scalar>(scene: &Scene<S>) -> bool {
+pub fn applies<S: Scalar>(scene: &SceneView<'_, S>) -> bool {
     let plan = scene.plan();
     !(plan.lighting || plan.reflection) && plan.planes_only()
 }
@@ -139,7 +139,7 @@ impl<S: Scalar> Flat<S> {
     /// (the whole image of a pure-geometry scene, [`applies`]); `None` when an object is
     /// not an infinite plane, there are more than [`MAX_PLANES`], or a per-frame quantity does not fit the format (an eye
     /// within `2^RATIO_SHIFT / MAX` of a plane, for instance).
-    pub fn new(scene: &Scene<S>) -> Option<Self> {
+    pub fn new(scene: &SceneView<'_, S>) -> Option<Self> {
         let camera = &scene.camera;
         let eye = camera.viewpoint;
         let scale = S::from_i32(1_i32.checked_shl(ratio_shift::<S>())?)?;
@@ -179,7 +179,7 @@ impl<S: Scalar> Flat<S> {
     /// Prepares scanline `row`: the interval and `w̃` line of every plane; `None` when a
     /// quantity does not fit the format (the caller traces the scanline on the general
     /// path).
-    pub fn row(&self, scene: &Scene<S>, row: u16) -> Option<FlatRow<S>> {
+    pub fn row(&self, scene: &SceneView<'_, S>, row: u16) -> Option<FlatRow<S>> {
         let camera = &scene.camera;
         let eye = camera.viewpoint;
         let dy = camera.screen_y(row)?.checked_sub(eye.y)?;

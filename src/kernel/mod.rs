@@ -22,7 +22,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 use crate::shade::stages::Stages;
 use crate::stats::{Counters, count_primary};
-use crate::{Plan, Rules, Scalar, Scene};
+use crate::{Plan, Rules, Scalar, SceneView};
 use fast::Primary;
 use flat::{Flat, PlaneMode};
 
@@ -50,7 +50,7 @@ pub(crate) struct Drawing<S> {
 
 /// The kernel for a frame of `scene` drawn with stage set `T`: the cheapest that draws
 /// the scene's definition. The only place that decides which kernel applies.
-pub(crate) fn select<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Kernel<S> {
+pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan) -> Kernel<S> {
     // The course rules divide every colour by the distance travelled and look through
     // the window's corners: only the reference path draws them.
     if scene.rules() == Rules::Course {
@@ -73,7 +73,7 @@ pub(crate) fn select<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Ker
 /// The fast kernel, where it applies: plane-like shapes, and stage sets that need only
 /// the side of the surface a primary ray comes from (no specular half vector, no mirror
 /// direction). Also what a scanline the flat kernel hands back is drawn with.
-fn fast<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Option<Primary<S>> {
+fn fast<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan) -> Option<Primary<S>> {
     if scene.rules() == Rules::Course || T::SPECULAR || T::REFLECTION || !plan.planes_like() {
         return None;
     }
@@ -82,7 +82,7 @@ fn fast<S: Scalar, T: Stages>(scene: &Scene<S>, plan: &Plan) -> Option<Primary<S
 
 /// Fills `line` (at most the camera's width) with scanline `row` drawn by `kernel`.
 pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     drawing: &Drawing<S>,
     row: u16,
     line: &mut [C],
@@ -110,7 +110,7 @@ pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
 /// A scanline the flat kernel handed back, on the fast kernel if it applies.
 #[inline(never)]
 fn fallback_line<S: Scalar, T: Stages, C: From<Rgb888>>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     plan: &Plan,
     row: u16,
     line: &mut [C],
@@ -133,7 +133,7 @@ pub(crate) trait RowSink<C> {
 /// Streams columns `columns` of scanline `row` to `sink`, drawn by the frame's kernel:
 /// the pixels of [`line`], without a line buffer.
 pub(crate) fn stream<S, T, C, K>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     drawing: &Drawing<S>,
     row: u16,
     columns: core::ops::Range<u16>,
@@ -177,7 +177,7 @@ where
 /// I32F32 that is the difference between fitting and not).
 #[inline(never)]
 fn flat_line<S: Scalar, C: From<Rgb888>>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     flat: &Flat<S>,
     mode: PlaneMode,
     row: u16,
@@ -207,7 +207,7 @@ fn flat_line<S: Scalar, C: From<Rgb888>>(
 /// the reference path, into `line`.
 #[inline(never)]
 fn primary_line<S: Scalar, T: Stages, C: From<Rgb888>>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     primary: Option<&Primary<S>>,
     row: u16,
     line: &mut [C],

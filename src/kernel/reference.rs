@@ -10,14 +10,14 @@ use crate::shade::color::to_pixel;
 use crate::shade::stages::Stages;
 use crate::shade::{Incoming, shade_with, trace_with};
 use crate::stats::{Counters, count};
-use crate::{Hit, Scalar, Scene};
+use crate::{Hit, Scalar, SceneView};
 
 /// The pixels of columns `columns` of scanline `row` traced with the stage set `T`, one
 /// per step, as the caller (a `fill_contiguous` or a line buffer) pulls them. With a
 /// fast-kernel frame (`primary`) primary rays take [`super::fast`]; otherwise, and for
 /// any pixel the fast kernel hands back, the reference path.
 pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
-    scene: &'a Scene<S>,
+    scene: &'a SceneView<'a, S>,
     primary: Option<&'a Primary<S>>,
     row: u16,
     columns: core::ops::Range<u16>,

@@ -118,16 +118,40 @@ pub struct Object<S> {
 /// assert_eq!(scene.objects.len(), 1);
 /// assert_eq!((scene.camera.width, scene.camera.height), (4, 3));
 /// ```
+///
+/// The capacities are part of the type: `OBJECTS` objects, `MATERIALS` materials and
+/// `LIGHTS` lights, today's [`MAX_OBJECTS`], [`MAX_MATERIALS`] and [`MAX_LIGHTS`] by
+/// default (what a 16 KB chip holds). A host or a big chip picks larger ones; a file over
+/// capacity is a [`SceneErrorKind::TooMany`] error that names the parameter to raise.
+///
+/// ```
+/// use fixray::{Scene, SceneErrorKind, I16F16};
+///
+/// let mut text = String::from("camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }");
+/// text += "material m { ambient 1 1 1 }";
+/// for i in 0..100 {
+///     text += &format!("sphere s{i} {{ material m center {i} 0 -10 radius 0.5 }}");
+/// }
+/// let err = Scene::<I16F16>::parse(&text).unwrap_err();
+/// assert!(matches!(err.kind, SceneErrorKind::TooMany { capacity: 32, parameter: "OBJECTS", .. }));
+/// let big = Scene::<I16F16, 128>::parse(&text).unwrap();
+/// assert_eq!(big.objects.len(), 100);
+/// ```
 #[derive(Debug, Clone, PartialEq)]
-pub struct Scene<S> {
+pub struct Scene<
+    S,
+    const OBJECTS: usize = MAX_OBJECTS,
+    const MATERIALS: usize = MAX_MATERIALS,
+    const LIGHTS: usize = MAX_LIGHTS,
+> {
     /// The camera.
     pub camera: Camera<S>,
-    /// Materials, indexed by [`Object::material`].
-    pub materials: Vec<Material<S>, MAX_MATERIALS>,
+    /// Materials, indexed by [`Object::material`] (at most 256 of them can be named).
+    pub materials: Vec<Material<S>, MATERIALS>,
     /// Point lights.
-    pub lights: Vec<Light<S>, MAX_LIGHTS>,
+    pub lights: Vec<Light<S>, LIGHTS>,
     /// Objects.
-    pub objects: Vec<Object<S>, MAX_OBJECTS>,
+    pub objects: Vec<Object<S>, OBJECTS>,
     /// Colour where no object is hit.
     pub background: Color<S>,
     /// The precision epsilon of every intersection test in this scene: the scene's
@@ -137,7 +161,72 @@ pub struct Scene<S> {
     rules: Rules,
 }
 
-impl<S: Scalar> Scene<S> {
+/// Capacities for a host or a big chip: every real course file fits (the largest has 178
+/// objects).
+pub type LargeScene<S> = Scene<S, 1024, 256, 64>;
+
+/// A scene of any capacities seen through slices ([`Scene::view`]): what the renderer
+/// reads, so that its code is the same for every capacity.
+#[derive(Debug, Clone, Copy)]
+pub struct SceneView<'a, S> {
+    /// The camera.
+    pub camera: Camera<S>,
+    /// Materials, indexed by [`Object::material`].
+    pub materials: &'a [Material<S>],
+    /// Lights.
+    pub lights: &'a [Light<S>],
+    /// Objects.
+    pub objects: &'a [Object<S>],
+    /// Colour where no object is hit.
+    pub background: Color<S>,
+    /// The precision epsilon.
+    pub epsilon: S,
+    /// The rule set.
+    pub rules: Rules,
+}
+
+/// What the renderer's functions take: a [`Scene`] of any capacities, or a
+/// [`SceneView`] of one.
+pub trait AsView<S> {
+    /// The scene through slices.
+    fn view(&self) -> SceneView<'_, S>;
+}
+
+impl<S: Scalar, const O: usize, const M: usize, const L: usize> AsView<S> for Scene<S, O, M, L> {
+    fn view(&self) -> SceneView<'_, S> {
+        Scene::view(self)
+    }
+}
+
+impl<S: Scalar> AsView<S> for SceneView<'_, S> {
+    fn view(&self) -> SceneView<'_, S> {
+        *self
+    }
+}
+
+impl<S: Scalar> SceneView<'_, S> {
+    /// The rule set the scene is drawn by.
+    #[inline]
+    pub fn rules(&self) -> Rules {
+        self.rules
+    }
+}
+
+impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L> {
+    /// The scene through slices, for the renderer.
+    #[inline]
+    pub fn view(&self) -> SceneView<'_, S> {
+        SceneView {
+            camera: self.camera,
+            materials: &self.materials,
+            lights: &self.lights,
+            objects: &self.objects,
+            background: self.background,
+            epsilon: self.epsilon,
+            rules: self.rules,
+        }
+    }
+
     /// A scene with a camera and nothing in it: black background, default epsilon, the
     /// crate's own rules ([`Rules::Fixray`]; the camera's grid is set to match).
     pub fn new(camera: Camera<S>) -> Self {
@@ -173,7 +262,7 @@ impl<S: Scalar> Scene<S> {
     /// Adds a plane object; hands the object back when the scene is full.
     ///
     /// # Errors
-    /// The object, when [`MAX_OBJECTS`] are already there.
+    /// The object, when `OBJECTS` are already there.
     pub fn push_plane(&mut self, plane: Plane<S>, material: u8) -> Result<(), Object<S>> {
         self.push_object(Object {
             shape: Shape::Plane(plane),
@@ -184,7 +273,7 @@ impl<S: Scalar> Scene<S> {
     /// Adds any object; hands it back when the scene is full.
     ///
     /// # Errors
-    /// The object, when [`MAX_OBJECTS`] are already there.
+    /// The object, when `OBJECTS` are already there.
     pub fn push_object(&mut self, object: Object<S>) -> Result<(), Object<S>> {
         self.objects.push(object)
     }

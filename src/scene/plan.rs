@@ -1,6 +1,6 @@
 //! [`Plan`]: which stages of shading and which kernels a scene needs.
 
-use super::{Material, Rules, Scene};
+use super::{Material, Rules, Scene, SceneView};
 use crate::{Scalar, Shape};
 
 /// Which stages of shading and which kernels a scene needs ([`Scene::plan`], computed
@@ -44,9 +44,16 @@ impl Plan {
     }
 }
 
-impl<S: Scalar> Scene<S> {
+impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L> {
     /// What the scene needs of the renderer, worked out from its contents now (a few
     /// comparisons per object; the renderer asks once per frame or line).
+    pub fn plan(&self) -> Plan {
+        self.view().plan()
+    }
+}
+
+impl<S: Scalar> SceneView<'_, S> {
+    /// What the scene needs of the renderer ([`Scene::plan`]).
     pub fn plan(&self) -> Plan {
         let material = |i: u8| self.materials.get(usize::from(i));
         let lighting = !self.lights.is_empty();

@@ -22,7 +22,7 @@ use super::color::{add_sat, term};
 use super::stages::Stages;
 use super::{Traced, material_at, occludes};
 use crate::stats::{Counters, count};
-use crate::{Color, Hit, Material, Ray, RayKind, Scalar, Scene, Vec3};
+use crate::{Color, Hit, Material, Ray, RayKind, Scalar, SceneView, Vec3};
 
 /// Paths from the eye longer than this many world units are black (the course's
 /// `MAX_DIST`).
@@ -40,7 +40,7 @@ fn z_limit<S: Scalar>() -> S {
 /// The nearest hit of a ray under the course rules among the objects other than `skip`;
 /// on equal `t` the first object in file order.
 pub(crate) fn nearest_course<S: Scalar>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     ray: &Ray<S>,
     skip: Option<usize>,
 ) -> Option<(usize, Hit<S>)> {
@@ -62,7 +62,7 @@ pub(crate) fn nearest_course<S: Scalar>(
 /// Traces a ray under the course rules with the stages of `T` (see the module
 /// documentation): the first hit and the colour in channel units.
 pub(crate) fn trace_course<S: Scalar, T: Stages>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     ray: &Ray<S>,
     counters: &mut Counters,
 ) -> Traced<S> {
@@ -158,7 +158,7 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 fn course_lights<S: Scalar, T: Stages>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     ray: &Ray<S>,
     index: usize,
     material: &Material<S>,
@@ -169,7 +169,7 @@ fn course_lights<S: Scalar, T: Stages>(
 ) {
     let channel_max = S::from_i32(255).unwrap_or(S::MAX);
     let glint = T::SPECULAR && material.specular != S::ZERO && material.shininess > S::ZERO;
-    for light in &scene.lights {
+    for light in scene.lights {
         let Some(to_light) = light.location.diff(hit.point).and_then(Vec3::normalize) else {
             continue;
         };

@@ -5,7 +5,7 @@ use super::color::{add_sat, term};
 use super::stages::Stages;
 use super::{Incoming, occludes};
 use crate::stats::{Counters, count};
-use crate::{Color, Hit, Material, Object, Scalar, Scene, Vec3};
+use crate::{Color, Hit, Material, Object, Scalar, SceneView, Vec3};
 
 /// The lights' share of a hit's colour, added to `color` (see [`shade_with`]). Not
 /// inlined: its locals are not part of the recursive frames of mirror reflections (on a
@@ -13,7 +13,7 @@ use crate::{Color, Hit, Material, Object, Scalar, Scene, Vec3};
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn light_with<S: Scalar, T: Stages>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     ray: &Incoming<S>,
     object: &Object<S>,
     material: &Material<S>,
@@ -25,7 +25,7 @@ pub(super) fn light_with<S: Scalar, T: Stages>(
     let channel_max = S::from_i32(255).unwrap_or(S::MAX);
     let specular = T::SPECULAR && material.specular > S::ZERO;
     if material.diffuse != [S::ZERO; 3] || specular {
-        for light in &scene.lights {
+        for light in scene.lights {
             let Some(to_light) = light.location.diff(hit.point).and_then(Vec3::normalize) else {
                 continue;
             };

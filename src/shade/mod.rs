@@ -17,7 +17,7 @@ mod light;
 pub(crate) mod stages;
 
 use crate::stats::{Counters, count};
-use crate::{Color, Hit, Object, Ray, Rules, Scalar, Scene, Shape, Tiling, Vec3};
+use crate::{AsView, Color, Hit, Object, Ray, Rules, Scalar, SceneView, Shape, Tiling, Vec3};
 use color::{add_sat, to_pixel};
 use light::light_with;
 use stages::{Stages, shading_for, with_stages};
@@ -49,7 +49,11 @@ impl<S: Scalar> From<&Ray<S>> for Incoming<S> {
 }
 
 /// The nearest accepted hit of a ray among the scene's objects, with the object's index.
-pub fn nearest_hit<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Option<(usize, Hit<S>)> {
+pub fn nearest_hit<S: Scalar>(scene: &impl AsView<S>, ray: &Ray<S>) -> Option<(usize, Hit<S>)> {
+    nearest(&scene.view(), ray)
+}
+
+fn nearest<S: Scalar>(scene: &SceneView<'_, S>, ray: &Ray<S>) -> Option<(usize, Hit<S>)> {
     let mut best: Option<(usize, Hit<S>)> = None;
     for (i, object) in scene.objects.iter().enumerate() {
         if let Ok(hit) = object.shape.intersect(ray, scene.epsilon)
@@ -70,7 +74,7 @@ pub fn nearest_hit<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Option<(usize, 
 /// limit.
 #[inline(never)] // its locals stay out of the recursive shading frames (stack: see below)
 pub(crate) fn occludes<S: Scalar>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     ray: &Ray<S>,
     dist: S,
     light: Vec3<S>,
@@ -129,7 +133,7 @@ pub(crate) fn material_at<S: Scalar>(
 /// lights nothing there. A reflective material mixes `(1 − K)` of that with `K` of what
 /// the mirrored ray sees, to [`MAX_REFLECTION_DEPTH`].
 pub(crate) fn shade_with<S: Scalar, T: Stages>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     ray: &Incoming<S>,
     index: usize,
     hit: &Hit<S>,
@@ -195,7 +199,7 @@ pub(crate) fn shade_with<S: Scalar, T: Stages>(
 
 /// Traces a ray with the stages of `T`, by the scene's rules.
 pub(crate) fn trace_with<S: Scalar, T: Stages>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     ray: &Ray<S>,
     depth: u8,
     counters: &mut Counters,
@@ -203,7 +207,7 @@ pub(crate) fn trace_with<S: Scalar, T: Stages>(
     if scene.rules() == Rules::Course {
         return course::trace_course::<S, T>(scene, ray, counters);
     }
-    let hit = nearest_hit(scene, ray);
+    let hit = nearest(scene, ray);
     let color = match &hit {
         Some((i, h)) => shade_with::<S, T>(scene, &Incoming::from(ray), *i, h, depth, counters),
         None => scene.background,
@@ -213,7 +217,13 @@ pub(crate) fn trace_with<S: Scalar, T: Stages>(
 
 /// The colour of a hit on `objects[index]`, lit by the scene's lights, in channel units
 /// (the stages the scene's plan needs).
-pub fn shade<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, index: usize, hit: &Hit<S>) -> Color<S> {
+pub fn shade<S: Scalar>(
+    scene: &impl AsView<S>,
+    ray: &Ray<S>,
+    index: usize,
+    hit: &Hit<S>,
+) -> Color<S> {
+    let scene = &scene.view();
     let counters = &mut Counters::default();
     let ray = &Incoming::from(ray);
     with_stages!(
@@ -223,7 +233,7 @@ pub fn shade<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>, index: usize, hit: &Hit<
 }
 
 fn shade_one<S: Scalar, T: Stages>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     ray: &Incoming<S>,
     index: usize,
     hit: &Hit<S>,
@@ -242,7 +252,8 @@ pub struct Traced<S> {
 }
 
 /// Traces one ray: its nearest hit and colour, with the stages the scene's plan needs.
-pub fn trace<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Traced<S> {
+pub fn trace<S: Scalar>(scene: &impl AsView<S>, ray: &Ray<S>) -> Traced<S> {
+    let scene = &scene.view();
     let counters = &mut Counters::default();
     with_stages!(
         shading_for(&scene.plan()),
@@ -251,7 +262,7 @@ pub fn trace<S: Scalar>(scene: &Scene<S>, ray: &Ray<S>) -> Traced<S> {
 }
 
 fn trace_one<S: Scalar, T: Stages>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     ray: &Ray<S>,
     counters: &mut Counters,
 ) -> Traced<S> {
@@ -262,13 +273,14 @@ fn trace_one<S: Scalar, T: Stages>(
 /// path. A ray that cannot be formed in the format (see [`crate::Camera::primary_ray`])
 /// sees the background. It works out the scene's plan on every call: for many pixels,
 /// [`crate::Frame::trace_pixel`] does that once per frame.
-pub fn trace_pixel<S: Scalar>(scene: &Scene<S>, column: u16, row: u16) -> Traced<S> {
+pub fn trace_pixel<S: Scalar>(scene: &impl AsView<S>, column: u16, row: u16) -> Traced<S> {
+    let scene = &scene.view();
     trace_pixel_with(scene, shading_for(&scene.plan()), column, row)
 }
 
 /// [`trace_pixel`] with the stage set already chosen.
 pub(crate) fn trace_pixel_with<S: Scalar>(
-    scene: &Scene<S>,
+    scene: &SceneView<'_, S>,
     shading: stages::Shading,
     column: u16,
     row: u16,
@@ -286,6 +298,7 @@ pub(crate) fn trace_pixel_with<S: Scalar>(
 }
 
 /// The colour of pixel (`column`, `row`), row 0 at the top.
-pub fn pixel<S: Scalar>(scene: &Scene<S>, column: u16, row: u16) -> Rgb888 {
+pub fn pixel<S: Scalar>(scene: &impl AsView<S>, column: u16, row: u16) -> Rgb888 {
+    let scene = &scene.view();
     to_pixel(scene.rules(), trace_pixel(scene, column, row).color)
 }

@@ -5,15 +5,16 @@ use core::cmp::Ordering;
 
 use super::error::{SceneError, SceneErrorKind};
 use super::schema::Entity;
+use super::too_many;
 use super::{Block, Number, Parser, Result, Value, quote};
 use crate::num::Decimal;
-use crate::scene::{Cone, MAX_LIGHTS, MAX_MATERIALS, MAX_OBJECTS, MAX_PIXELDIM, Object};
+use crate::scene::{Cone, MAX_PIXELDIM, Object};
 use crate::{
     Camera, Color, FrameError, Light, Material, Plane, PlaneError, PlaneFrame, Rules, Scalar,
     Shape, Sphere, Tiling, Vec3,
 };
 
-impl<'a, S: Scalar> Parser<'a, '_, S> {
+impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '_, S, O, M, L> {
     pub(super) fn entity(&mut self, b: &Block<'a>) -> Result<()> {
         match b.entity {
             Entity::Camera => {
@@ -30,14 +31,11 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
                         name: quote(b.name.text),
                     }));
                 }
-                let full = || {
-                    b.error(SceneErrorKind::TooMany {
-                        what: "materials",
-                        capacity: MAX_MATERIALS,
-                    })
-                };
+                // An object names its material by a byte: at most 256 materials.
+                let capacity = M.min(usize::from(u8::MAX) + 1);
+                let full = || too_many(b, "materials", capacity, "MATERIALS");
                 // Both lists have the same capacity and length: check once, push both.
-                if self.scene.materials.is_full() {
+                if self.scene.materials.len() >= capacity {
                     return Err(full());
                 }
                 self.scene
@@ -65,12 +63,10 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
                     emissivity: colour3(b.required("emissivity")?, "emissivity", self.rules)?,
                     cone,
                 };
-                self.scene.lights.push(light).map_err(|_| {
-                    b.error(SceneErrorKind::TooMany {
-                        what: "lights",
-                        capacity: MAX_LIGHTS,
-                    })
-                })?;
+                self.scene
+                    .lights
+                    .push(light)
+                    .map_err(|_| too_many(b, "lights", L, "LIGHTS"))?;
             }
             Entity::Plane => {
                 self.register(b)?;
@@ -147,12 +143,7 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
         self.scene
             .objects
             .push(Object { shape, material })
-            .map_err(|_| {
-                b.error(SceneErrorKind::TooMany {
-                    what: "objects",
-                    capacity: MAX_OBJECTS,
-                })
-            })
+            .map_err(|_| too_many(b, "objects", O, "OBJECTS"))
     }
 }
 

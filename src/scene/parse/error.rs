@@ -86,13 +86,17 @@ pub enum SceneErrorKind {
     Duplicate(&'static str),
     /// No `camera` in the file.
     MissingCamera,
-    /// More entities of a kind than the crate's capacity.
+    /// More entities of a kind than the scene's type holds.
     TooMany {
         /// The kind.
         what: &'static str,
-        /// The capacity ([`MAX_MATERIALS`](crate::scene::MAX_MATERIALS),
-        /// [`MAX_LIGHTS`](crate::scene::MAX_LIGHTS), [`MAX_OBJECTS`](crate::scene::MAX_OBJECTS)).
+        /// The capacity (the scene type's `OBJECTS`, `MATERIALS` or `LIGHTS`; by
+        /// default [`MAX_OBJECTS`](crate::scene::MAX_OBJECTS),
+        /// [`MAX_MATERIALS`](crate::scene::MAX_MATERIALS),
+        /// [`MAX_LIGHTS`](crate::scene::MAX_LIGHTS)).
         capacity: usize,
+        /// The const parameter of [`Scene`](crate::Scene) that sets it.
+        parameter: &'static str,
     },
     /// `rules` names no rule set (`course` or `fixray`).
     UnknownRules(Quoted),
@@ -169,9 +173,15 @@ impl fmt::Display for SceneErrorKind {
             }
             K::Duplicate(what) => write!(f, "a second `{what}` (only one is allowed)"),
             K::MissingCamera => write!(f, "the scene has no camera"),
-            K::TooMany { what, capacity } => {
-                write!(f, "too many {what} (this build holds {capacity})")
-            }
+            K::TooMany {
+                what,
+                capacity,
+                parameter,
+            } => write!(
+                f,
+                "too many {what}: the scene type holds {capacity} (raise its `{parameter}` \
+                 parameter, e.g. `fixray::LargeScene`)"
+            ),
             K::UnknownRules(w) => {
                 write!(f, "unknown rule set `{w}` (expected `course` or `fixray`)")
             }

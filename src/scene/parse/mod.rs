@@ -31,7 +31,6 @@ use heapless::Vec;
 
 pub use error::{MAX_QUOTED, Quoted, SceneError, SceneErrorKind};
 
-use super::{MAX_LIGHTS, MAX_MATERIALS, MAX_OBJECTS};
 use crate::num::Decimal;
 use crate::{Camera, Color, Rules, Scalar, Scene, Vec3};
 use builder::{channel_colour, precision};
@@ -95,7 +94,7 @@ impl<'a> Block<'a> {
 
 /// Builds a scene from the parsed pieces, in place (a scene can be kilobytes: on a chip
 /// every copy of it is stack).
-struct Parser<'a, 's, S> {
+struct Parser<'a, 's, S, const O: usize, const M: usize, const L: usize> {
     lexer: Lexer<'a>,
     camera: Option<Camera<S>>,
     background: Option<Color<S>>,
@@ -103,15 +102,17 @@ struct Parser<'a, 's, S> {
     /// The rule set, found before the blocks are read ([`rules_of`]).
     rules: Rules,
     /// The scene under construction (its camera is a placeholder until the end).
-    scene: &'s mut Scene<S>,
-    material_names: Vec<&'a str, MAX_MATERIALS>,
+    scene: &'s mut Scene<S, O, M, L>,
+    material_names: Vec<&'a str, M>,
     /// Names of every entity but materials, with their kind, for the uniqueness rule.
-    names: Vec<(Entity, &'a str), { MAX_LIGHTS + MAX_OBJECTS + 1 }>,
+    object_names: Vec<(Entity, &'a str), O>,
+    /// Names of the lights, with their kind.
+    light_names: Vec<(Entity, &'a str), L>,
 }
 
 type Result<T> = core::result::Result<T, SceneError>;
 
-impl<'a, S: Scalar> Parser<'a, '_, S> {
+impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '_, S, O, M, L> {
     fn expect(&mut self, what: &'static str) -> Result<Token<'a>> {
         let end = self.lexer.pos;
         self.lexer
@@ -226,24 +227,34 @@ impl<'a, S: Scalar> Parser<'a, '_, S> {
             return Ok(());
         }
         let name = block.name.text;
-        if self
-            .names
-            .iter()
-            .any(|&(e, n)| e == block.entity && n == name)
-        {
+        let light = matches!(block.entity, Entity::Light | Entity::Spotlight);
+        let taken =
+            |list: &[(Entity, &str)]| list.iter().any(|&(e, n)| e == block.entity && n == name);
+        let duplicate = if light {
+            taken(&self.light_names)
+        } else {
+            taken(&self.object_names)
+        };
+        if duplicate {
             return Err(block.name.pos.error(SceneErrorKind::DuplicateName {
                 entity: block.entity.keyword(),
                 name: quote(name),
             }));
         }
-        // Every light and object is stored or refused by its own capacity before this
-        // list could fill; the error is the same either way.
-        self.names.push((block.entity, name)).map_err(|_| {
-            block.error(SceneErrorKind::TooMany {
-                what: "named entities",
-                capacity: MAX_LIGHTS + MAX_OBJECTS + 1,
-            })
-        })
+        // The lists have the capacities of the scene's: full here is full there.
+        let entry = (block.entity, name);
+        let pushed = if light {
+            self.light_names.push(entry).is_ok()
+        } else {
+            self.object_names.push(entry).is_ok()
+        };
+        if pushed {
+            Ok(())
+        } else if light {
+            Err(too_many(block, "lights", L, "LIGHTS"))
+        } else {
+            Err(too_many(block, "objects", O, "OBJECTS"))
+        }
     }
 
     fn material_index(&self, block: &Block<'a>, attribute: &'static str) -> Result<u8> {
@@ -348,7 +359,21 @@ fn placeholder_camera<S: Scalar>() -> Camera<S> {
     }
 }
 
-impl<S: Scalar> Scene<S> {
+/// The error of a block beyond a capacity of the scene's type.
+fn too_many(
+    block: &Block<'_>,
+    what: &'static str,
+    capacity: usize,
+    parameter: &'static str,
+) -> SceneError {
+    block.error(SceneErrorKind::TooMany {
+        what,
+        capacity,
+        parameter,
+    })
+}
+
+impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L> {
     /// Reads a scene in the keyword-block format of `scene-format.md`.
     ///
     /// # Errors
@@ -433,7 +458,8 @@ impl<S: Scalar> Scene<S> {
                 rules,
                 scene: self,
                 material_names: Vec::new(),
-                names: Vec::new(),
+                object_names: Vec::new(),
+                light_names: Vec::new(),
             }
             .parse()
         });

@@ -207,13 +207,13 @@ impl PerFormat for MeasurePaths<'_> {
             })
         };
         push("reference (per pixel, normalised rays)", ref_ms, &reference);
-        if fixray::internals::applies(&scene) {
+        if fixray::internals::applies(&scene.view()) {
             // The general fast path, as the renderer used it for these scenes before
             // the pure-geometry kernel: the plane `fast::Primary` picks, its ambient colour.
-            let primary = fixray::internals::Primary::new(&scene).expect("a plane scene");
+            let primary = fixray::internals::Primary::new(&scene.view()).expect("a plane scene");
             let (ms, picture) = median_ms(self.runs, || {
                 every(&|x, y| match primary
-                    .row(&scene, y, x)
+                    .row(&scene.view(), y, x)
                     .map(|r| primary.nearest(&scene, &r))
                 {
                     Some(Ok(Some(hit))) => {
