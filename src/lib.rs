@@ -55,7 +55,7 @@ pub struct ReadmeDoctests;
 
 pub use geometry::{
     FrameError, Hit, Miss, Normalized, Plane, PlaneError, PlaneFrame, Ray, RayKind, Shape, Sphere,
-    SphereError, Tiling, Vec3,
+    SphereError, Tiling, Triangle, TriangleError, Vec3,
 };
 pub use kernel::flat::PlaneMode;
 pub use num::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};

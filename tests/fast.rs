@@ -83,11 +83,12 @@ fn check<S: Scalar>(name: &str, text: &str, budget: f64) -> f64 {
 
 #[test]
 fn the_fast_path_draws_the_reference_picture() {
-    let scenes: [(&str, &str, f64); 4] = [
+    let scenes: [(&str, &str, f64); 5] = [
         ("planes", include_str!("../scenes/planes.scene"), 0.01),
         ("horizon", include_str!("../scenes/horizon.scene"), 0.01),
         ("default", include_str!("../scenes/default.scene"), 0.03),
         ("tiles", include_str!("../scenes/tiles.scene"), 0.02),
+        ("triangles", include_str!("../scenes/triangles.scene"), 0.01),
     ];
     for (name, text, budget) in scenes {
         check::<I16F16>(name, text, budget);
@@ -132,6 +133,7 @@ fn the_fast_path_is_as_close_to_f64_as_the_reference_path() {
         ("horizon", include_str!("../scenes/horizon.scene")),
         ("default", include_str!("../scenes/default.scene")),
         ("tiles", include_str!("../scenes/tiles.scene")),
+        ("triangles", include_str!("../scenes/triangles.scene")),
     ] {
         for (fast, reference) in [
             against_f64::<I16F16>(name, text),

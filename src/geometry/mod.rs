@@ -1,5 +1,5 @@
 //! Rays, hits and the shapes: one file per shape (`plane.rs`, `sphere.rs`, `frame.rs` for
-//! tiled and finite planes), the [`Shape`] enum they dispatch through (`shape.rs`), and the
+//! tiled and finite planes, `triangle.rs`), the [`Shape`] enum they dispatch through (`shape.rs`), and the
 //! offsets of secondary rays (`spawn.rs`). This file: rays, hits, misses, and the plane
 //! intersection of the course notes (`plane_hits`).
 //!
@@ -37,6 +37,7 @@ mod plane;
 mod shape;
 mod spawn;
 mod sphere;
+mod triangle;
 mod vec3;
 
 pub use frame::{FrameError, PlaneFrame, Tiling};
@@ -44,6 +45,7 @@ pub use plane::{Plane, PlaneError};
 pub use shape::Shape;
 pub use spawn::{RESIDUAL_ULPS, SPAWN_MARGIN_ULPS};
 pub use sphere::{Sphere, SphereError};
+pub use triangle::{EDGE_SLACK_ULPS, Triangle, TriangleError};
 pub use vec3::{Normalized, Vec3};
 
 use crate::Scalar;

@@ -1,6 +1,6 @@
 //! [`Shape`]: the shapes of a scene, dispatched through an enum (no `dyn`).
 
-use super::{Hit, Miss, Plane, PlaneFrame, Ray, Sphere, Vec3};
+use super::{Hit, Miss, Plane, PlaneFrame, Ray, Sphere, Triangle, Vec3};
 use crate::Scalar;
 
 /// A shape of the scene. Shapes dispatch through this enum (no `dyn`).
@@ -25,21 +25,44 @@ pub enum Shape<S> {
     },
     /// A finite rectangle of a plane.
     Finite(PlaneFrame<S>),
+    /// A triangle.
+    Triangle(Triangle<S>),
 }
 
 /// Whether the sphere code is built in (cargo feature `spheres`).
 const SPHERES: bool = cfg!(feature = "spheres");
 
 impl<S: Scalar> Shape<S> {
-    /// The plane of a plane-like shape (infinite, tiled or finite); `None` for a sphere.
-    /// The one place that knows which shapes are planes.
+    /// The plane of a plane-like shape (infinite, tiled, finite or a triangle); `None`
+    /// for a sphere. The one place that knows which shapes are planes.
     #[inline]
     pub fn plane(&self) -> Option<&Plane<S>> {
         match self {
             Shape::Plane(p) => Some(p),
             Shape::Tiled { frame, .. } | Shape::Finite(frame) => Some(frame.plane()),
+            Shape::Triangle(t) => Some(t.plane()),
             Shape::Sphere(_) => None,
         }
+    }
+
+    /// Whether a point of a plane-like shape's plane lies within its bounds: everywhere
+    /// for infinite and tiled planes, inside the rectangle or the triangle for finite
+    /// planes and triangles (what a kernel that found the plane's hit checks). `false`
+    /// for a sphere.
+    #[inline]
+    pub fn bounds_contain(&self, point: Vec3<S>) -> bool {
+        match self {
+            Shape::Plane(_) | Shape::Tiled { .. } => true,
+            Shape::Finite(frame) => frame.contains(point),
+            Shape::Triangle(t) => t.contains(point),
+            Shape::Sphere(_) => false,
+        }
+    }
+
+    /// Whether the shape has bounds within its plane (a finite plane or a triangle).
+    #[inline]
+    pub fn is_bounded_plane(&self) -> bool {
+        matches!(self, Shape::Finite(_) | Shape::Triangle(_))
     }
 
     /// Intersects a ray with the shape (`epsilon` is the plane tests' precision epsilon).
@@ -61,6 +84,7 @@ impl<S: Scalar> Shape<S> {
                     Err(Miss::OutsideBounds)
                 }
             }
+            Shape::Triangle(t) => t.intersect(ray, epsilon),
         }
     }
 
@@ -72,7 +96,7 @@ impl<S: Scalar> Shape<S> {
         match self {
             Shape::Plane(p) => p.occludes(ray, epsilon, dist),
             Shape::Tiled { frame, .. } => frame.plane().occludes(ray, epsilon, dist),
-            Shape::Sphere(_) | Shape::Finite(_) => {
+            Shape::Sphere(_) | Shape::Finite(_) | Shape::Triangle(_) => {
                 self.intersect(ray, epsilon).is_ok_and(|hit| hit.t < dist)
             }
         }
@@ -80,7 +104,7 @@ impl<S: Scalar> Shape<S> {
 
     /// The course's intersection (`COURSE-RULES.md` §5), for every ray alike: planes
     /// miss at `t <= 0` and reject a plane-type hit with `z > z_limit` (the screen rule,
-    /// 0.01 in the course) whatever the ray; spheres take only the near root, with no
+    /// 0.01 in the course; `z > 0` for triangles) whatever the ray; spheres take only the near root, with no
     /// screen rule. `epsilon` is the plane tests' precision epsilon, as in
     /// [`Shape::intersect`] (the course compares `N·d` with zero exactly: an epsilon keeps
     /// a grazing ray's `t` within the format).
@@ -100,6 +124,12 @@ impl<S: Scalar> Shape<S> {
             };
         }
         let hit = self.intersect(&ray, epsilon)?;
+        // The course's triangles reject `z > 0` (§14), its planes `z > 0.01`.
+        let z_limit = if matches!(self, Shape::Triangle(_)) {
+            S::ZERO
+        } else {
+            z_limit
+        };
         if hit.t <= S::ZERO {
             Err(Miss::Behind)
         } else if hit.point.z > z_limit {

@@ -28,13 +28,15 @@ pub struct Plan {
     pub finite_planes: bool,
     /// Some object is a sphere.
     pub spheres: bool,
+    /// Some object is a triangle.
+    pub triangles: bool,
 }
 
 impl Plan {
     /// Whether every object is an infinite plane (no sphere, tile or finite plane): what
     /// the pure-geometry kernel draws.
     pub(crate) fn planes_only(&self) -> bool {
-        !(self.spheres || self.tiles || self.finite_planes)
+        !(self.spheres || self.tiles || self.finite_planes || self.triangles)
     }
 
     /// Whether every object is plane-like (infinite, tiled or finite): what the fast
@@ -99,6 +101,10 @@ impl<S: Scalar> SceneView<'_, S> {
                 .iter()
                 .any(|o| matches!(o.shape, Shape::Finite(_))),
             spheres,
+            triangles: self
+                .objects
+                .iter()
+                .any(|o| matches!(o.shape, Shape::Triangle(_))),
         }
     }
 }

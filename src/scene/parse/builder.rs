@@ -11,7 +11,7 @@ use crate::num::Decimal;
 use crate::scene::{Cone, MAX_PIXELDIM, Object};
 use crate::{
     Camera, Color, FrameError, Light, Material, Plane, PlaneError, PlaneFrame, Rules, Scalar,
-    Shape, Sphere, Tiling, Vec3,
+    Shape, Sphere, Tiling, Triangle, TriangleError, Vec3,
 };
 
 impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '_, S, O, M, L> {
@@ -135,8 +135,34 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                 };
                 self.push(b, shape, material)?;
             }
+            Entity::Triangle | Entity::Tri => self.triangle(b)?,
         }
         Ok(())
+    }
+
+    fn triangle(&mut self, b: &Block<'a>) -> Result<()> {
+        self.register(b)?;
+        let material = self.material_index(b, "material")?;
+        let names = if b.entity == Entity::Tri {
+            ["v0", "v1", "v2"]
+        } else {
+            ["vertex1", "vertex2", "vertex3"]
+        };
+        let mut vertices = [Vec3::new(S::ZERO, S::ZERO, S::ZERO); 3];
+        for (v, name) in vertices.iter_mut().zip(names) {
+            *v = vector(b.required(name)?)?;
+        }
+        let triangle = Triangle::new(vertices).map_err(|e| match e {
+            TriangleError::Degenerate => b.error(SceneErrorKind::OutOfDomain {
+                attribute: names[0],
+                rule: "one of three vertices that span a triangle (not on one line)",
+            }),
+            TriangleError::OffsetOutOfRange => b.error(SceneErrorKind::DerivedDoesNotFit {
+                what: "the triangle's offset N·vertex",
+                format: S::NAME,
+            }),
+        })?;
+        self.push(b, Shape::Triangle(triangle), material)
     }
 
     fn push(&mut self, b: &Block<'a>, shape: Shape<S>, material: u8) -> Result<()> {

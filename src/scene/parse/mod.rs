@@ -134,7 +134,10 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
 
     fn name(&mut self) -> Result<Token<'a>> {
         let t = self.expect("a name")?;
-        if is_name(t.text) {
+        // The course reads a name with `%s`: any token but a brace (tri1 names a
+        // triangle `tri`); the crate's own rules keep keywords and numbers out of names.
+        let course_name = self.rules == Rules::Course && t.text != "{" && t.text != "}";
+        if course_name || is_name(t.text) {
             Ok(t)
         } else {
             Err(t.pos.error(SceneErrorKind::ExpectedName(quote(t.text))))

@@ -16,6 +16,8 @@ pub(super) enum Entity {
     Sphere,
     TiledPlane,
     FPlane,
+    Triangle,
+    Tri,
 }
 
 /// How an attribute's value is written.
@@ -88,7 +90,7 @@ pub(super) struct EntitySpec {
 }
 
 /// Every entity of the format.
-pub(super) const SCHEMA: [EntitySpec; 8] = [
+pub(super) const SCHEMA: [EntitySpec; 10] = [
     EntitySpec {
         entity: Entity::Camera,
         keyword: "camera",
@@ -171,6 +173,29 @@ pub(super) const SCHEMA: [EntitySpec; 8] = [
             dimensions("dimensions", "dimension"),
         ],
     },
+    EntitySpec {
+        entity: Entity::Triangle,
+        keyword: "triangle",
+        attributes: &[
+            material("material"),
+            // The course reads them and draws the triangle's own plane (§14).
+            optional("normal", 3),
+            optional("point", 3),
+            numbers("vertex1", 3),
+            numbers("vertex2", 3),
+            numbers("vertex3", 3),
+        ],
+    },
+    EntitySpec {
+        entity: Entity::Tri,
+        keyword: "tri",
+        attributes: &[
+            material("material"),
+            numbers("v0", 3),
+            numbers("v1", 3),
+            numbers("v2", 3),
+        ],
+    },
 ];
 
 // The table is in the order of the variants, so `Entity::spec` indexes it in bounds.
@@ -191,9 +216,7 @@ pub(super) const STATEMENTS: [&str; 3] = ["background", "precision", "rules"];
 /// What real course files have that this crate does not draw yet: entities and material
 /// attributes, refused with [`super::SceneErrorKind::NotSupportedYet`] at their
 /// `line:column`, never silently ignored.
-pub(super) const NOT_YET: [&str; 7] = [
-    "triangle",
-    "tri",
+pub(super) const NOT_YET: [&str; 5] = [
     "texture",
     "texplane",
     "projector",

@@ -214,7 +214,7 @@ impl PerFormat for MeasurePaths<'_> {
             let (ms, picture) = median_ms(self.runs, || {
                 every(&|x, y| match primary
                     .row(&scene.view(), y, x)
-                    .map(|r| primary.nearest(&scene, &r))
+                    .map(|r| primary.nearest(&scene.view(), &r))
                 {
                     Some(Ok(Some(hit))) => {
                         let m = scene.objects[hit.index].material;

@@ -39,7 +39,7 @@ use fixray::compare::{Comparison, compare};
 use fixray::{Scalar, Scene, render_line, trace_pixel};
 
 /// The scenes: name, what it is, text. The grazing scene is third (the epsilon sweep).
-const SCENES: [(&str, &str, &str); 8] = [
+const SCENES: [(&str, &str, &str); 9] = [
     (
         "default",
         "the default scene: five planes, ambient + one light with shadows",
@@ -79,6 +79,11 @@ const SCENES: [(&str, &str, &str); 8] = [
         "mirror",
         "reflection: a mirror sphere and a half-mirror floor",
         include_str!("../../../scenes/mirror.scene"),
+    ),
+    (
+        "triangles",
+        "triangles: a quad split along a shared edge, a pyramid face, one light with shadows",
+        include_str!("../../../scenes/triangles.scene"),
     ),
 ];
 

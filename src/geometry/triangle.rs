@@ -1,0 +1,118 @@
+//! The triangle: a plane through three vertices, cut to the triangle between them (the
+//! course's `triangle` and `tri`, `COURSE-RULES.md` §14).
+
+use super::{Hit, Miss, Plane, Ray, Vec3};
+use crate::Scalar;
+
+/// Why a triangle cannot be built.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TriangleError {
+    /// Two vertices coincide, or the three lie on one line (within the format's
+    /// resolution): the triangle has no plane.
+    Degenerate,
+    /// `N·vertex` does not fit the number format.
+    OffsetOutOfRange,
+}
+
+/// How far outside an edge, in units of [`Scalar::ulp`] of the coordinates' magnitude, a
+/// point still counts as on it: the rounding of a computed hit point (a few ulps, as for
+/// [`Plane::residual_bound`]) with margin, so that a ray through an edge or a vertex hits,
+/// and two triangles sharing an edge leave no crack between them.
+pub const EDGE_SLACK_ULPS: i32 = 32;
+
+/// A triangle with vertices `a`, `b`, `c`: the plane through them with the normal
+/// `N = unit(unit(b − a) × unit(c − a))` (the course's formula; its `tri` entity's
+/// `(b − a) × (c − b)` has the same direction), and the region inside the three edges,
+/// edges and vertices included.
+///
+/// ```
+/// use fixray::{I16F16, Ray, RayKind, Scalar, Triangle, Vec3};
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// let tri = Triangle::new([v(0.0, 0.0, -5.0), v(4.0, 0.0, -5.0), v(0.0, 4.0, -5.0)]).unwrap();
+/// let down = |x, y| Ray { base: v(x, y, 5.0), dir: v(0.0, 0.0, -1.0), kind: RayKind::Primary };
+/// assert_eq!(tri.intersect(&down(1.0, 1.0), I16F16::DEFAULT_EPSILON).unwrap().t, 10);
+/// assert!(tri.intersect(&down(2.0, 2.0), I16F16::DEFAULT_EPSILON).is_ok()); // on an edge
+/// assert!(tri.intersect(&down(3.0, 3.0), I16F16::DEFAULT_EPSILON).is_err());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Triangle<S> {
+    plane: Plane<S>,
+    vertices: [Vec3<S>; 3],
+}
+
+impl<S: Scalar> Triangle<S> {
+    /// The triangle through `vertices`.
+    ///
+    /// # Errors
+    /// [`TriangleError::Degenerate`] when the vertices span no plane,
+    /// [`TriangleError::OffsetOutOfRange`] when its offset does not fit.
+    pub fn new(vertices: [Vec3<S>; 3]) -> Result<Self, TriangleError> {
+        let [a, b, c] = vertices;
+        let edge = |p: Vec3<S>| p.diff(a).and_then(Vec3::unit);
+        let normal = edge(b)
+            .zip(edge(c))
+            .and_then(|(ab, ac)| ab.cross(ac))
+            .filter(|n| n.max_abs() > S::ZERO)
+            .ok_or(TriangleError::Degenerate)?;
+        let plane = Plane::new(normal, a).map_err(|e| match e {
+            super::PlaneError::ZeroNormal => TriangleError::Degenerate,
+            super::PlaneError::OffsetOutOfRange => TriangleError::OffsetOutOfRange,
+        })?;
+        Ok(Self { plane, vertices })
+    }
+
+    /// The triangle's plane.
+    pub fn plane(&self) -> &Plane<S> {
+        &self.plane
+    }
+
+    /// The vertices.
+    pub fn vertices(&self) -> [Vec3<S>; 3] {
+        self.vertices
+    }
+
+    /// Whether a point of the triangle's plane lies inside it, edges and vertices
+    /// included: on the inner side of each edge's line, or less than
+    /// [`EDGE_SLACK_ULPS`] outside it. Each edge's side is the signed distance
+    /// `(N × unit(edge))·(p − start)`, in world units, so no product exceeds the
+    /// coordinates' own magnitude. `false` where a quantity does not fit the format.
+    pub fn contains(&self, p: Vec3<S>) -> bool {
+        let n = self.plane.normal();
+        let [a, b, c] = self.vertices;
+        let m = p
+            .max_abs()
+            .max(a.max_abs())
+            .max(b.max_abs())
+            .max(c.max_abs())
+            .max(S::ONE);
+        let Some(slack) = S::from_i32(EDGE_SLACK_ULPS).and_then(|k| k.checked_mul(m.ulp())) else {
+            return false;
+        };
+        let Some(limit) = slack.checked_neg() else {
+            return false;
+        };
+        [(a, b), (b, c), (c, a)].into_iter().all(|(from, to)| {
+            to.diff(from)
+                .and_then(Vec3::unit)
+                .and_then(|u| n.cross(u))
+                .zip(p.diff(from))
+                .and_then(|(inward, w)| inward.dot(w))
+                .is_some_and(|side| side >= limit)
+        })
+    }
+
+    /// Intersects a ray: the plane test of [`Plane::intersect`] (the precision epsilon,
+    /// the screen rule), then [`Triangle::contains`] on the hit point.
+    ///
+    /// # Errors
+    /// The plane's [`Miss`], or [`Miss::OutsideBounds`] off the triangle.
+    pub fn intersect(&self, ray: &Ray<S>, epsilon: S) -> Result<Hit<S>, Miss> {
+        let hit = self.plane.intersect(ray, epsilon)?;
+        if self.contains(hit.point) {
+            Ok(hit)
+        } else {
+            Err(Miss::OutsideBounds)
+        }
+    }
+}
