@@ -20,9 +20,9 @@
 
 use super::color::{add_sat, term};
 use super::stages::Stages;
-use super::{Traced, material_at, occludes};
+use super::{Traced, in_own_plane, material_at, occludes};
 use crate::stats::{Counters, count};
-use crate::{Color, Hit, Material, Ray, RayKind, Scalar, SceneView, Vec3};
+use crate::{Color, Hit, Material, Ray, RayKind, Scalar, SceneView, Shape, Vec3};
 
 /// Paths from the eye longer than this many world units are black (the course's
 /// `MAX_DIST`).
@@ -112,7 +112,17 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
         if T::LIGHTING
             && let Some(n) = normal
         {
-            course_lights::<S, T>(scene, &ray, index, material, &hit, n, &mut own, counters);
+            course_lights::<S, T>(
+                scene,
+                &ray,
+                index,
+                &object.shape,
+                material,
+                &hit,
+                n,
+                &mut own,
+                counters,
+            );
         }
         // W · own / D per channel (D > 0: every accepted t is).
         for (c, o) in color.iter_mut().zip(own) {
@@ -161,6 +171,7 @@ fn course_lights<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     ray: &Ray<S>,
     index: usize,
+    shape: &Shape<S>,
     material: &Material<S>,
     hit: &Hit<S>,
     normal: Vec3<S>,
@@ -177,6 +188,9 @@ fn course_lights<S: Scalar, T: Stages>(
         let Some(cos) = normal.dot(l).filter(|c| *c > S::ZERO) else {
             continue;
         };
+        if in_own_plane(shape, light.location, hit.point, scene.epsilon) {
+            continue;
+        }
         if T::CONES
             && let Some(cone) = light.cone
         {

@@ -3,7 +3,7 @@
 
 use super::color::{add_sat, term};
 use super::stages::Stages;
-use super::{Incoming, occludes};
+use super::{Incoming, in_own_plane, occludes};
 use crate::stats::{Counters, count};
 use crate::{Color, Hit, Material, Object, Scalar, SceneView, Vec3};
 
@@ -33,6 +33,9 @@ pub(super) fn light_with<S: Scalar, T: Stages>(
             let Some(cos) = facing.dot(l).filter(|c| *c > S::ZERO) else {
                 continue;
             };
+            if in_own_plane(&object.shape, light.location, hit.point, scene.epsilon) {
+                continue;
+            }
             if T::CONES
                 && let Some(cone) = light.cone
             {

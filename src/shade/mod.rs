@@ -94,6 +94,19 @@ pub(crate) fn occludes<S: Scalar>(
         })
 }
 
+/// Whether a light lies in the plane of a plane-like surface (within
+/// [`light_tolerance`]): it lights nothing of that surface, since `N·L` is 0 there by
+/// geometry (the rounded `N·L` would light it, or not, pixel by pixel, and near the light
+/// `1/dist` magnifies that).
+pub(crate) fn in_own_plane<S: Scalar>(
+    shape: &Shape<S>,
+    light: Vec3<S>,
+    point: Vec3<S>,
+    epsilon: S,
+) -> bool {
+    shape.plane().is_some() && shape.holds(light, light_tolerance(epsilon, light, point))
+}
+
 /// How close to a surface a light counts as lying on it ([`Shape::shadows`]): the
 /// scene's epsilon in units of the larger of 1 and the coordinates' magnitude (the
 /// rounding of the light's and the plane's positions grows with it).
