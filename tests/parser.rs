@@ -602,3 +602,117 @@ fn mangled_scenes_never_panic() {
     // The storm must actually produce errors (it is not testing only valid scenes).
     assert!(errors > 3000, "only {errors} errors");
 }
+
+// The course's reading (`rules course`, or no `rules` statement): what real course files
+// write and the crate's own rules refuse.
+
+#[test]
+fn the_rules_statement_chooses_the_reading_wherever_it_stands() {
+    let body = "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n";
+    assert_eq!(Scene::<I16F16>::parse(body).unwrap().rules(), Rules::Course);
+    for (text, rules) in [
+        (format!("rules fixray\n{body}"), Rules::Fixray),
+        (format!("{body}rules fixray"), Rules::Fixray),
+        (format!("{body}rules course"), Rules::Course),
+    ] {
+        assert_eq!(
+            Scene::<I16F16>::parse(&text).unwrap().rules(),
+            rules,
+            "{text}"
+        );
+    }
+    // parse_as overrides the file.
+    let ours = format!("rules fixray\n{body}");
+    assert_eq!(
+        Scene::<I16F16>::parse_as(&ours, Rules::Course)
+            .unwrap()
+            .rules(),
+        Rules::Course
+    );
+    let e = Scene::<I16F16>::parse(&format!("{body}rules mine")).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "2:7: unknown rule set `mine` (expected `course` or `fixray`)"
+    );
+    let e = Scene::<I16F16>::parse(&format!("rules course\n{body}rules fixray")).unwrap_err();
+    assert_eq!(e.to_string(), "3:1: a second `rules` (only one is allowed)");
+    let e = Scene::<I16F16>::parse(&format!("{body}rules")).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "2:6: unexpected end of input: expected a rule set"
+    );
+}
+
+#[test]
+fn the_course_reads_what_its_files_write() {
+    let cam = "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n";
+    // Duplicate names (the first material wins), a repeated attribute (the last wins),
+    // `specular R G B` (read, unused), negative colours, a keyword as a name.
+    let text = format!(
+        "{cam}material m {{ ambient 0.5 0.5 0.5 ambient 0.2 -0.1 0 }}\n\
+         material m {{ ambient 1 1 1 }}\n\
+         material old {{ diffuse 1 1 1 specular 0.3 0.3 0.3 }}\n\
+         light l {{ location 0 5 0 emissivity -1 2 3 }}\n\
+         plane p {{ material m normal 0 1 0 point 0 0 0 }}\n\
+         plane p {{ material old normal 0 1 0 point 0 -1 0 }}\n\
+         triangle tri {{ material m vertex1 0 0 -2 vertex2 1 0 -2 vertex3 0 1 -2 }}"
+    );
+    let s = Scene::<I16F16>::parse(&text).unwrap();
+    assert_eq!(s.materials.len(), 3);
+    assert_eq!(s.objects[0].material, 0, "the first `m`");
+    assert_eq!(s.materials[0].ambient[0].to_f64(), 0.2 * 255.0);
+    assert_eq!(s.materials[0].ambient[1].to_f64(), -0.1 * 255.0);
+    assert_eq!(
+        s.materials[2].specular,
+        I16F16::ZERO,
+        "specular R G B is not used"
+    );
+    assert_eq!(s.lights[0].emissivity[0].to_f64(), -1.0);
+    // The glint needs a `shininess` under the course rules: without one it is 0.
+    assert_eq!(s.materials[0].shininess, I16F16::ZERO);
+    // The crate's own rules refuse each of them, where it stands.
+    let fixray = format!("rules fixray\n{text}");
+    let e = Scene::<I16F16>::parse(&fixray).unwrap_err();
+    assert_eq!(e.to_string(), "3:34: `ambient` given twice in one block");
+    let e = Scene::<I16F16>::parse(&format!(
+        "rules fixray\n{cam}material old {{ specular 0.3 0.3 0.3 }}"
+    ))
+    .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "3:29: `specular R G B` belongs to the course rules (write `rules course` to use it)"
+    );
+    // And the crate's `reflective` is refused under the course rules (its mirrors are
+    // `specular`).
+    let e =
+        Scene::<I16F16>::parse(&format!("{cam}material glass {{ reflective 0.5 }}")).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "2:18: `reflective` belongs to the fixray rules (write `rules fixray` to use it)"
+    );
+}
+
+#[test]
+fn the_old_tiled_plane_tiles_world_x_and_z() {
+    let text = "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n\
+                material a { ambient 1 0 0 }\nmaterial b { ambient 0 0 1 }\n\
+                tiled_plane t { material a normal 0 1 0 point 0 0 0 dimension 1 1 \
+                altmaterial b }";
+    for rules in Rules::ALL {
+        let s = Scene::<I16F16>::parse_as(text, rules).unwrap();
+        match s.objects[0].shape {
+            fixray::Shape::Tiled { tiling, .. } => assert_eq!(tiling, fixray::Tiling::WorldXz),
+            ref other => panic!("{other:?}"),
+        }
+    }
+    // Without `xdir` a tiled plane is the old form; with it, the frame's form.
+    let framed = text.replace("altmaterial b", "altmaterial b xdir 1 0 0");
+    let s = Scene::<I16F16>::parse(&framed).unwrap();
+    assert!(matches!(
+        s.objects[0].shape,
+        fixray::Shape::Tiled {
+            tiling: fixray::Tiling::Frame,
+            ..
+        }
+    ));
+}
