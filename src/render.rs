@@ -60,8 +60,9 @@ impl<'a, S: Scalar> Frame<'a, S> {
     /// [`Frame::new`] with pure-geometry plane scenes drawn in `mode` (a drawing option:
     /// other scenes draw the same either way).
     pub fn with_mode(scene: &'a impl AsView<S>, mode: PlaneMode) -> Self {
-        let scene = scene.view();
+        let mut scene = scene.view();
         let plan = scene.plan();
+        scene.lights_on_surfaces = plan.lights_on_surfaces;
         let shading = shading_for(&plan);
         let kernel = with_stages!(shading, select::<S>(&scene, &plan));
         Self {

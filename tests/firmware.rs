@@ -20,11 +20,16 @@ use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::hash::FrameHash;
 use fixray::{Scalar, Scene, render_line};
 
-const SCENE: &str = include_str!("../scenes/default.scene");
+/// The scenes the hash test runs on the chips: the default scene (the crate's rules) and
+/// a real course file at 160×120 (the course rules).
+const SCENES: [(&str, &str); 2] = [
+    ("default", include_str!("../scenes/default.scene")),
+    ("course", include_str!("../scenes/course.scene")),
+];
 
-/// The host's hash of the default scene in format `S`: every pixel, row by row.
-fn host_hash<S: Scalar>() -> u32 {
-    let scene = Scene::<S>::parse(SCENE).unwrap();
+/// The host's hash of a scene in format `S`: every pixel, row by row.
+fn host_hash<S: Scalar>(text: &str) -> u32 {
+    let scene = Scene::<S>::parse(text).unwrap();
     let mut line = vec![Rgb888::BLACK; usize::from(scene.camera.width)];
     let mut hash = FrameHash::new();
     for row in 0..scene.camera.height {
@@ -57,30 +62,38 @@ fn a_missing_report_field_is_not_a_zero() {
 fn firmware_frames_match_the_host_bit_for_bit() {
     assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
     // Every format of the one list but the f64 reference (soft float on both cores).
-    let host: Vec<(&str, u32)> = fixray::num::formats::FORMATS
+    let host: Vec<(&str, [u32; 2])> = fixray::num::formats::FORMATS
         .into_iter()
         .filter(|f| *f != fixray::num::formats::REFERENCE)
-        .map(|f| (f, fixray::with_format!(f, host_hash()).unwrap()))
+        .map(|f| {
+            let hash = |text: &str| fixray::with_format!(f, host_hash(text)).unwrap();
+            (f, [hash(SCENES[0].1), hash(SCENES[1].1)])
+        })
         .collect();
     let mut report = String::from(
-        "| core | format | instructions/frame | instructions/pixel | of which hashing | \
+        "| core | format | scene | instructions/frame | instructions/pixel | of which hashing | \
          parse instructions | flash bytes | RAM bytes (static + stack) | hash | equal to host |\n\
-         |---|---|---|---|---|---|---|---|---|---|\n",
+         |---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     let mut mismatches = Vec::new();
     for (target, core) in qemu::CORES {
-        for &(format, host_hash) in &host {
-            let run = qemu::run(target, format, "default").unwrap();
-            assert_eq!(run.frames.len(), 1, "{target} {format}: {:?}", run.frames);
-            let f = &run.frames[0];
-            assert_eq!((f.get("format"), f.get("core")), (format, core));
-            let equal = host_hash == f.hash();
-            let hashing =
-                f.number("hash_instructions").expect("reported") as f64 / f.pixels() as f64;
-            let (ram, stack) = (run.static_ram, f.number("stack").expect("reported"));
-            writeln!(
+        for &(format, host_hashes) in &host {
+            let run = qemu::run(target, format, "default,course").unwrap();
+            assert_eq!(run.frames.len(), 2, "{target} {format}: {:?}", run.frames);
+            for (f, ((scene, _), host_hash)) in
+                run.frames.iter().zip(SCENES.iter().zip(host_hashes))
+            {
+                assert_eq!(
+                    (f.get("format"), f.get("core"), f.get("scene")),
+                    (format, core, *scene)
+                );
+                let equal = host_hash == f.hash();
+                let hashing =
+                    f.number("hash_instructions").expect("reported") as f64 / f.pixels() as f64;
+                let (ram, stack) = (run.static_ram, f.number("stack").expect("reported"));
+                writeln!(
                 report,
-                "| {core} | {format} | {} | {} | {hashing:.1} | {} | {} | {} ({ram} + {stack}) | {} | {} |",
+                "| {core} | {format} | {scene} | {} | {} | {hashing:.1} | {} | {} | {} ({ram} + {stack}) | {} | {} |",
                 f.get("instructions"),
                 f.get("per_pixel"),
                 f.get("parse_instructions"),
@@ -90,12 +103,13 @@ fn firmware_frames_match_the_host_bit_for_bit() {
                 if equal { "yes" } else { "no" }
             )
             .unwrap();
-            // Fixed-point arithmetic is exact: any difference is a bug. f32 is reported.
-            if !equal && !format.starts_with("f32") {
-                mismatches.push(format!(
-                    "{target} {format}: firmware 0x{:08x}, host 0x{host_hash:08x}",
-                    f.hash()
-                ));
+                // Fixed-point arithmetic is exact: any difference is a bug. f32 is reported.
+                if !equal && !format.starts_with("f32") {
+                    mismatches.push(format!(
+                        "{target} {format} {scene}: firmware 0x{:08x}, host 0x{host_hash:08x}",
+                        f.hash()
+                    ));
+                }
             }
         }
     }

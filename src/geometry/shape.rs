@@ -59,12 +59,6 @@ impl<S: Scalar> Shape<S> {
         }
     }
 
-    /// Whether the shape has bounds within its plane (a finite plane or a triangle).
-    #[inline]
-    pub fn is_bounded_plane(&self) -> bool {
-        matches!(self, Shape::Finite(_) | Shape::Triangle(_))
-    }
-
     /// Intersects a ray with the shape (`epsilon` is the plane tests' precision epsilon).
     ///
     /// # Errors
@@ -181,20 +175,30 @@ impl<S: Scalar> Shape<S> {
         tol: S,
         course_z: Option<S>,
     ) -> bool {
-        if self.holds(light, tol) {
-            return match self {
-                Shape::Sphere(s) if SPHERES => light
-                    .diff(s.center())
-                    .and_then(|out| out.dot(ray.dir))
-                    .is_some_and(|d| d > S::ZERO),
-                _ => false,
-            };
-        }
-        match course_z {
+        let blocks = match course_z {
             None => self.occludes(ray, epsilon, dist),
             Some(z) => self
                 .intersect_course(ray, epsilon, z)
                 .is_ok_and(|hit| hit.t < dist),
+        };
+        blocks && !self.spares_light(ray, light, tol)
+    }
+
+    /// For a shape that blocks the shadow ray `ray`: whether that is only the tie of a
+    /// light lying on it (within `tol`), which it then does not shadow
+    /// ([`Shape::shadows`]). Asked only of blocking shapes: it costs a dot product.
+    #[inline]
+    pub fn spares_light(&self, ray: &Ray<S>, light: Vec3<S>, tol: S) -> bool {
+        if !self.holds(light, tol) {
+            return false;
+        }
+        match self {
+            // Spared unless the ray leaves the sphere at the light.
+            Shape::Sphere(s) if SPHERES => !light
+                .diff(s.center())
+                .and_then(|out| out.dot(ray.dir))
+                .is_some_and(|d| d > S::ZERO),
+            _ => true,
         }
     }
 

@@ -26,7 +26,7 @@ use heapless::Vec;
 use core::cmp::Ordering;
 
 use crate::scene::MAX_OBJECTS;
-use crate::{Scalar, SceneView, Vec3};
+use crate::{Scalar, SceneView, Shape, Vec3};
 
 /// A plane term of the fast path: which object and `num = D' − N·eye` (the normal is read
 /// from the scene: on a 16 KB chip a copy of every normal is RAM the stack needs).
@@ -183,11 +183,8 @@ impl<S: Scalar> Primary<S> {
             {
                 continue;
             }
-            if let Some(shape) = scene
-                .objects
-                .get(usize::from(term.index))
-                .map(|o| &o.shape)
-                .filter(|s| s.is_bounded_plane())
+            if let Some(shape @ (Shape::Finite(_) | Shape::Triangle(_))) =
+                scene.objects.get(usize::from(term.index)).map(|o| &o.shape)
             {
                 let point = self.point(scene, term, nd, d).ok_or(())?;
                 if !shape.bounds_contain(point.0) {

@@ -183,6 +183,20 @@ pub struct SceneView<'a, S> {
     pub epsilon: S,
     /// The rule set.
     pub rules: Rules,
+    /// Whether the tie checks of lights lying on surfaces run: always for a view of a
+    /// scene ([`Scene::view`]); a frame sets it from its plan ([`Plan`]'s
+    /// `lights_on_surfaces`), so that a scene without such a light pays nothing for them.
+    pub(crate) lights_on_surfaces: bool,
+}
+
+/// How close to a surface a light counts as lying on it ([`crate::Shape::shadows`]): the
+/// scene's epsilon in units of the larger of 1 and the light's and the eye's coordinates
+/// (the rounding of the light's, the surface's and the hit points' positions grows with
+/// the scene's magnitude). One value per light and frame, so that the plan can tell in
+/// advance whether any light lies on any surface.
+pub(crate) fn light_tolerance<S: Scalar>(epsilon: S, light: Vec3<S>, eye: Vec3<S>) -> S {
+    let m = S::ONE.max(light.max_abs()).max(eye.max_abs());
+    epsilon.checked_mul(m).unwrap_or(S::MAX)
 }
 
 /// What the renderer's functions take: a [`Scene`] of any capacities, or a
@@ -224,6 +238,7 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
             background: self.background,
             epsilon: self.epsilon,
             rules: self.rules,
+            lights_on_surfaces: true,
         }
     }
 

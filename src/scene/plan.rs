@@ -30,6 +30,10 @@ pub struct Plan {
     pub spheres: bool,
     /// Some object is a triangle.
     pub triangles: bool,
+    /// Some light lies on some surface (within its tolerance): the ties of shadow rays
+    /// and of a surface's own plane are resolved for it (`docs/numerics.md`, "Lights on
+    /// surfaces"); without such a light those checks are not run.
+    pub lights_on_surfaces: bool,
 }
 
 impl Plan {
@@ -105,6 +109,10 @@ impl<S: Scalar> SceneView<'_, S> {
                 .objects
                 .iter()
                 .any(|o| matches!(o.shape, Shape::Triangle(_))),
+            lights_on_surfaces: self.lights.iter().any(|l| {
+                let tol = super::light_tolerance(self.epsilon, l.location, self.camera.viewpoint);
+                self.objects.iter().any(|o| o.shape.holds(l.location, tol))
+            }),
         }
     }
 }

@@ -20,7 +20,7 @@
 
 use super::color::{add_sat, term};
 use super::stages::Stages;
-use super::{Traced, in_own_plane, material_at, occludes};
+use super::{Traced, in_own_plane, light_tolerance, material_at, occludes};
 use crate::stats::{Counters, count};
 use crate::{Color, Hit, Material, Ray, RayKind, Scalar, SceneView, Shape, Vec3};
 
@@ -188,7 +188,13 @@ fn course_lights<S: Scalar, T: Stages>(
         let Some(cos) = normal.dot(l).filter(|c| *c > S::ZERO) else {
             continue;
         };
-        if in_own_plane(shape, light.location, hit.point, scene.epsilon) {
+        if scene.lights_on_surfaces
+            && in_own_plane(
+                shape,
+                light.location,
+                light_tolerance(scene.epsilon, light.location, scene.camera.viewpoint),
+            )
+        {
             continue;
         }
         if T::CONES

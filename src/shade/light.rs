@@ -3,7 +3,7 @@
 
 use super::color::{add_sat, term};
 use super::stages::Stages;
-use super::{Incoming, in_own_plane, occludes};
+use super::{Incoming, in_own_plane, light_tolerance, occludes};
 use crate::stats::{Counters, count};
 use crate::{Color, Hit, Material, Object, Scalar, SceneView, Vec3};
 
@@ -33,7 +33,13 @@ pub(super) fn light_with<S: Scalar, T: Stages>(
             let Some(cos) = facing.dot(l).filter(|c| *c > S::ZERO) else {
                 continue;
             };
-            if in_own_plane(&object.shape, light.location, hit.point, scene.epsilon) {
+            if scene.lights_on_surfaces
+                && in_own_plane(
+                    &object.shape,
+                    light.location,
+                    light_tolerance(scene.epsilon, light.location, scene.camera.viewpoint),
+                )
+            {
                 continue;
             }
             if T::CONES

@@ -11,6 +11,7 @@
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 pub(crate) mod color;
+pub(crate) use crate::scene::light_tolerance;
 mod course;
 pub use course::{MAX_COURSE_BOUNCES, MAX_PATH};
 mod light;
@@ -81,38 +82,37 @@ pub(crate) fn occludes<S: Scalar>(
     skip: Option<usize>,
     course_z: Option<S>,
 ) -> bool {
-    let tol = light_tolerance(scene.epsilon, light, ray.base);
-    scene
-        .objects
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| Some(*i) != skip)
-        .any(|(_, object)| {
-            object
-                .shape
-                .shadows(ray, scene.epsilon, dist, light, tol, course_z)
-        })
+    let eps = scene.epsilon;
+    // Only where the plan found a light on a surface, and only for a shape that blocks.
+    let spared = |shape: &Shape<S>| {
+        scene.lights_on_surfaces
+            && shape.spares_light(
+                ray,
+                light,
+                light_tolerance(eps, light, scene.camera.viewpoint),
+            )
+    };
+    match course_z {
+        None => scene
+            .objects
+            .iter()
+            .any(|o| o.shape.occludes(ray, eps, dist) && !spared(&o.shape)),
+        Some(z) => scene.objects.iter().enumerate().any(|(i, o)| {
+            Some(i) != skip
+                && o.shape
+                    .intersect_course(ray, eps, z)
+                    .is_ok_and(|hit| hit.t < dist)
+                && !spared(&o.shape)
+        }),
+    }
 }
 
 /// Whether a light lies in the plane of a plane-like surface (within
 /// [`light_tolerance`]): it lights nothing of that surface, since `N·L` is 0 there by
 /// geometry (the rounded `N·L` would light it, or not, pixel by pixel, and near the light
-/// `1/dist` magnifies that).
-pub(crate) fn in_own_plane<S: Scalar>(
-    shape: &Shape<S>,
-    light: Vec3<S>,
-    point: Vec3<S>,
-    epsilon: S,
-) -> bool {
-    shape.plane().is_some() && shape.holds(light, light_tolerance(epsilon, light, point))
-}
-
-/// How close to a surface a light counts as lying on it ([`Shape::shadows`]): the
-/// scene's epsilon in units of the larger of 1 and the coordinates' magnitude (the
-/// rounding of the light's and the plane's positions grows with it).
-pub(crate) fn light_tolerance<S: Scalar>(epsilon: S, light: Vec3<S>, from: Vec3<S>) -> S {
-    let m = S::ONE.max(light.max_abs()).max(from.max_abs());
-    epsilon.checked_mul(m).unwrap_or(S::MAX)
+/// `1/dist` magnifies that). Run only where the plan found a light on a surface.
+pub(crate) fn in_own_plane<S: Scalar>(shape: &Shape<S>, light: Vec3<S>, tol: S) -> bool {
+    shape.plane().is_some() && shape.holds(light, tol)
 }
 
 /// The material index an object shows at a point: a tiled plane shows its alternate
