@@ -39,7 +39,7 @@ use fixray::compare::{Comparison, compare};
 use fixray::{Scalar, Scene, render_line, trace_pixel};
 
 /// The scenes: name, what it is, text. The grazing scene is third (the epsilon sweep).
-const SCENES: [(&str, &str, &str); 9] = [
+const SCENES: [(&str, &str, &str); 10] = [
     (
         "default",
         "the default scene: five planes, ambient + one light with shadows",
@@ -84,6 +84,11 @@ const SCENES: [(&str, &str, &str); 9] = [
         "triangles",
         "triangles: a quad split along a shared edge, a pyramid face, one light with shadows",
         include_str!("../../../scenes/triangles.scene"),
+    ),
+    (
+        "course",
+        "a real course file (scene5: a sphere on a floor, two lights) at 160x120, course rules",
+        include_str!("../../../scenes/course.scene"),
     ),
 ];
 
