@@ -10,19 +10,19 @@
 //! below one level in the course's pictures). It is a loop, not a recursion: a chain of
 //! mirrors costs no stack.
 //!
-//! Per light (§6, §7): `diffuse ⊙ emissivity · N·L / dist` with the normal as given (a
-//! surface seen from behind gets no light from the viewer's side), nothing when
-//! `N·L ≤ 0`, a spotlight's cone with a strict `>`, the shadow ray from the hit itself
-//! skipping the object it leaves, and the glint `specular · (N·H)^shininess ·
-//! emissivity` with `H = unit(−d + L)`, not divided by the light distance, only with a
-//! `shininess`. Plane-type hits with `z > 0.01` are rejected for every ray, and spheres
+//! Per light (§6, §7; the one light loop, `light.rs`, with [`super::light::CourseLight`]):
+//! `diffuse ⊙ emissivity · N·L / dist` with the normal as given (a surface seen from
+//! behind gets no light from the viewer's side), nothing when `N·L ≤ 0`, a spotlight's
+//! cone with a strict `>`, the shadow ray from the hit itself skipping the object it
+//! leaves, and the glint `specular · (N·H)^shininess · emissivity` with
+//! `H = unit(−d + L)`, not divided by the light distance, only with a `shininess`. Plane-type hits with `z > 0.01` are rejected for every ray, and spheres
 //! take only their near root ([`crate::Shape::intersect_course`]).
 
-use super::color::{add_sat, term};
+use super::light::{CourseLight, light_with};
 use super::stages::Stages;
-use super::{Traced, in_own_plane, light_tolerance, material_at, occludes};
+use super::{Incoming, Traced, material_at};
 use crate::stats::{Counters, count};
-use crate::{Color, Hit, Material, Ray, RayKind, Scalar, SceneView, Shape, Vec3};
+use crate::{Hit, Ray, RayKind, Scalar, SceneView, Vec3};
 
 /// Paths from the eye longer than this many world units are black (the course's
 /// `MAX_DIST`).
@@ -112,14 +112,18 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
         if T::LIGHTING
             && let Some(n) = normal
         {
-            course_lights::<S, T>(
-                scene,
-                &ray,
+            let course = CourseLight {
                 index,
-                &object.shape,
+                z_limit: z_limit::<S>(),
+            };
+            light_with::<S, T>(
+                scene,
+                &Incoming::from(&ray),
+                object,
                 material,
                 &hit,
                 n,
+                Some(course),
                 &mut own,
                 counters,
             );
@@ -162,97 +166,4 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
         skip = Some(index);
     }
     Traced { hit: first, color }
-}
-
-/// The lights' share of a course hit, added to `own` (`COURSE-RULES.md` §6, §7, §9).
-#[inline(never)]
-#[allow(clippy::too_many_arguments)]
-fn course_lights<S: Scalar, T: Stages>(
-    scene: &SceneView<'_, S>,
-    ray: &Ray<S>,
-    index: usize,
-    shape: &Shape<S>,
-    material: &Material<S>,
-    hit: &Hit<S>,
-    normal: Vec3<S>,
-    own: &mut Color<S>,
-    counters: &mut Counters,
-) {
-    let channel_max = S::from_i32(255).unwrap_or(S::MAX);
-    let glint = T::SPECULAR && material.specular != S::ZERO && material.shininess > S::ZERO;
-    for light in scene.lights {
-        let Some(to_light) = light.location.diff(hit.point).and_then(Vec3::normalize) else {
-            continue;
-        };
-        let l = to_light.unit;
-        let Some(cos) = normal.dot(l).filter(|c| *c > S::ZERO) else {
-            continue;
-        };
-        if scene.lights_on_surfaces
-            && in_own_plane(
-                shape,
-                light.location,
-                light_tolerance(scene.epsilon, light.location, scene.camera.viewpoint),
-            )
-        {
-            continue;
-        }
-        if T::CONES
-            && let Some(cone) = light.cone
-        {
-            count(&mut counters.cone_tests);
-            let inside = l
-                .checked_neg()
-                .and_then(|from_light| from_light.dot(cone.axis))
-                .is_some_and(|c| c > cone.cos_theta);
-            if !inside {
-                continue;
-            }
-        }
-        if T::SHADOWS {
-            count(&mut counters.shadow_rays);
-            let shadow = Ray {
-                base: hit.point,
-                dir: l,
-                kind: RayKind::Secondary,
-            };
-            let dist = to_light.length().unwrap_or(S::MAX);
-            if occludes(
-                scene,
-                &shadow,
-                dist,
-                light.location,
-                Some(index),
-                Some(z_limit::<S>()),
-            ) {
-                continue;
-            }
-        }
-        count(&mut counters.diffuse);
-        let falloff = cos
-            .checked_mul(channel_max)
-            .and_then(|k| to_light.divide(k))
-            .unwrap_or(S::MAX);
-        let shine = if glint {
-            count(&mut counters.specular);
-            ray.dir
-                .checked_neg()
-                .and_then(|v| l.sum(v))
-                .and_then(Vec3::unit)
-                .and_then(|h| normal.dot(h))
-                .filter(|nh| *nh > S::ZERO)
-                .and_then(|nh| nh.pow_unit(material.shininess))
-                .and_then(|p| p.checked_mul(channel_max))
-                .unwrap_or(S::ZERO)
-        } else {
-            S::ZERO
-        };
-        for ((c, diffuse), emissivity) in own.iter_mut().zip(material.diffuse).zip(light.emissivity)
-        {
-            *c = add_sat(*c, term([emissivity, diffuse, falloff]));
-            if glint {
-                *c = add_sat(*c, term([emissivity, material.specular, shine]));
-            }
-        }
-    }
 }

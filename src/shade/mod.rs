@@ -181,7 +181,7 @@ pub(crate) fn shade_with<S: Scalar, T: Stages>(
     };
     if lit {
         light_with::<S, T>(
-            scene, ray, object, material, hit, facing, &mut color, counters,
+            scene, ray, object, material, hit, facing, None, &mut color, counters,
         );
     }
     if mirror {
