@@ -20,7 +20,7 @@
 
 use super::light::{CourseLight, light_with};
 use super::stages::Stages;
-use super::{Incoming, Traced, material_at};
+use super::{Incoming, Traced, surface};
 use crate::stats::{Counters, count};
 use crate::{Hit, Ray, RayKind, Scalar, SceneView, Vec3};
 
@@ -92,15 +92,7 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
         if bounce == 0 {
             first = Some((index, hit));
         }
-        let Some(object) = scene.objects.get(index) else {
-            break;
-        };
-        let Some(material) = scene.materials.get(usize::from(material_at(
-            object,
-            hit.point,
-            scene.rules(),
-            counters,
-        ))) else {
+        let Some((object, material)) = surface(scene, index, hit.point, counters) else {
             break;
         };
         let Some(d) = travelled.checked_add(hit.t) else {

@@ -18,7 +18,9 @@ mod light;
 pub(crate) mod stages;
 
 use crate::stats::{Counters, count};
-use crate::{AsView, Color, Hit, Object, Ray, Rules, Scalar, SceneView, Shape, Tiling, Vec3};
+use crate::{
+    AsView, Color, Hit, Material, Object, Ray, Rules, Scalar, SceneView, Shape, Tiling, Vec3,
+};
 use color::{add_sat, to_pixel};
 use light::light_with;
 use stages::{Stages, shading_for, with_stages};
@@ -138,6 +140,19 @@ pub(crate) fn material_at<S: Scalar>(
     }
 }
 
+/// The object `objects[index]` and the material it shows at `point` (both rule sets);
+/// `None` for an index or material out of the scene.
+pub(crate) fn surface<'a, S: Scalar>(
+    scene: &'a SceneView<'_, S>,
+    index: usize,
+    point: Vec3<S>,
+    counters: &mut Counters,
+) -> Option<(&'a Object<S>, &'a Material<S>)> {
+    let object = scene.objects.get(index)?;
+    let material = material_at(object, point, scene.rules(), counters);
+    Some((object, scene.materials.get(usize::from(material))?))
+}
+
 /// The colour of a hit on `objects[index]` in channel units, with the stages of `T`.
 ///
 /// Per light: `255 × (diffuse × emissivity × cos + specular × emissivity × (N·H)^shininess)
@@ -153,15 +168,8 @@ pub(crate) fn shade_with<S: Scalar, T: Stages>(
     depth: u8,
     counters: &mut Counters,
 ) -> Color<S> {
-    let Some(object) = scene.objects.get(index) else {
-        return scene.background;
-    };
-    let Some(material) = scene.materials.get(usize::from(material_at(
-        object,
-        hit.point,
-        scene.rules(),
-        counters,
-    ))) else {
+    // An index comes from a hit; a material index out of the scene shows black.
+    let Some((object, material)) = surface(scene, index, hit.point, counters) else {
         return [S::ZERO; 3];
     };
     let mut color = material.ambient;
