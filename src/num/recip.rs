@@ -92,6 +92,7 @@ fn leading_zeros_soft(x: u32) -> u32 {
 /// `x >> s` for `s < 64`, on 32-bit halves (a 64-bit shift by a variable amount is a
 /// helper call on 32-bit cores).
 #[inline(always)]
+#[cfg_attr(not(target_pointer_width = "32"), allow(dead_code))]
 fn shr(x: u64, s: u32) -> u64 {
     let (hi, lo) = ((x >> 32) as u32, x as u32);
     if s >= 32 {
@@ -124,6 +125,7 @@ fn with_sign(q: u64, negative: bool) -> Option<i32> {
 /// and 30 on a Cortex-M4; the unit tests compare it with the 64-bit division on every
 /// sign, size and edge.
 #[inline(never)]
+#[cfg_attr(not(target_pointer_width = "32"), allow(dead_code))]
 pub(crate) fn exact_div(a: i32, b: i32, frac: u32) -> Option<i32> {
     if b == 0 || frac > 16 {
         return None;
@@ -151,6 +153,7 @@ pub(crate) fn exact_div(a: i32, b: i32, frac: u32) -> Option<i32> {
 /// `q·b` for a quotient estimate `q` below 2³³ (the largest is `2⁴⁸/1`, far beyond the
 /// range, refused here: `None` when `q` has more than 32 bits).
 #[inline(always)]
+#[cfg_attr(not(target_pointer_width = "32"), allow(dead_code))]
 fn mul_wide_u32_u64(q: u64, b: u32) -> Option<u64> {
     Some(mul_wide_u32(u32::try_from(q).ok()?, b))
 }
