@@ -44,6 +44,7 @@ pub use frame::{FrameError, PlaneFrame, Tiling};
 pub use plane::{Plane, PlaneError};
 pub use shape::Shape;
 pub use spawn::{RESIDUAL_ULPS, SPAWN_MARGIN_ULPS};
+pub(crate) use spawn::surface_tolerance;
 pub use sphere::{Sphere, SphereError};
 pub use triangle::{EDGE_SLACK_ULPS, Triangle, TriangleError};
 pub use vec3::{Normalized, Vec3};

@@ -114,6 +114,47 @@ impl<S: Scalar> Plane<S> {
 }
 
 impl<S: Scalar> Plane<S> {
+    /// Whether the segment from `from` to `from + l` crosses the plane strictly between
+    /// its ends (a shadow segment from a lit point to its light, `ll = l·l`), without a
+    /// division or a square root: with `a₀ = D' − N·from` and `a₁ = a₀ − N·l` (the ends'
+    /// signed distances, negated) it crosses when they have strictly opposite signs. As
+    /// in [`Plane::intersect`] a segment within `epsilon` of parallel misses
+    /// (`|N·l| < ε·|l|`, compared squared: `(N·l)² < ε·(ε·|l|²)`), and an end within
+    /// `tol` of the plane does not count as crossing it: `from` is a hit point on or next
+    /// to this plane (a ray leaving a plane cannot meet it again), and a light within
+    /// `tol` lies on it. `tol` is the caller's bound on `from`'s distance from a surface
+    /// it lies on (the [`Plane::spawn`] offset: residual bound plus margin).
+    ///
+    /// `Some((a₀, N·l))` when it crosses (the crossing is at `u = a₀/(N·l)` along `l`),
+    /// `None` when it does not or a quantity does not fit (then `a₀` or `N·l` exceeds the
+    /// range: the plane is beyond any light that fits).
+    #[inline]
+    pub fn crossing(
+        &self,
+        from: Vec3<S>,
+        l: Vec3<S>,
+        ll: S,
+        tol: S,
+        epsilon: S,
+    ) -> Option<(S, S)> {
+        let a0 = S::sub_dot3(self.offset, self.normal.to_array(), from.to_array())?;
+        if a0.abs() <= tol {
+            return None;
+        }
+        let nl = self.normal.dot(l)?;
+        let a1 = a0.checked_sub(nl)?;
+        if a1.abs() <= tol || (a0 > S::ZERO) == (a1 > S::ZERO) {
+            return None;
+        }
+        let eps_ll = epsilon.checked_mul(ll).unwrap_or(S::MAX);
+        if S::cmp_products(nl, nl, epsilon, eps_ll) == Some(core::cmp::Ordering::Less) {
+            return None;
+        }
+        Some((a0, nl))
+    }
+}
+
+impl<S: Scalar> Plane<S> {
     /// A bound on how far a hit point computed by [`Plane::intersect`] lies off the plane,
     /// `|N·p − D'|` with the plane's own stored `N` and `D'`:
     /// `(9t/16 + RESIDUAL_ULPS) × ulp(m)`, `m = max(1, t, ‖b‖∞, ‖p‖∞, |D'|)`, for an epsilon

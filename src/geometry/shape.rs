@@ -96,6 +96,45 @@ impl<S: Scalar> Shape<S> {
         }
     }
 
+    /// Whether the shape meets the segment from `from` to `from + l` strictly between
+    /// its ends (a shadow segment from a hit point to a light, `ll = l·l`; `tol` bounds
+    /// how far `from` lies off the surface it is on, as the [`Shape::spawn`] offset).
+    /// Planes and spheres decide from signs and exact product comparisons
+    /// ([`Plane::crossing`], [`Sphere::meets_segment`]); finite planes and triangles
+    /// divide once, for a plane they cross, to check the crossing point's bounds. The
+    /// shadow test of the crate's rules: it agrees with [`Shape::occludes`] of the ray
+    /// spawned off the surface towards the light, except within `tol` of the surface
+    /// (where the spawned ray's offset decides) and at the rounding of the light's
+    /// distance.
+    #[inline]
+    pub fn meets_segment(&self, from: Vec3<S>, l: Vec3<S>, ll: S, tol: S, epsilon: S) -> bool {
+        match self {
+            Shape::Plane(p) => p.crossing(from, l, ll, tol, epsilon).is_some(),
+            Shape::Tiled { frame, .. } => frame
+                .plane()
+                .crossing(from, l, ll, tol, epsilon)
+                .is_some(),
+            Shape::Finite(_) | Shape::Triangle(_) => self
+                .plane()
+                .and_then(|p| p.crossing(from, l, ll, tol, epsilon))
+                .and_then(|(a0, nl)| from.sum(l.scale(a0.checked_div(nl)?)?))
+                .is_some_and(|x| self.bounds_contain(x)),
+            Shape::Sphere(s) if SPHERES => s.meets_segment(from, l, ll, tol).unwrap_or_else(|| {
+                // Far from `from` (a quantity out of range): the ray's own test.
+                let ray = l.normalize().map(|n| Ray {
+                    base: from,
+                    dir: n.unit,
+                    kind: super::RayKind::Secondary,
+                });
+                match (ray, l.length()) {
+                    (Some(r), Some(dist)) => self.occludes(&r, epsilon, dist),
+                    _ => false,
+                }
+            }),
+            Shape::Sphere(_) => false,
+        }
+    }
+
     /// The course's intersection (`COURSE-RULES.md` §5), for every ray alike: planes
     /// miss at `t <= 0` and reject a plane-type hit with `z > z_limit` (the screen rule,
     /// 0.01 in the course; `z > 0` for triangles) whatever the ray; spheres take only the near root, with no

@@ -27,6 +27,18 @@ pub(crate) fn residual<S: Scalar>(t: S, m: S) -> Option<S> {
         .checked_mul(m.ulp())
 }
 
+/// How far a hit point at distance `t` among values of magnitude up to `m` may lie off
+/// its surface, with the margin of a spawned ray: `(t + RESIDUAL_ULPS +
+/// SPAWN_MARGIN_ULPS) × ulp(max(1, t, m))`, at least [`residual`] plus the margin
+/// [`offset_base`] adds (`t` for its `9t/16`: no division, a per-pixel one on a chip
+/// without a divide instruction). The tolerance of the segment shadow tests
+/// ([`super::Shape::meets_segment`]).
+pub(crate) fn surface_tolerance<S: Scalar>(t: S, m: S) -> Option<S> {
+    let m = S::ONE.max(t).max(m);
+    t.checked_add(S::from_i32(RESIDUAL_ULPS + SPAWN_MARGIN_ULPS)?)?
+        .checked_mul(m.ulp())
+}
+
 /// Moves `point` along the unit `normal`, to the side `dir` points to, by `bound` plus
 /// [`SPAWN_MARGIN_ULPS`] (at magnitude `m`): the base of a secondary ray that cannot
 /// meet the surface it leaves. A `dir` tangent to the surface keeps the point.

@@ -144,6 +144,51 @@ impl<S: Scalar> Sphere<S> {
         Ok((near, far))
     }
 
+    /// Whether the segment from `from` to `from + l` (a shadow segment, `ll = l·l`)
+    /// meets the sphere strictly between its ends, from signs and exact product
+    /// comparisons only: no square root, no division. With `oc = from − centre`,
+    /// `f(u) = |oc + u·l|² − r² = ll·u² + 2b·u + f₀` (`b = oc·l`, `f₀ = |oc|² − r²`,
+    /// `f₁ = f(1) = f₀ + 2b + ll`):
+    ///
+    /// - `from` inside (`f₀ < −band`): it meets the sphere when the light is outside
+    ///   (`f₁ > 0`);
+    /// - `from` outside (`f₀ > band`): when the light is inside (`f₁ < 0`), or both ends
+    ///   are outside and the vertex `u* = −b/ll` lies in (0, 1) with `f(u*) < 0`:
+    ///   `b < 0`, `−b < ll` and `b² > ll·f₀`;
+    /// - `from` on the surface (`|f₀| ≤ band`, `band = tol·(2r + tol)`: within `tol` of
+    ///   it, a hit point on this sphere): the root at 0 is the point itself, the other
+    ///   is `−2b/ll`, and it meets the sphere when that lies in (0, 1): `b < 0`,
+    ///   `−2b < ll` (the segment goes through the sphere, as from the inside of a
+    ///   sphere the eye is in).
+    ///
+    /// `None` when a quantity does not fit the format (a sphere far from `from`): the
+    /// caller then decides by intersecting the ray.
+    pub fn meets_segment(&self, from: Vec3<S>, l: Vec3<S>, ll: S, tol: S) -> Option<bool> {
+        let oc = from.diff(self.center)?;
+        let b = oc.dot(l)?;
+        let f0 = S::sub_dot3(self.radius_sq, oc.to_array(), oc.to_array())?.checked_neg()?;
+        let band = self
+            .radius
+            .checked_add(self.radius)?
+            .checked_add(tol)?
+            .checked_mul(tol)?;
+        if f0.abs() <= band {
+            return Some(b < S::ZERO && b.checked_add(b)?.checked_neg()? < ll);
+        }
+        let f1 = f0.checked_add(b)?.checked_add(b)?.checked_add(ll)?;
+        if f0 < S::ZERO {
+            return Some(f1 > S::ZERO);
+        }
+        if f1 < S::ZERO {
+            return Some(true);
+        }
+        Some(
+            b < S::ZERO
+                && b.checked_neg()? < ll
+                && S::cmp_products(b, b, ll, f0) == Some(core::cmp::Ordering::Greater),
+        )
+    }
+
     /// The outward unit normal at a point on the surface.
     pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
         point.diff(self.center)?.unit()

@@ -103,6 +103,28 @@ pub(crate) fn accepts<S: Scalar>(num: S, nd: S, eps: S, eps_d2: S) -> bool {
     num.abs() >= nd.abs()
 }
 
+/// [`accepts`] with a bound first: `|N·D| ≥ ε·‖D‖₁` (`eps_l1`, with a margin of two
+/// roundings) implies `(N·D)² ≥ ε²·|D|²` since `|D| ≤ ‖D‖₁`, so a plane that far from
+/// parallel skips the exact squared test (two double-width products), which only planes
+/// within that margin of the epsilon take (`eps_d2` computes `ε·|D|²` for them).
+#[inline]
+fn accepts_bounded<S: Scalar>(
+    num: S,
+    nd: S,
+    eps: S,
+    eps_l1: Option<S>,
+    eps_d2: impl FnOnce() -> Option<S>,
+) -> bool {
+    match eps_l1 {
+        Some(bound) if nd.abs() >= bound && nd != S::ZERO => {
+            // Behind: t' < 0 (num = 0 puts the hit at the eye: in front of the screen);
+            // in front of the screen: t' < 1.
+            (num > S::ZERO) == (nd > S::ZERO) && num != S::ZERO && num.abs() >= nd.abs()
+        }
+        _ => eps_d2().is_some_and(|e| accepts(num, nd, eps, e)),
+    }
+}
+
 impl<S: Scalar> Primary<S> {
     /// Prepares a frame, or `None` when the fast path does not apply (a sphere, more than
     /// [`MAX_OBJECTS`] objects, or a quantity out of range): the caller then uses the
@@ -170,11 +192,19 @@ impl<S: Scalar> Primary<S> {
     ) -> Result<Option<FastHit<S>>, ()> {
         let eps = scene.epsilon;
         let d = row.dir;
-        let eps_d2 = d.dot(d).and_then(|d2| eps.checked_mul(d2)).ok_or(())?;
+        let eps_d2 = || d.dot(d).and_then(|d2| eps.checked_mul(d2));
+        let eps_l1 = d
+            .x
+            .abs()
+            .checked_add(d.y.abs())
+            .and_then(|s| s.checked_add(d.z.abs()))
+            .and_then(|s| eps.checked_mul(s))
+            .and_then(|b| b.checked_add(b.ulp()))
+            .and_then(|b| b.checked_add(b.ulp()));
         // The best so far: (term, N·D, |num|, |N·D|).
         let mut best: Option<(&Term<S>, S, S, S)> = None;
         for (term, &nd) in self.terms.iter().zip(&row.nd) {
-            if !accepts(term.num, nd, eps, eps_d2) {
+            if !accepts_bounded(term.num, nd, eps, eps_l1, eps_d2) {
                 continue;
             }
             let (num_abs, nd_abs) = (term.num.abs(), nd.abs());

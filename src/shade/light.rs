@@ -5,7 +5,8 @@ use super::color::{add_sat, term};
 use super::stages::Stages;
 use super::{Incoming, in_own_plane, light_tolerance, occludes};
 use crate::stats::{Counters, count};
-use crate::{Color, Hit, Material, Object, Ray, RayKind, Scalar, SceneView, Vec3};
+use crate::geometry::surface_tolerance;
+use crate::{Color, Hit, Light, Material, Object, Ray, RayKind, Scalar, SceneView, Vec3};
 
 /// How the course rules light a hit where the crate's own differ (`COURSE-RULES.md` §6,
 /// §7, §9): the shadow ray starts on the hit and skips its object (`index`), plane-type
@@ -24,6 +25,11 @@ pub(super) struct CourseLight<S> {
 /// with (facing the ray, or as given). Not inlined: its locals are not part of the
 /// recursive frames of mirror reflections (on a 16 KB chip in I32F32 they decide whether
 /// four reflections fit the stack).
+///
+/// Under the crate's rules a light whose `L = light − hit` squares within the format is
+/// lit by [`segment_terms`] (no square root, one division per light for diffuse light),
+/// any other light, and every light under the course's rules, by [`ray_terms`] (the
+/// normalised direction to the light and a shadow ray along it).
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn light_with<S: Scalar, T: Stages>(
@@ -37,110 +43,271 @@ pub(super) fn light_with<S: Scalar, T: Stages>(
     color: &mut Color<S>,
     counters: &mut Counters,
 ) {
-    let channel_max = S::from_i32(255).unwrap_or(S::MAX);
     let specular = T::SPECULAR
         && match course {
             None => material.specular > S::ZERO,
             Some(_) => material.specular != S::ZERO && material.shininess > S::ZERO,
         };
-    if material.diffuse != [S::ZERO; 3] || specular {
-        for light in scene.lights {
-            let Some(to_light) = light.location.diff(hit.point).and_then(Vec3::normalize) else {
-                continue;
-            };
-            let l = to_light.unit;
-            let Some(cos) = normal.dot(l).filter(|c| *c > S::ZERO) else {
-                continue;
-            };
-            if scene.lights_on_surfaces
-                && in_own_plane(
-                    &object.shape,
-                    light.location,
-                    light_tolerance(scene.epsilon, light.location, scene.camera.viewpoint),
-                )
-            {
-                continue;
+    if material.diffuse == [S::ZERO; 3] && !specular {
+        return;
+    }
+    // How far the hit may lie off its surface: the segment tests' tolerance.
+    let tol = if T::SHADOWS && course.is_none() {
+        let m = ray.base.max_abs().max(hit.point.max_abs());
+        surface_tolerance(hit.t, m)
+    } else {
+        None
+    };
+    let at = Lit {
+        scene,
+        ray,
+        object,
+        material,
+        hit,
+        normal,
+        specular,
+    };
+    for light in scene.lights {
+        let Some(to_light) = light.location.diff(hit.point) else {
+            continue;
+        };
+        let terms = match (course, to_light.dot(to_light)) {
+            (None, Some(ll)) if ll > S::ZERO && (tol.is_some() || !T::SHADOWS) => {
+                segment_terms::<S, T>(&at, light, to_light, ll, tol, counters)
             }
-            if T::CONES
-                && let Some(cone) = light.cone
-            {
-                count(&mut counters.cone_tests);
-                // The angle between the axis and the direction light → point.
-                let inside = l
-                    .checked_neg()
-                    .and_then(|from_light| from_light.dot(cone.axis))
-                    .is_some_and(|c| match course {
-                        None => c >= cone.cos_theta,
-                        Some(_) => c > cone.cos_theta,
-                    });
-                if !inside {
-                    continue;
-                }
-            }
-            if T::SHADOWS {
-                count(&mut counters.shadow_rays);
-                // The distance itself may not fit (a far light): nothing lies beyond it.
-                let dist = to_light.length().unwrap_or(S::MAX);
-                let shadowed = match course {
-                    None => object
-                        .shape
-                        .spawn_from(ray.base, hit, l)
-                        .is_some_and(|r| occludes(scene, &r, dist, light.location, None, None)),
-                    Some(c) => {
-                        let from = Ray {
-                            base: hit.point,
-                            dir: l,
-                            kind: RayKind::Secondary,
-                        };
-                        occludes(
-                            scene,
-                            &from,
-                            dist,
-                            light.location,
-                            Some(c.index),
-                            Some(c.z_limit),
-                        )
-                    }
-                };
-                if shadowed {
-                    continue;
-                }
-            }
-            count(&mut counters.diffuse);
-            // 255 cos / dist and 255 (N·H)^shininess / dist, without forming dist; scaled
-            // to channel units first so that the quotient keeps the format's relative
-            // precision (cos / dist alone is small: in I20F12 it would keep 10 bits).
-            let diffuse_falloff = cos
-                .checked_mul(channel_max)
-                .and_then(|k| to_light.divide(k))
-                .unwrap_or(S::MAX);
-            let glint = if specular {
-                count(&mut counters.specular);
-                let shine = ray
-                    .dir
-                    .checked_neg()
-                    .and_then(|v| l.sum(v))
-                    .and_then(Vec3::unit)
-                    .and_then(|h| normal.dot(h))
-                    .filter(|nh| *nh > S::ZERO)
-                    .and_then(|nh| nh.pow_unit(material.shininess))
-                    .and_then(|p| p.checked_mul(channel_max));
-                match course {
-                    None => shine.and_then(|k| to_light.divide(k)),
-                    Some(_) => shine,
-                }
-                .unwrap_or(S::ZERO)
-            } else {
-                S::ZERO
-            };
-            for ((c, diffuse), emissivity) in
-                color.iter_mut().zip(material.diffuse).zip(light.emissivity)
-            {
-                *c = add_sat(*c, term([emissivity, diffuse, diffuse_falloff]));
-                if specular {
-                    *c = add_sat(*c, term([emissivity, material.specular, glint]));
-                }
+            _ => ray_terms::<S, T>(&at, light, to_light, course, counters),
+        };
+        let Some((diffuse_falloff, glint)) = terms else {
+            continue;
+        };
+        count(&mut counters.diffuse);
+        for ((c, diffuse), emissivity) in
+            color.iter_mut().zip(material.diffuse).zip(light.emissivity)
+        {
+            *c = add_sat(*c, term([emissivity, diffuse, diffuse_falloff]));
+            if specular {
+                *c = add_sat(*c, term([emissivity, material.specular, glint]));
             }
         }
     }
+}
+
+/// What every light of a hit shares.
+struct Lit<'a, 'b, S> {
+    scene: &'a SceneView<'b, S>,
+    ray: &'a Incoming<S>,
+    object: &'a Object<S>,
+    material: &'a Material<S>,
+    hit: &'a Hit<S>,
+    normal: Vec3<S>,
+    specular: bool,
+}
+
+/// 255 in the format (or its largest value).
+fn channel_max<S: Scalar>() -> S {
+    S::from_i32(255).unwrap_or(S::MAX)
+}
+
+/// Whether a light at `light` lies in the plane of the surface it would light (see
+/// [`in_own_plane`]); asked only where the plan found a light on a surface.
+fn on_own_plane<S: Scalar>(at: &Lit<'_, '_, S>, light: Vec3<S>) -> bool {
+    at.scene.lights_on_surfaces
+        && in_own_plane(
+            &at.object.shape,
+            light,
+            light_tolerance(at.scene.epsilon, light, at.scene.camera.viewpoint),
+        )
+}
+
+/// One light's `(255·cos/dist, 255·(N·H)^shininess/dist)` by the crate's rules, with
+/// `L = light − hit` unnormalised and `ll = L·L`: `cos/dist = (N·L)/|L|²` (one division,
+/// no square root); the cone test compares `(−L·axis)²` with `cos²θ·|L|²`; the shadow
+/// test asks each object whether it meets the segment from the hit to the light
+/// ([`crate::Shape::meets_segment`], within `tol` of the hit's surface nothing counts). Only a
+/// specular glint normalises `L` (its half vector needs the unit direction). `None`
+/// when the light does not light the point.
+fn segment_terms<S: Scalar, T: Stages>(
+    at: &Lit<'_, '_, S>,
+    light: &Light<S>,
+    to_light: Vec3<S>,
+    ll: S,
+    tol: Option<S>,
+    counters: &mut Counters,
+) -> Option<(S, S)> {
+    let nl = at.normal.dot(to_light).filter(|c| *c > S::ZERO)?;
+    if on_own_plane(at, light.location) {
+        return None;
+    }
+    if T::CONES
+        && let Some(cone) = light.cone
+    {
+        count(&mut counters.cone_tests);
+        // cos(angle) = (−L·axis)/|L| ≥ cos θ, squared with the signs kept.
+        let c = to_light.dot(cone.axis)?.checked_neg()?;
+        let cos2 = cone.cos_theta.checked_mul(cone.cos_theta)?;
+        let beyond = S::cmp_products(c, c, cos2, ll);
+        let inside = if cone.cos_theta >= S::ZERO {
+            c >= S::ZERO && beyond != Some(core::cmp::Ordering::Less)
+        } else {
+            c >= S::ZERO || beyond != Some(core::cmp::Ordering::Greater)
+        };
+        if !inside {
+            return None;
+        }
+    }
+    if T::SHADOWS {
+        count(&mut counters.shadow_rays);
+        if occludes_segment(at.scene, at.hit.point, to_light, ll, tol?, light.location) {
+            return None;
+        }
+    }
+    // 255·(N·L)/|L|², scaled to channel units before the division where that fits (the
+    // quotient then keeps the format's relative precision).
+    let k = channel_max::<S>();
+    let diffuse_falloff = match nl.checked_mul(k) {
+        Some(knl) => knl.checked_div(ll),
+        None => nl.checked_div(ll).and_then(|q| q.checked_mul(k)),
+    }
+    .unwrap_or(S::MAX);
+    let glint = if at.specular {
+        count(&mut counters.specular);
+        to_light
+            .normalize()
+            .and_then(|n| {
+                glint_of(at, n.unit)
+                    .and_then(|g| g.checked_mul(k))
+                    .and_then(|g| n.divide(g))
+            })
+            .unwrap_or(S::ZERO)
+    } else {
+        S::ZERO
+    };
+    Some((diffuse_falloff, glint))
+}
+
+/// `(N·H)^shininess` for the unit direction `l` to the light (`H` the unit half vector
+/// of `l` and the direction to the viewer); `None` when it is not positive.
+fn glint_of<S: Scalar>(at: &Lit<'_, '_, S>, l: Vec3<S>) -> Option<S> {
+    at.ray
+        .dir
+        .checked_neg()
+        .and_then(|v| l.sum(v))
+        .and_then(Vec3::unit)
+        .and_then(|h| at.normal.dot(h))
+        .filter(|nh| *nh > S::ZERO)
+        .and_then(|nh| nh.pow_unit(at.material.shininess))
+}
+
+/// Whether any object meets the segment from `from` to the light at `from + l` (the
+/// crate's shadow test, [`crate::Shape::meets_segment`]; a light on a surface: as in
+/// [`occludes`]).
+#[inline(never)]
+fn occludes_segment<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    from: Vec3<S>,
+    l: Vec3<S>,
+    ll: S,
+    tol: S,
+    light: Vec3<S>,
+) -> bool {
+    let eps = scene.epsilon;
+    scene.objects.iter().any(|o| {
+        o.shape.meets_segment(from, l, ll, tol, eps)
+            && !(scene.lights_on_surfaces
+                && o.shape.spares_light(
+                    &Ray {
+                        base: from,
+                        dir: l,
+                        kind: RayKind::Secondary,
+                    },
+                    light,
+                    light_tolerance(eps, light, scene.camera.viewpoint),
+                ))
+    })
+}
+
+/// One light's `(255·cos/dist, 255·(N·H)^shininess/dist)` along the normalised direction
+/// to the light, with a shadow ray along it: under the course's rules (`course`: from
+/// the hit, skipping its object, the strict cone, the glint without the distance), and
+/// under the crate's for a light whose `|L|²` does not fit the format (spawned off the
+/// surface). `None` when the light does not light the point.
+fn ray_terms<S: Scalar, T: Stages>(
+    at: &Lit<'_, '_, S>,
+    light: &Light<S>,
+    to_light: Vec3<S>,
+    course: Option<CourseLight<S>>,
+    counters: &mut Counters,
+) -> Option<(S, S)> {
+    let to_light = to_light.normalize()?;
+    let l = to_light.unit;
+    let cos = at.normal.dot(l).filter(|c| *c > S::ZERO)?;
+    if on_own_plane(at, light.location) {
+        return None;
+    }
+    if T::CONES
+        && let Some(cone) = light.cone
+    {
+        count(&mut counters.cone_tests);
+        // The angle between the axis and the direction light → point.
+        let inside = l
+            .checked_neg()
+            .and_then(|from_light| from_light.dot(cone.axis))
+            .is_some_and(|c| match course {
+                None => c >= cone.cos_theta,
+                Some(_) => c > cone.cos_theta,
+            });
+        if !inside {
+            return None;
+        }
+    }
+    if T::SHADOWS {
+        count(&mut counters.shadow_rays);
+        // The distance itself may not fit (a far light): nothing lies beyond it.
+        let dist = to_light.length().unwrap_or(S::MAX);
+        let shadowed = match course {
+            None => at
+                .object
+                .shape
+                .spawn_from(at.ray.base, at.hit, l)
+                .is_some_and(|r| occludes(at.scene, &r, dist, light.location, None, None)),
+            Some(c) => {
+                let from = Ray {
+                    base: at.hit.point,
+                    dir: l,
+                    kind: RayKind::Secondary,
+                };
+                occludes(
+                    at.scene,
+                    &from,
+                    dist,
+                    light.location,
+                    Some(c.index),
+                    Some(c.z_limit),
+                )
+            }
+        };
+        if shadowed {
+            return None;
+        }
+    }
+    // 255 cos / dist and 255 (N·H)^shininess / dist, without forming dist; scaled
+    // to channel units first so that the quotient keeps the format's relative
+    // precision (cos / dist alone is small: in I20F12 it would keep 10 bits).
+    let k = channel_max::<S>();
+    let diffuse_falloff = cos
+        .checked_mul(k)
+        .and_then(|kc| to_light.divide(kc))
+        .unwrap_or(S::MAX);
+    let glint = if at.specular {
+        count(&mut counters.specular);
+        let shine = glint_of(at, l).and_then(|p| p.checked_mul(k));
+        match course {
+            None => shine.and_then(|g| to_light.divide(g)),
+            Some(_) => shine,
+        }
+        .unwrap_or(S::ZERO)
+    } else {
+        S::ZERO
+    };
+    Some((diffuse_falloff, glint))
 }
