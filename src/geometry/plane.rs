@@ -141,17 +141,34 @@ impl<S: Scalar> Plane<S> {
         if a0.abs() <= tol {
             return None;
         }
-        let nl = self.normal.dot(l)?;
-        let a1 = a0.checked_sub(nl)?;
-        if a1.abs() <= tol || (a0 > S::ZERO) == (a1 > S::ZERO) {
-            return None;
-        }
-        let eps_ll = epsilon.checked_mul(ll).unwrap_or(S::MAX);
-        if S::cmp_products(nl, nl, epsilon, eps_ll) == Some(core::cmp::Ordering::Less) {
-            return None;
-        }
-        Some((a0, nl))
+        let a1 = a0.checked_sub(self.normal.dot(l)?)?;
+        crossing_of_sides(a0, a1, ll, tol, epsilon)
     }
+}
+
+/// [`Plane::crossing`] from the two ends' sides `a₀ = D' − N·from` and `a₁ = D' − N·to`
+/// (what a kernel that knows them per frame and per pixel passes: no products), with
+/// `N·l = a₀ − a₁`.
+#[inline]
+pub(crate) fn crossing_of_sides<S: Scalar>(
+    a0: S,
+    a1: S,
+    ll: S,
+    tol: S,
+    epsilon: S,
+) -> Option<(S, S)> {
+    if a0.abs() <= tol || a1.abs() <= tol || (a0 > S::ZERO) == (a1 > S::ZERO) {
+        return None;
+    }
+    let nl = a0.checked_sub(a1)?;
+    let eps_ll = epsilon.checked_mul(ll).unwrap_or(S::MAX);
+    if S::cmp_products(nl, nl, epsilon, eps_ll) == Some(core::cmp::Ordering::Less) {
+        return None;
+    }
+    Some((a0, nl))
+}
+
+impl<S: Scalar> Plane<S> {
 }
 
 impl<S: Scalar> Plane<S> {

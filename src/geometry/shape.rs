@@ -1,5 +1,6 @@
 //! [`Shape`]: the shapes of a scene, dispatched through an enum (no `dyn`).
 
+use super::plane::crossing_of_sides;
 use super::{Hit, Miss, Plane, PlaneFrame, Ray, Sphere, Triangle, Vec3};
 use crate::Scalar;
 
@@ -108,15 +109,32 @@ impl<S: Scalar> Shape<S> {
     /// distance.
     #[inline]
     pub fn meets_segment(&self, from: Vec3<S>, l: Vec3<S>, ll: S, tol: S, epsilon: S) -> bool {
+        self.meets_segment_with(None, from, l, ll, tol, epsilon)
+    }
+
+    /// [`Shape::meets_segment`] with, for a plane-like shape, the ends' sides
+    /// `(D' − N·from, D' − N·to)` already known (`sides`: a kernel's per-frame and
+    /// per-pixel terms), so that the test needs no product.
+    #[inline]
+    pub(crate) fn meets_segment_with(
+        &self,
+        sides: Option<(S, S)>,
+        from: Vec3<S>,
+        l: Vec3<S>,
+        ll: S,
+        tol: S,
+        epsilon: S,
+    ) -> bool {
+        let crossing = |p: &Plane<S>| match sides {
+            Some((a0, a1)) => crossing_of_sides(a0, a1, ll, tol, epsilon),
+            None => p.crossing(from, l, ll, tol, epsilon),
+        };
         match self {
-            Shape::Plane(p) => p.crossing(from, l, ll, tol, epsilon).is_some(),
-            Shape::Tiled { frame, .. } => frame
-                .plane()
-                .crossing(from, l, ll, tol, epsilon)
-                .is_some(),
+            Shape::Plane(p) => crossing(p).is_some(),
+            Shape::Tiled { frame, .. } => crossing(frame.plane()).is_some(),
             Shape::Finite(_) | Shape::Triangle(_) => self
                 .plane()
-                .and_then(|p| p.crossing(from, l, ll, tol, epsilon))
+                .and_then(crossing)
                 .and_then(|(a0, nl)| from.sum(l.scale(a0.checked_div(nl)?)?))
                 .is_some_and(|x| self.bounds_contain(x)),
             Shape::Sphere(s) if SPHERES => s.meets_segment(from, l, ll, tol).unwrap_or_else(|| {

@@ -59,11 +59,20 @@ pub const RESYNC_PIXELS: u16 = 8;
 #[derive(Debug, Clone)]
 pub struct Primary<S> {
     terms: Vec<Term<S>, MAX_OBJECTS>,
+    /// `D'_i − N_i·light_j` at `j × objects + i` (the lights' sides of every plane, for
+    /// shadow segments: [`crate::shade::PlaneSides`]); empty when they do not fit
+    /// [`MAX_SIDES`] or the format.
+    at_lights: Vec<S, MAX_SIDES>,
     /// Screen x step between pixel centres, `WX / W`.
     step_x: S,
     /// `−eye.z`, the z of every `D`.
     dz: S,
 }
+
+/// How many plane–light sides a frame keeps (objects × lights; beyond, shadow segments
+/// compute their sides themselves): 256 bytes in I16F16, a RAM budget a 16 KB chip
+/// affords.
+pub const MAX_SIDES: usize = 64;
 
 /// What the fast path found at one pixel.
 #[derive(Debug, Clone, Copy)]
@@ -76,6 +85,8 @@ pub struct FastHit<S> {
     pub t_bound: S,
     /// The unnormalised ray direction `D`.
     pub dir: Vec3<S>,
+    /// The hit's parameter along `D`, `t' = num/(N·D)` (the screen is at 1).
+    pub param: S,
 }
 
 /// The per-scanline part: `N·D` of every term at the current pixel, and `D`.
@@ -142,8 +153,30 @@ impl<S: Scalar> Primary<S> {
             let index = u8::try_from(index).ok()?;
             terms.push(Term { index, num }).ok()?;
         }
+        let mut at_lights = Vec::new();
+        let sides = terms.len().checked_mul(scene.lights.len());
+        if sides.is_some_and(|n| n <= MAX_SIDES) {
+            'lights: for light in scene.lights {
+                for term in &terms {
+                    let plane = scene.objects.get(usize::from(term.index))?.shape.plane()?;
+                    let side = S::sub_dot3(
+                        plane.offset(),
+                        plane.normal().to_array(),
+                        light.location.to_array(),
+                    );
+                    match side {
+                        Some(a1) => at_lights.push(a1).ok()?,
+                        None => {
+                            at_lights.clear();
+                            break 'lights;
+                        }
+                    }
+                }
+            }
+        }
         Some(Self {
             terms,
+            at_lights,
             step_x,
             dz: S::ZERO.checked_sub(eye.z)?,
         })
@@ -216,8 +249,8 @@ impl<S: Scalar> Primary<S> {
             if let Some(shape @ (Shape::Finite(_) | Shape::Triangle(_))) =
                 scene.objects.get(usize::from(term.index)).map(|o| &o.shape)
             {
-                let point = self.point(scene, term, nd, d).ok_or(())?;
-                if !shape.bounds_contain(point.0) {
+                let (point, _, _) = self.point(scene, term, nd, d).ok_or(())?;
+                if !shape.bounds_contain(point) {
                     continue;
                 }
             }
@@ -226,27 +259,46 @@ impl<S: Scalar> Primary<S> {
         let Some((term, nd, _, _)) = best else {
             return Ok(None);
         };
-        let (point, t_bound) = self.point(scene, term, nd, d).ok_or(())?;
+        let (point, t_bound, param) = self.point(scene, term, nd, d).ok_or(())?;
         Ok(Some(FastHit {
             index: usize::from(term.index),
             point,
             t_bound,
             dir: d,
+            param,
         }))
     }
 
-    /// The hit point `eye + t'·D` of a term and a bound on its world distance.
+    /// The lights' sides of every plane, per frame (empty when not kept).
+    pub(crate) fn at_lights(&self) -> &[S] {
+        &self.at_lights
+    }
+
+    /// `D'_i − N_i·P` of every plane at the hit `P = eye + t'·D` of the row's current
+    /// pixel: `num_i − t'·(N_i·D)`, one product each. `None` when one does not fit (the
+    /// shadow segments then compute them).
+    pub(crate) fn sides_at(&self, row: &Row<S>, param: S) -> Option<Vec<S, MAX_OBJECTS>> {
+        let mut sides = Vec::new();
+        for (term, &nd) in self.terms.iter().zip(&row.nd) {
+            sides
+                .push(term.num.checked_sub(param.checked_mul(nd)?)?)
+                .ok()?;
+        }
+        Some(sides)
+    }
+
+    /// The hit point `eye + t'·D` of a term, a bound on its world distance, and `t'`.
     fn point(
         &self,
         scene: &SceneView<'_, S>,
         term: &Term<S>,
         nd: S,
         d: Vec3<S>,
-    ) -> Option<(Vec3<S>, S)> {
+    ) -> Option<(Vec3<S>, S, S)> {
         let t = term.num.checked_div(nd)?;
         let point = scene.camera.viewpoint.sum(d.scale(t)?)?;
         // |D| ≤ √3 |D|∞ < 2 |D|∞: the world distance t'·|D| is below t'·2|D|∞.
         let t_bound = t.checked_mul(d.max_abs().checked_add(d.max_abs())?)?;
-        Some((point, t_bound))
+        Some((point, t_bound, t))
     }
 }

@@ -8,7 +8,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 use super::fast::{self, Primary, Row};
 use crate::shade::color::to_pixel;
 use crate::shade::stages::Stages;
-use crate::shade::{Incoming, shade_with, trace_with};
+use crate::shade::{Incoming, PlaneSides, shade_with, trace_with};
 use crate::stats::{Counters, count};
 use crate::{Hit, Scalar, SceneView};
 
@@ -44,9 +44,23 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
             Some(Some(h)) => {
                 // The unnormalised direction: see `Incoming` (the fast kernel takes only
                 // stage sets that need no more of it than its side).
+                // Shadow segments take the planes' sides from the kernel's terms.
+                let at_hit = match (primary, state.as_ref()) {
+                    (Some(p), Some(r)) if T::SHADOWS && !p.at_lights().is_empty() => {
+                        p.sides_at(r, h.param)
+                    }
+                    _ => None,
+                };
                 let incoming = Incoming {
                     base: scene.camera.viewpoint,
                     dir: h.dir,
+                    sides: match (primary, at_hit.as_ref()) {
+                        (Some(p), Some(at_hit)) => Some(PlaneSides {
+                            at_hit,
+                            at_lights: p.at_lights(),
+                        }),
+                        _ => None,
+                    },
                 };
                 let hit = Hit {
                     t: h.t_bound,

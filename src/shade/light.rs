@@ -3,7 +3,7 @@
 
 use super::color::{add_sat, term};
 use super::stages::Stages;
-use super::{Incoming, in_own_plane, light_tolerance, occludes};
+use super::{Incoming, PlaneSides, in_own_plane, light_tolerance, occludes};
 use crate::stats::{Counters, count};
 use crate::geometry::surface_tolerance;
 use crate::{Color, Hit, Light, Material, Object, Ray, RayKind, Scalar, SceneView, Vec3};
@@ -34,7 +34,7 @@ pub(super) struct CourseLight<S> {
 #[allow(clippy::too_many_arguments)]
 pub(super) fn light_with<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
-    ray: &Incoming<S>,
+    ray: &Incoming<'_, S>,
     object: &Object<S>,
     material: &Material<S>,
     hit: &Hit<S>,
@@ -67,13 +67,13 @@ pub(super) fn light_with<S: Scalar, T: Stages>(
         normal,
         specular,
     };
-    for light in scene.lights {
+    for (j, light) in scene.lights.iter().enumerate() {
         let Some(to_light) = light.location.diff(hit.point) else {
             continue;
         };
         let terms = match (course, to_light.dot(to_light)) {
             (None, Some(ll)) if ll > S::ZERO && (tol.is_some() || !T::SHADOWS) => {
-                segment_terms::<S, T>(&at, light, to_light, ll, tol, counters)
+                segment_terms::<S, T>(&at, (j, light), to_light, ll, tol, counters)
             }
             _ => ray_terms::<S, T>(&at, light, to_light, course, counters),
         };
@@ -95,7 +95,7 @@ pub(super) fn light_with<S: Scalar, T: Stages>(
 /// What every light of a hit shares.
 struct Lit<'a, 'b, S> {
     scene: &'a SceneView<'b, S>,
-    ray: &'a Incoming<S>,
+    ray: &'a Incoming<'b, S>,
     object: &'a Object<S>,
     material: &'a Material<S>,
     hit: &'a Hit<S>,
@@ -128,7 +128,7 @@ fn on_own_plane<S: Scalar>(at: &Lit<'_, '_, S>, light: Vec3<S>) -> bool {
 /// when the light does not light the point.
 fn segment_terms<S: Scalar, T: Stages>(
     at: &Lit<'_, '_, S>,
-    light: &Light<S>,
+    (index, light): (usize, &Light<S>),
     to_light: Vec3<S>,
     ll: S,
     tol: Option<S>,
@@ -157,7 +157,8 @@ fn segment_terms<S: Scalar, T: Stages>(
     }
     if T::SHADOWS {
         count(&mut counters.shadow_rays);
-        if occludes_segment(at.scene, at.hit.point, to_light, ll, tol?, light.location) {
+        let sides = at.ray.sides.map(|s| (s, index));
+        if occludes_segment(at.scene, sides, at.hit.point, to_light, ll, tol?, light.location) {
             return None;
         }
     }
@@ -200,10 +201,11 @@ fn glint_of<S: Scalar>(at: &Lit<'_, '_, S>, l: Vec3<S>) -> Option<S> {
 
 /// Whether any object meets the segment from `from` to the light at `from + l` (the
 /// crate's shadow test, [`crate::Shape::meets_segment`]; a light on a surface: as in
-/// [`occludes`]).
+/// [`occludes`]). `sides`: the planes' sides the fast kernel knows, and the light's index.
 #[inline(never)]
 fn occludes_segment<S: Scalar>(
     scene: &SceneView<'_, S>,
+    sides: Option<(PlaneSides<'_, S>, usize)>,
     from: Vec3<S>,
     l: Vec3<S>,
     ll: S,
@@ -211,8 +213,9 @@ fn occludes_segment<S: Scalar>(
     light: Vec3<S>,
 ) -> bool {
     let eps = scene.epsilon;
-    scene.objects.iter().any(|o| {
-        o.shape.meets_segment(from, l, ll, tol, eps)
+    scene.objects.iter().enumerate().any(|(i, o)| {
+        let known = sides.and_then(|(s, light)| s.of(i, light));
+        o.shape.meets_segment_with(known, from, l, ll, tol, eps)
             && !(scene.lights_on_surfaces
                 && o.shape.spares_light(
                     &Ray {

@@ -35,19 +35,47 @@ pub const MAX_REFLECTION_DEPTH: u8 = 4;
 /// stage sets without specular glints and mirrors, the two stages that need `dir`'s
 /// length (diffuse light needs only the side of the surface it comes from).
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Incoming<S> {
+pub(crate) struct Incoming<'a, S> {
     /// Where the ray started (secondary rays' offsets are bounded by its magnitude).
     pub(crate) base: Vec3<S>,
     /// Its direction (see above for its length).
     pub(crate) dir: Vec3<S>,
+    /// The sides of every object's plane at the hit and at the lights, where the fast
+    /// kernel knows them ([`PlaneSides`]).
+    pub(crate) sides: Option<PlaneSides<'a, S>>,
 }
 
-impl<S: Scalar> From<&Ray<S>> for Incoming<S> {
+impl<S: Scalar> From<&Ray<S>> for Incoming<'_, S> {
     fn from(ray: &Ray<S>) -> Self {
         Self {
             base: ray.base,
             dir: ray.dir,
+            sides: None,
         }
+    }
+}
+
+/// What the fast kernel knows of a hit among planes: `D'_i − N_i·P` of every object `i`
+/// at the hit point `P` (`at_hit`, one product each from the primary ray's terms) and
+/// `D'_i − N_i·light_j` (`at_lights`, per frame, light by light), so that a shadow
+/// segment's plane tests need no product ([`crate::Shape::meets_segment`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PlaneSides<'a, S> {
+    /// `D'_i − N_i·P`, one per object.
+    pub(crate) at_hit: &'a [S],
+    /// `D'_i − N_i·light_j` at `j × objects + i`.
+    pub(crate) at_lights: &'a [S],
+}
+
+impl<S: Copy> PlaneSides<'_, S> {
+    /// The sides of object `object` at the hit and at light `light`.
+    #[inline]
+    pub(crate) fn of(&self, object: usize, light: usize) -> Option<(S, S)> {
+        let n = self.at_hit.len();
+        Some((
+            *self.at_hit.get(object)?,
+            *self.at_lights.get(light.checked_mul(n)?.checked_add(object)?)?,
+        ))
     }
 }
 
@@ -162,7 +190,7 @@ pub(crate) fn surface<'a, S: Scalar>(
 /// the mirrored ray sees, to [`MAX_REFLECTION_DEPTH`].
 pub(crate) fn shade_with<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
-    ray: &Incoming<S>,
+    ray: &Incoming<'_, S>,
     index: usize,
     hit: &Hit<S>,
     depth: u8,
@@ -255,7 +283,7 @@ pub fn shade<S: Scalar>(
 
 fn shade_one<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
-    ray: &Incoming<S>,
+    ray: &Incoming<'_, S>,
     index: usize,
     hit: &Hit<S>,
     counters: &mut Counters,
