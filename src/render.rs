@@ -44,7 +44,7 @@ use crate::{AsView, Plan, Scalar, SceneView, Traced};
 /// }
 /// ```
 #[derive(Debug, Clone)]
-pub struct Frame<'a, S> {
+pub struct Frame<'a, S: Scalar> {
     scene: SceneView<'a, S>,
     shading: Shading,
     drawing: Drawing<S>,

@@ -57,8 +57,11 @@ pub const RESYNC_PIXELS: u16 = 8;
 /// The per-frame part of the fast path; `None` from [`Primary::new`] when the scene is not
 /// made of planes only or a per-frame quantity does not fit the format.
 #[derive(Debug, Clone)]
-pub struct Primary<S> {
+pub struct Primary<S: Scalar> {
     terms: Vec<Term<S>, MAX_OBJECTS>,
+    /// `N_i.x × step_x` of every term, unrounded: what `N·D` grows by from pixel to
+    /// pixel ([`Scalar::Acc`]).
+    steps: Vec<S::Acc, MAX_OBJECTS>,
     /// `D'_i − N_i·light_j` at `j × objects + i` (the lights' sides of every plane, for
     /// shadow segments: [`crate::shade::PlaneSides`]); empty when they do not fit
     /// [`MAX_SIDES`] or the format.
@@ -89,10 +92,12 @@ pub struct FastHit<S> {
     pub param: S,
 }
 
-/// The per-scanline part: `N·D` of every term at the current pixel, and `D`.
+/// The per-scanline part: `N·D` of every term at the current pixel (rounded, and the
+/// unrounded sum it steps), and `D`.
 #[derive(Debug, Clone)]
-pub struct Row<S> {
+pub struct Row<S: Scalar> {
     nd: Vec<S, MAX_OBJECTS>,
+    acc: Vec<S::Acc, MAX_OBJECTS>,
     dir: Vec3<S>,
     column: u16,
 }
@@ -147,11 +152,13 @@ impl<S: Scalar> Primary<S> {
             .world_width
             .mul_ratio(1, i32::from(scene.camera.width))?;
         let mut terms = Vec::new();
+        let mut steps = Vec::new();
         for (index, object) in scene.objects.iter().enumerate() {
             let plane = object.shape.plane()?;
             let num = S::sub_dot3(plane.offset(), plane.normal().to_array(), eye.to_array())?;
             let index = u8::try_from(index).ok()?;
             terms.push(Term { index, num }).ok()?;
+            steps.push(S::acc_mul(plane.normal().x, step_x)?).ok()?;
         }
         let mut at_lights = Vec::new();
         let sides = terms.len().checked_mul(scene.lights.len());
@@ -176,6 +183,7 @@ impl<S: Scalar> Primary<S> {
         }
         Some(Self {
             terms,
+            steps,
             at_lights,
             step_x,
             dz: S::ZERO.checked_sub(eye.z)?,
@@ -189,10 +197,13 @@ impl<S: Scalar> Primary<S> {
         let x = scene.camera.screen_x(column)?;
         let dir = Vec3::new(x.checked_sub(eye.x)?, y.checked_sub(eye.y)?, self.dz);
         let mut nd = Vec::new();
+        let mut acc = Vec::new();
         for term in &self.terms {
-            nd.push(normal_of(scene, term.index)?.dot(dir)?).ok()?;
+            let sum = S::acc_dot3(normal_of(scene, term.index)?.to_array(), dir.to_array())?;
+            nd.push(S::acc_round(sum)?).ok()?;
+            acc.push(sum).ok()?;
         }
-        Some(Row { nd, dir, column })
+        Some(Row { nd, acc, dir, column })
     }
 
     /// The column the row is at.
@@ -203,12 +214,14 @@ impl<S: Scalar> Primary<S> {
     /// Moves a scanline to its next pixel: `D.x` grows by the pixel step (rounded once
     /// per frame; callers restart the row from the exact screen x every
     /// [`RESYNC_PIXELS`] pixels, so the drift stays below `RESYNC_PIXELS / 2` DELTAs), and
-    /// `N·D` is recomputed from `D` (one wide dot product: consistent with `D`, so the hit
-    /// point lies on the ray through that screen point).
-    pub fn advance(&self, scene: &SceneView<'_, S>, row: &mut Row<S>) -> Option<()> {
+    /// `N·D` grows by the unrounded `N.x × step` ([`Scalar::Acc`]): in the fixed formats
+    /// bit for bit the wide dot product of the new `D` (consistent with `D`, so the hit
+    /// point lies on the ray through that screen point), with no product per pixel.
+    pub fn advance(&self, row: &mut Row<S>) -> Option<()> {
         row.dir.x = row.dir.x.checked_add(self.step_x)?;
-        for (nd, term) in row.nd.iter_mut().zip(&self.terms) {
-            *nd = normal_of(scene, term.index)?.dot(row.dir)?;
+        for ((nd, acc), step) in row.nd.iter_mut().zip(row.acc.iter_mut()).zip(&self.steps) {
+            *acc = S::acc_add(*acc, *step)?;
+            *nd = S::acc_round(*acc)?;
         }
         row.column = row.column.checked_add(1)?;
         Some(())

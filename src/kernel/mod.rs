@@ -30,7 +30,7 @@ pub(crate) use reference::scanline;
 
 /// What a frame computes once for all its scanlines: the kernel [`select`] chose.
 #[derive(Debug, Clone)]
-pub(crate) enum Kernel<S> {
+pub(crate) enum Kernel<S: Scalar> {
     /// The pure-geometry kernel's per-frame part.
     Flat(Flat<S>),
     /// The fast primary-ray kernel's per-frame part.
@@ -42,7 +42,7 @@ pub(crate) enum Kernel<S> {
 /// What a frame draws with: the scene's plan, the kernel [`select`] chose for it, and the
 /// mode of the pure-geometry kernel.
 #[derive(Debug, Clone)]
-pub(crate) struct Drawing<S> {
+pub(crate) struct Drawing<S: Scalar> {
     pub(crate) plan: Plan,
     pub(crate) kernel: Kernel<S>,
     pub(crate) mode: PlaneMode,

@@ -34,7 +34,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                     if Primary::column(r).checked_add(1) == Some(column)
                         && column % fast::RESYNC_PIXELS != 0 =>
                 {
-                    p.advance(scene, r)?
+                    p.advance(r)?
                 }
                 _ => state = Some(p.row(scene, row, column)?),
             }

@@ -111,15 +111,24 @@ macro_rules! impl_fixed {
             fn abs(self) -> Self {
                 self.saturating_abs()
             }
+            type Acc = $wide;
             #[inline]
-            fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
-                let w = |x: Self, y: Self| <$wide>::from_bits($mul(x.to_bits(), y.to_bits()));
-                let sum = w(a[0], b[0])
-                    .checked_add(w(a[1], b[1]))?
-                    .checked_add(w(a[2], b[2]))?;
+            fn acc_mul(a: Self, b: Self) -> Option<$wide> {
+                Some(<$wide>::from_bits($mul(a.to_bits(), b.to_bits())))
+            }
+            #[inline]
+            fn acc_add(x: $wide, y: $wide) -> Option<$wide> {
+                x.checked_add(y)
+            }
+            #[inline]
+            fn acc_round(x: $wide) -> Option<Self> {
                 // Round to nearest: add half a narrow DELTA, then narrowing floors.
                 let half = <$wide>::from_num(<$t>::DELTA) >> 1u32;
-                <$t>::checked_from_num(sum.checked_add(half)?)
+                <$t>::checked_from_num(x.checked_add(half)?)
+            }
+            #[inline]
+            fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+                Self::acc_round(Self::acc_dot3(a, b)?)
             }
             #[inline]
             fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> Option<core::cmp::Ordering> {

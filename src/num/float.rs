@@ -86,6 +86,23 @@ macro_rules! impl_float {
             fn abs(self) -> Self {
                 if self < 0.0 { -self } else { self }
             }
+            type Acc = $t;
+            #[inline]
+            fn acc_mul(a: Self, b: Self) -> Option<Self> {
+                Some(a * b).filter(|v| v.is_finite())
+            }
+            #[inline]
+            fn acc_add(x: Self, y: Self) -> Option<Self> {
+                Some(x + y).filter(|v| v.is_finite())
+            }
+            #[inline]
+            fn acc_round(x: Self) -> Option<Self> {
+                Some(x).filter(|v| v.is_finite())
+            }
+            #[inline]
+            fn acc_dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+                Self::dot3(a, b)
+            }
             #[inline]
             fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
                 Some(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).filter(|v| v.is_finite())

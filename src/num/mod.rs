@@ -107,6 +107,31 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// 3 `DELTA`s for three narrow products. `None` when the sum does not fit.
     fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self>;
 
+    /// A sum of products before its rounding: double width and exact in the fixed
+    /// formats (what [`Scalar::dot3`] adds in), the format itself for floats. A kernel
+    /// that steps a dot product along a scanline adds a per-frame product to it instead
+    /// of forming three products per pixel: in the fixed formats bit for bit the
+    /// [`Scalar::dot3`] of the stepped vector.
+    type Acc: Copy + Debug + Send + Sync;
+
+    /// The exact product `a·b` as an [`Scalar::Acc`] (fixed formats; floats round it);
+    /// `None` only for floats, when it is not finite.
+    fn acc_mul(a: Self, b: Self) -> Option<Self::Acc>;
+
+    /// `x + y`, or `None` on overflow.
+    fn acc_add(x: Self::Acc, y: Self::Acc) -> Option<Self::Acc>;
+
+    /// Rounds a sum to the format as [`Scalar::dot3`] does (to nearest in the fixed
+    /// formats): `dot3(a, b)` is `acc_round` of the sum of the three `acc_mul`s.
+    fn acc_round(x: Self::Acc) -> Option<Self>;
+
+    /// The unrounded `a·b` of two 3-vectors (see [`Scalar::Acc`]).
+    #[inline]
+    fn acc_dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self::Acc> {
+        let sum = Self::acc_add(Self::acc_mul(a[0], b[0])?, Self::acc_mul(a[1], b[1])?)?;
+        Self::acc_add(sum, Self::acc_mul(a[2], b[2])?)
+    }
+
     /// Compares the products `a·b` and `c·d`: exactly in the fixed formats (double-width
     /// products), to the format's own rounding in floats (exactly where both overflow).
     /// The division-free comparison of two quotients `a/d` and `c/b` with positive
@@ -229,6 +254,39 @@ mod tests {
         // Overflow of the sum (not of any single product) is refused.
         let big = I16F16::from_i32(30_000).unwrap();
         assert_eq!(I16F16::dot3([big; 3], [I16F16::ONE; 3]), None);
+    }
+
+    /// `dot3` is the rounding of the accumulated products, and stepping an accumulator
+    /// by a product gives the dot product of the stepped vector, bit for bit in the
+    /// fixed formats.
+    fn check_acc<S: Scalar>(exact: bool) {
+        let v = |x: f64, y: f64, z: f64| [x, y, z].map(|c| S::from_f64(c).unwrap());
+        let n = v(0.371, -0.802, 0.468);
+        let mut d = v(-3.217, 1.093, -6.0);
+        let step = S::from_f64(0.05).unwrap();
+        let mut acc = S::acc_dot3(n, d).unwrap();
+        let per_step = S::acc_mul(n[0], step).unwrap();
+        for _ in 0..200 {
+            assert_eq!(S::acc_round(S::acc_dot3(n, d).unwrap()), S::dot3(n, d));
+            d[0] = d[0].checked_add(step).unwrap();
+            acc = S::acc_add(acc, per_step).unwrap();
+            let stepped = S::acc_round(acc).unwrap().to_f64();
+            let direct = S::dot3(n, d).unwrap().to_f64();
+            if exact {
+                assert_eq!(stepped, direct, "{}", S::NAME);
+            } else {
+                assert!((stepped - direct).abs() < 1e-4, "{}", S::NAME);
+            }
+        }
+    }
+
+    #[test]
+    fn accumulated_dot_products_step_exactly_in_fixed_formats() {
+        check_acc::<I16F16>(true);
+        check_acc::<I20F12>(true);
+        check_acc::<I32F32>(true);
+        check_acc::<f32>(false);
+        check_acc::<f64>(false);
     }
 
     #[test]

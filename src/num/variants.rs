@@ -115,6 +115,23 @@ macro_rules! delegate {
 }
 
 delegate!(F32Micro, f32, "f32m", {
+    type Acc = f32;
+    #[inline]
+    fn acc_mul(a: Self, b: Self) -> Option<f32> {
+        f32::acc_mul(a.0, b.0)
+    }
+    #[inline]
+    fn acc_add(x: f32, y: f32) -> Option<f32> {
+        f32::acc_add(x, y)
+    }
+    #[inline]
+    fn acc_round(x: f32) -> Option<Self> {
+        f32::acc_round(x).map(Self)
+    }
+    #[inline]
+    fn acc_dot3(a: [Self; 3], b: [Self; 3]) -> Option<f32> {
+        Self::dot3(a, b).map(|d| d.0)
+    }
     #[inline]
     fn checked_div(self, rhs: Self) -> Option<Self> {
         Scalar::checked_div(self.0, rhs.0).map(Self)
@@ -138,6 +155,20 @@ delegate!(F32Micro, f32, "f32m", {
 });
 
 delegate!(I16F16Narrow, I16F16, "i16f16n", {
+    // Narrow: every product rounded on its own, as its dot products.
+    type Acc = I16F16;
+    #[inline]
+    fn acc_mul(a: Self, b: Self) -> Option<I16F16> {
+        a.0.checked_mul(b.0)
+    }
+    #[inline]
+    fn acc_add(x: I16F16, y: I16F16) -> Option<I16F16> {
+        x.checked_add(y)
+    }
+    #[inline]
+    fn acc_round(x: I16F16) -> Option<Self> {
+        Some(Self(x))
+    }
     #[inline]
     fn checked_div(self, rhs: Self) -> Option<Self> {
         Scalar::checked_div(self.0, rhs.0).map(Self)
@@ -158,6 +189,19 @@ delegate!(I16F16Narrow, I16F16, "i16f16n", {
 });
 
 delegate!(I16F16Recip, I16F16, "i16f16r", {
+    type Acc = <I16F16 as Scalar>::Acc;
+    #[inline]
+    fn acc_mul(a: Self, b: Self) -> Option<Self::Acc> {
+        I16F16::acc_mul(a.0, b.0)
+    }
+    #[inline]
+    fn acc_add(x: Self::Acc, y: Self::Acc) -> Option<Self::Acc> {
+        I16F16::acc_add(x, y)
+    }
+    #[inline]
+    fn acc_round(x: Self::Acc) -> Option<Self> {
+        I16F16::acc_round(x).map(Self)
+    }
     #[inline]
     fn checked_div(self, rhs: Self) -> Option<Self> {
         recip_div(self.0.to_bits(), rhs.0.to_bits()).map(|q| Self(I16F16::from_bits(q)))
