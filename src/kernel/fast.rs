@@ -192,18 +192,38 @@ impl<S: Scalar> Primary<S> {
 
     /// Starts scanline `row` at column `column`.
     pub fn row(&self, scene: &SceneView<'_, S>, row: u16, column: u16) -> Option<Row<S>> {
+        let mut r = Row {
+            nd: Vec::new(),
+            acc: Vec::new(),
+            dir: Vec3::new(S::ZERO, S::ZERO, S::ZERO),
+            column,
+        };
+        self.restart(scene, row, column, &mut r)?;
+        Some(r)
+    }
+
+    /// [`Primary::row`] into an existing row (in place: a row is hundreds of bytes, and
+    /// a scanline restarts every [`RESYNC_PIXELS`]). On `None` the row is unusable.
+    pub(crate) fn restart(
+        &self,
+        scene: &SceneView<'_, S>,
+        row: u16,
+        column: u16,
+        r: &mut Row<S>,
+    ) -> Option<()> {
         let eye = scene.camera.viewpoint;
         let y = scene.camera.screen_y(row)?;
         let x = scene.camera.screen_x(column)?;
-        let dir = Vec3::new(x.checked_sub(eye.x)?, y.checked_sub(eye.y)?, self.dz);
-        let mut nd = Vec::new();
-        let mut acc = Vec::new();
+        r.dir = Vec3::new(x.checked_sub(eye.x)?, y.checked_sub(eye.y)?, self.dz);
+        r.column = column;
+        r.nd.clear();
+        r.acc.clear();
         for term in &self.terms {
-            let sum = S::acc_dot3(normal_of(scene, term.index)?.to_array(), dir.to_array())?;
-            nd.push(S::acc_round(sum)?).ok()?;
-            acc.push(sum).ok()?;
+            let sum = S::acc_dot3(normal_of(scene, term.index)?.to_array(), r.dir.to_array())?;
+            r.nd.push(S::acc_round(sum)?).ok()?;
+            r.acc.push(sum).ok()?;
         }
-        Some(Row { nd, acc, dir, column })
+        Some(())
     }
 
     /// The column the row is at.
@@ -289,15 +309,21 @@ impl<S: Scalar> Primary<S> {
 
     /// `D'_i − N_i·P` of every plane at the hit `P = eye + t'·D` of the row's current
     /// pixel: `num_i − t'·(N_i·D)`, one product each. `None` when one does not fit (the
-    /// shadow segments then compute them).
-    pub(crate) fn sides_at(&self, row: &Row<S>, param: S) -> Option<Vec<S, MAX_OBJECTS>> {
-        let mut sides = Vec::new();
+    /// shadow segments then compute them). Written into `sides` (a buffer the scanline
+    /// keeps: a returned one would be copied whole, capacity and all, per pixel).
+    pub(crate) fn sides_at(
+        &self,
+        row: &Row<S>,
+        param: S,
+        sides: &mut Vec<S, MAX_OBJECTS>,
+    ) -> Option<()> {
+        sides.clear();
         for (term, &nd) in self.terms.iter().zip(&row.nd) {
             sides
                 .push(term.num.checked_sub(param.checked_mul(nd)?)?)
                 .ok()?;
         }
-        Some(sides)
+        Some(())
     }
 
     /// The hit point `eye + t'·D` of a term, a bound on its world distance, and `t'`.

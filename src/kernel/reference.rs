@@ -26,6 +26,8 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
     let y = scene.camera.screen_y(row);
     let rules = scene.rules();
     let mut state: Option<Row<S>> = None;
+    // The planes' sides at the current pixel's hit (see `Primary::sides_at`).
+    let mut at_hit = heapless::Vec::new();
     columns.map(move |column| {
         count(&mut counters.primary_rays);
         let found = primary.and_then(|p| {
@@ -36,7 +38,13 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                 {
                     p.advance(r)?
                 }
-                _ => state = Some(p.row(scene, row, column)?),
+                Some(r) => {
+                    if p.restart(scene, row, column, r).is_none() {
+                        state = None;
+                        return None;
+                    }
+                }
+                None => state = Some(p.row(scene, row, column)?),
             }
             p.nearest(scene, state.as_ref()?).ok()
         });
@@ -45,22 +53,19 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                 // The unnormalised direction: see `Incoming` (the fast kernel takes only
                 // stage sets that need no more of it than its side).
                 // Shadow segments take the planes' sides from the kernel's terms.
-                let at_hit = match (primary, state.as_ref()) {
-                    (Some(p), Some(r)) if T::SHADOWS && !p.at_lights().is_empty() => {
-                        p.sides_at(r, h.param)
-                    }
+                let sides = match (primary, state.as_ref()) {
+                    (Some(p), Some(r)) if T::SHADOWS && !p.at_lights().is_empty() => p
+                        .sides_at(r, h.param, &mut at_hit)
+                        .map(|()| PlaneSides {
+                            at_hit: &at_hit,
+                            at_lights: p.at_lights(),
+                        }),
                     _ => None,
                 };
                 let incoming = Incoming {
                     base: scene.camera.viewpoint,
                     dir: h.dir,
-                    sides: match (primary, at_hit.as_ref()) {
-                        (Some(p), Some(at_hit)) => Some(PlaneSides {
-                            at_hit,
-                            at_lights: p.at_lights(),
-                        }),
-                        _ => None,
-                    },
+                    sides,
                 };
                 let hit = Hit {
                     t: h.t_bound,

@@ -213,20 +213,41 @@ fn occludes_segment<S: Scalar>(
     light: Vec3<S>,
 ) -> bool {
     let eps = scene.epsilon;
-    scene.objects.iter().enumerate().any(|(i, o)| {
-        let known = sides.and_then(|(s, light)| s.of(i, light));
-        o.shape.meets_segment_with(known, from, l, ll, tol, eps)
-            && !(scene.lights_on_surfaces
-                && o.shape.spares_light(
-                    &Ray {
-                        base: from,
-                        dir: l,
-                        kind: RayKind::Secondary,
-                    },
-                    light,
-                    light_tolerance(eps, light, scene.camera.viewpoint),
-                ))
-    })
+    // A light on a surface (only where the plan found one): as in `occludes`.
+    let spared = |shape: &crate::Shape<S>| {
+        scene.lights_on_surfaces
+            && shape.spares_light(
+                &Ray {
+                    base: from,
+                    dir: l,
+                    kind: RayKind::Secondary,
+                },
+                light,
+                light_tolerance(eps, light, scene.camera.viewpoint),
+            )
+    };
+    // The kernel's sides of every object at the hit and at this light, if it has them.
+    let known = sides.and_then(|(s, j)| {
+        let n = s.at_hit.len();
+        // j < lights and n ≤ MAX_OBJECTS: the product is small (a checked one would call
+        // the 64-bit multiply helper on a Cortex-M0).
+        let at_light = s.at_lights.get(j * n..)?.get(..n)?;
+        (n == scene.objects.len()).then_some((s.at_hit, at_light))
+    });
+    match known {
+        Some((at_hit, at_light)) => scene
+            .objects
+            .iter()
+            .zip(at_hit.iter().zip(at_light))
+            .any(|(o, (&a0, &a1))| {
+                o.shape
+                    .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
+                    && !spared(&o.shape)
+            }),
+        None => scene.objects.iter().any(|o| {
+            o.shape.meets_segment_with(None, from, l, ll, tol, eps) && !spared(&o.shape)
+        }),
+    }
 }
 
 /// One light's `(255·cos/dist, 255·(N·H)^shininess/dist)` along the normalised direction

@@ -67,18 +67,6 @@ pub(crate) struct PlaneSides<'a, S> {
     pub(crate) at_lights: &'a [S],
 }
 
-impl<S: Copy> PlaneSides<'_, S> {
-    /// The sides of object `object` at the hit and at light `light`.
-    #[inline]
-    pub(crate) fn of(&self, object: usize, light: usize) -> Option<(S, S)> {
-        let n = self.at_hit.len();
-        Some((
-            *self.at_hit.get(object)?,
-            *self.at_lights.get(light.checked_mul(n)?.checked_add(object)?)?,
-        ))
-    }
-}
-
 /// The nearest accepted hit of a ray among the scene's objects, with the object's index.
 pub fn nearest_hit<S: Scalar>(scene: &impl AsView<S>, ray: &Ray<S>) -> Option<(usize, Hit<S>)> {
     nearest(&scene.view(), ray)
