@@ -68,7 +68,7 @@ impl<'a, S: Scalar> Frame<'a, S> {
         Self {
             scene,
             shading,
-            drawing: Drawing { plan, kernel, mode },
+            drawing: Drawing { kernel, mode },
         }
     }
 
@@ -322,7 +322,6 @@ pub fn render_line_stages<S: Scalar, T: Stages, C: From<Rgb888>>(
         let plan = scene.plan();
         let drawing = Drawing {
             kernel: kernel::select::<S, T>(scene, &plan),
-            plan,
             mode: PlaneMode::PerPixel,
         };
         kernel::line::<S, T, C>(scene, &drawing, row, line, counters);

@@ -83,8 +83,9 @@ fn check<S: Scalar>(name: &str, text: &str, budget: f64) -> f64 {
 
 #[test]
 fn the_fast_path_draws_the_reference_picture() {
-    let scenes: [(&str, &str, f64); 5] = [
+    let scenes: [(&str, &str, f64); 6] = [
         ("planes", include_str!("../scenes/planes.scene"), 0.01),
+        ("spheres", include_str!("../scenes/spheres.scene"), 0.01),
         ("horizon", include_str!("../scenes/horizon.scene"), 0.01),
         ("default", include_str!("../scenes/default.scene"), 0.03),
         ("tiles", include_str!("../scenes/tiles.scene"), 0.02),
@@ -130,6 +131,7 @@ fn against_f64<S: Scalar>(name: &str, text: &str) -> (f64, f64) {
 fn the_fast_path_is_as_close_to_f64_as_the_reference_path() {
     for (name, text) in [
         ("planes", include_str!("../scenes/planes.scene")),
+        ("spheres", include_str!("../scenes/spheres.scene")),
         ("horizon", include_str!("../scenes/horizon.scene")),
         ("default", include_str!("../scenes/default.scene")),
         ("tiles", include_str!("../scenes/tiles.scene")),

@@ -129,14 +129,7 @@ impl<S: Scalar> Plane<S> {
     /// `None` when it does not or a quantity does not fit (then `a₀` or `N·l` exceeds the
     /// range: the plane is beyond any light that fits).
     #[inline]
-    pub fn crossing(
-        &self,
-        from: Vec3<S>,
-        l: Vec3<S>,
-        ll: S,
-        tol: S,
-        epsilon: S,
-    ) -> Option<(S, S)> {
+    pub fn crossing(&self, from: Vec3<S>, l: Vec3<S>, ll: S, tol: S, epsilon: S) -> Option<(S, S)> {
         let a0 = S::sub_dot3(self.offset, self.normal.to_array(), from.to_array())?;
         if a0.abs() <= tol {
             return None;
@@ -168,8 +161,7 @@ pub(crate) fn crossing_of_sides<S: Scalar>(
     Some((a0, nl))
 }
 
-impl<S: Scalar> Plane<S> {
-}
+impl<S: Scalar> Plane<S> {}
 
 impl<S: Scalar> Plane<S> {
     /// A bound on how far a hit point computed by [`Plane::intersect`] lies off the plane,

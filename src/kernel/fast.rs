@@ -28,25 +28,25 @@ use core::cmp::Ordering;
 use crate::scene::MAX_OBJECTS;
 use crate::{Scalar, SceneView, Shape, Vec3};
 
-/// A plane term of the fast path: which object and `num = D' − N·eye` (the normal is read
-/// from the scene: on a 16 KB chip a copy of every normal is RAM the stack needs).
+/// A term of the fast path: which object and, for a plane, `num = D' − N·eye`, for a
+/// sphere `num = |oc|² − r²` with `oc = eye − centre` (positive: the eye is outside).
+/// The vector the scanline dots `D` with (the normal, `oc`) is read from the scene: on a
+/// 16 KB chip a copy of every one is RAM the stack needs.
 #[derive(Debug, Clone, Copy)]
 struct Term<S> {
     index: u8,
     num: S,
+    sphere: bool,
 }
 
-/// The unit normal of a plane-like object.
+/// What a term dots `D` with: the unit normal of a plane-like object, `eye − centre` of
+/// a sphere.
 #[inline]
-fn normal_of<S: Scalar>(scene: &SceneView<'_, S>, index: u8) -> Option<Vec3<S>> {
-    Some(
-        scene
-            .objects
-            .get(usize::from(index))?
-            .shape
-            .plane()?
-            .normal(),
-    )
+fn axis_of<S: Scalar>(scene: &SceneView<'_, S>, index: u8) -> Option<Vec3<S>> {
+    match &scene.objects.get(usize::from(index))?.shape {
+        Shape::Sphere(s) => scene.camera.viewpoint.diff(s.center()),
+        shape => Some(shape.plane()?.normal()),
+    }
 }
 
 /// How many pixels a scanline steps `D.x` by addition before restarting from the exact
@@ -66,6 +66,8 @@ pub struct Primary<S: Scalar> {
     /// shadow segments: [`crate::shade::PlaneSides`]); empty when they do not fit
     /// [`MAX_SIDES`] or the format.
     at_lights: Vec<S, MAX_SIDES>,
+    /// Whether a term is a sphere (the scanline then keeps `D·D`).
+    spheres: bool,
     /// Screen x step between pixel centres, `WX / W`.
     step_x: S,
     /// `−eye.z`, the z of every `D`.
@@ -92,12 +94,13 @@ pub struct FastHit<S> {
     pub param: S,
 }
 
-/// The per-scanline part: `N·D` of every term at the current pixel (rounded, and the
-/// unrounded sum it steps), and `D`.
+/// The per-scanline part: `N·D` (planes) or `oc·D` (spheres) of every term at the
+/// current pixel (rounded, and the unrounded sum it steps), `D`, and `D.y² + D.z²`.
 #[derive(Debug, Clone)]
 pub struct Row<S: Scalar> {
     nd: Vec<S, MAX_OBJECTS>,
     acc: Vec<S::Acc, MAX_OBJECTS>,
+    yz: S::Acc,
     dir: Vec3<S>,
     column: u16,
 }
@@ -123,6 +126,7 @@ pub(crate) fn accepts<S: Scalar>(num: S, nd: S, eps: S, eps_d2: S) -> bool {
 /// roundings) implies `(N·D)² ≥ ε²·|D|²` since `|D| ≤ ‖D‖₁`, so a plane that far from
 /// parallel skips the exact squared test (two double-width products), which only planes
 /// within that margin of the epsilon take (`eps_d2` computes `ε·|D|²` for them).
+/// `None` when `ε·|D|²` does not fit (the reference path decides).
 #[inline]
 fn accepts_bounded<S: Scalar>(
     num: S,
@@ -130,15 +134,43 @@ fn accepts_bounded<S: Scalar>(
     eps: S,
     eps_l1: Option<S>,
     eps_d2: impl FnOnce() -> Option<S>,
-) -> bool {
+) -> Option<bool> {
     match eps_l1 {
         Some(bound) if nd.abs() >= bound && nd != S::ZERO => {
             // Behind: t' < 0 (num = 0 puts the hit at the eye: in front of the screen);
             // in front of the screen: t' < 1.
-            (num > S::ZERO) == (nd > S::ZERO) && num != S::ZERO && num.abs() >= nd.abs()
+            Some((num > S::ZERO) == (nd > S::ZERO) && num != S::ZERO && num.abs() >= nd.abs())
         }
-        _ => eps_d2().is_some_and(|e| accepts(num, nd, eps, e)),
+        _ => eps_d2().map(|e| accepts(num, nd, eps, e)),
     }
+}
+
+/// A sphere's near root along `D` as the fraction `t' = p/q` (`q > 0`), without a
+/// division: with `c = |oc|² − r² > 0` (the eye outside), `b = oc·D` and `a = D·D`, the
+/// roots are `(−b ± √(b² − a·c))/a`; the ray meets the sphere ahead when `b < 0` and the
+/// discriminant is not negative (compared exactly, [`Scalar::cmp_products`]), and the
+/// near root is `c/q` with `q = √(b² − ac) − b` (`−b > 0`: no cancellation, as in
+/// [`crate::Sphere`]). A root in front of the screen (`t' < 1`) is a miss, as on the
+/// reference path. `Ok(None)` for a miss, `Err(())` when the discriminant does not fit
+/// the format (the reference path decides).
+#[inline]
+fn sphere_root<S: Scalar>(c: S, b: S, a: S) -> Result<Option<(S, S)>, ()> {
+    if b >= S::ZERO || S::cmp_products(b, b, a, c) == Some(Ordering::Less) {
+        return Ok(None);
+    }
+    let bb = S::acc_mul(b, b).ok_or(())?;
+    let ac = S::acc_mul(a, c.checked_neg().ok_or(())?).ok_or(())?;
+    let disc = S::acc_round(S::acc_add(bb, ac).ok_or(())?).ok_or(())?;
+    let q = disc
+        .max(S::ZERO)
+        .checked_sqrt()
+        .and_then(|root| root.checked_sub(b))
+        .ok_or(())?;
+    if q <= S::ZERO || c < q {
+        // t' = c/q < 1: in front of the screen.
+        return Ok(None);
+    }
+    Ok(Some((c, q)))
 }
 
 impl<S: Scalar> Primary<S> {
@@ -153,19 +185,42 @@ impl<S: Scalar> Primary<S> {
             .mul_ratio(1, i32::from(scene.camera.width))?;
         let mut terms = Vec::new();
         let mut steps = Vec::new();
+        let mut spheres = false;
         for (index, object) in scene.objects.iter().enumerate() {
-            let plane = object.shape.plane()?;
-            let num = S::sub_dot3(plane.offset(), plane.normal().to_array(), eye.to_array())?;
+            let (num, axis, sphere) = match &object.shape {
+                Shape::Sphere(s) => {
+                    // Only with the eye outside every sphere (the near root is then the
+                    // one, and c/q has no cancellation), and with the sphere code built in.
+                    if !cfg!(feature = "spheres") {
+                        return None;
+                    }
+                    let oc = eye.diff(s.center())?;
+                    let c =
+                        S::sub_dot3(s.radius_sq(), oc.to_array(), oc.to_array())?.checked_neg()?;
+                    if c <= S::ZERO {
+                        return None;
+                    }
+                    spheres = true;
+                    (c, oc, true)
+                }
+                shape => {
+                    let plane = shape.plane()?;
+                    let num =
+                        S::sub_dot3(plane.offset(), plane.normal().to_array(), eye.to_array())?;
+                    (num, plane.normal(), false)
+                }
+            };
             let index = u8::try_from(index).ok()?;
-            terms.push(Term { index, num }).ok()?;
-            steps.push(S::acc_mul(plane.normal().x, step_x)?).ok()?;
+            terms.push(Term { index, num, sphere }).ok()?;
+            steps.push(S::acc_mul(axis.x, step_x)?).ok()?;
         }
         let mut at_lights = Vec::new();
         let sides = terms.len().checked_mul(scene.lights.len());
-        if sides.is_some_and(|n| n <= MAX_SIDES) {
+        if !spheres && sides.is_some_and(|n| n <= MAX_SIDES) {
             'lights: for light in scene.lights {
                 for term in &terms {
-                    let plane = scene.objects.get(usize::from(term.index))?.shape.plane()?;
+                    let object = scene.objects.get(usize::from(term.index))?;
+                    let plane = object.shape.plane()?;
                     let side = S::sub_dot3(
                         plane.offset(),
                         plane.normal().to_array(),
@@ -185,6 +240,7 @@ impl<S: Scalar> Primary<S> {
             terms,
             steps,
             at_lights,
+            spheres,
             step_x,
             dz: S::ZERO.checked_sub(eye.z)?,
         })
@@ -195,6 +251,7 @@ impl<S: Scalar> Primary<S> {
         let mut r = Row {
             nd: Vec::new(),
             acc: Vec::new(),
+            yz: S::acc_mul(S::ZERO, S::ZERO)?,
             dir: Vec3::new(S::ZERO, S::ZERO, S::ZERO),
             column,
         };
@@ -218,8 +275,11 @@ impl<S: Scalar> Primary<S> {
         r.column = column;
         r.nd.clear();
         r.acc.clear();
+        if self.spheres {
+            r.yz = S::acc_add(S::acc_mul(r.dir.y, r.dir.y)?, S::acc_mul(r.dir.z, r.dir.z)?)?;
+        }
         for term in &self.terms {
-            let sum = S::acc_dot3(normal_of(scene, term.index)?.to_array(), r.dir.to_array())?;
+            let sum = S::acc_dot3(axis_of(scene, term.index)?.to_array(), r.dir.to_array())?;
             r.nd.push(S::acc_round(sum)?).ok()?;
             r.acc.push(sum).ok()?;
         }
@@ -259,40 +319,52 @@ impl<S: Scalar> Primary<S> {
         let eps = scene.epsilon;
         let d = row.dir;
         let eps_d2 = || d.dot(d).and_then(|d2| eps.checked_mul(d2));
-        let eps_l1 = d
-            .x
-            .abs()
-            .checked_add(d.y.abs())
-            .and_then(|s| s.checked_add(d.z.abs()))
-            .and_then(|s| eps.checked_mul(s))
-            .and_then(|b| b.checked_add(b.ulp()))
-            .and_then(|b| b.checked_add(b.ulp()));
-        // The best so far: (term, N·D, |num|, |N·D|).
-        let mut best: Option<(&Term<S>, S, S, S)> = None;
+        let eps_l1 =
+            d.x.abs()
+                .checked_add(d.y.abs())
+                .and_then(|s| s.checked_add(d.z.abs()))
+                .and_then(|s| eps.checked_mul(s))
+                .and_then(|b| b.checked_add(b.ulp()))
+                .and_then(|b| b.checked_add(b.ulp()));
+        // `D·D`, for spheres: `D.x²` added to the row's `D.y² + D.z²`.
+        let dd = if self.spheres {
+            S::acc_round(S::acc_add(row.yz, S::acc_mul(d.x, d.x).ok_or(())?).ok_or(())?).ok_or(())?
+        } else {
+            S::ZERO
+        };
+        // The best so far: (term, its t' as the fraction p/q with q > 0).
+        let mut best: Option<(&Term<S>, S, S)> = None;
         for (term, &nd) in self.terms.iter().zip(&row.nd) {
-            if !accepts_bounded(term.num, nd, eps, eps_l1, eps_d2) {
-                continue;
-            }
-            let (num_abs, nd_abs) = (term.num.abs(), nd.abs());
-            if let Some((_, _, b_num, b_nd)) = best
-                && S::cmp_products(num_abs, b_nd, b_num, nd_abs) != Some(Ordering::Less)
+            let (p, q) = if term.sphere {
+                match sphere_root(term.num, nd, dd)? {
+                    Some(pq) => pq,
+                    None => continue,
+                }
+            } else {
+                if !accepts_bounded(term.num, nd, eps, eps_l1, eps_d2).ok_or(())? {
+                    continue;
+                }
+                (term.num.abs(), nd.abs())
+            };
+            if let Some((_, b_p, b_q)) = best
+                && S::cmp_products(p, b_q, b_p, q) != Some(Ordering::Less)
             {
                 continue;
             }
             if let Some(shape @ (Shape::Finite(_) | Shape::Triangle(_))) =
                 scene.objects.get(usize::from(term.index)).map(|o| &o.shape)
             {
-                let (point, _, _) = self.point(scene, term, nd, d).ok_or(())?;
+                let (point, _, _) = self.point(scene, p, q, d).ok_or(())?;
                 if !shape.bounds_contain(point) {
                     continue;
                 }
             }
-            best = Some((term, nd, num_abs, nd_abs));
+            best = Some((term, p, q));
         }
-        let Some((term, nd, _, _)) = best else {
+        let Some((term, p, q)) = best else {
             return Ok(None);
         };
-        let (point, t_bound, param) = self.point(scene, term, nd, d).ok_or(())?;
+        let (point, t_bound, param) = self.point(scene, p, q, d).ok_or(())?;
         Ok(Some(FastHit {
             index: usize::from(term.index),
             point,
@@ -327,14 +399,8 @@ impl<S: Scalar> Primary<S> {
     }
 
     /// The hit point `eye + t'·D` of a term, a bound on its world distance, and `t'`.
-    fn point(
-        &self,
-        scene: &SceneView<'_, S>,
-        term: &Term<S>,
-        nd: S,
-        d: Vec3<S>,
-    ) -> Option<(Vec3<S>, S, S)> {
-        let t = term.num.checked_div(nd)?;
+    fn point(&self, scene: &SceneView<'_, S>, p: S, q: S, d: Vec3<S>) -> Option<(Vec3<S>, S, S)> {
+        let t = p.checked_div(q)?;
         let point = scene.camera.viewpoint.sum(d.scale(t)?)?;
         // |D| ≤ √3 |D|∞ < 2 |D|∞: the world distance t'·|D| is below t'·2|D|∞.
         let t_bound = t.checked_mul(d.max_abs().checked_add(d.max_abs())?)?;

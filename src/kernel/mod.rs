@@ -4,9 +4,10 @@
 //!
 //! - **flat** (`flat.rs`): pure geometry (infinite planes, no lighting, no mirrors), a
 //!   scanline at a time, no division per pixel; per-pixel or span mode.
-//! - **fast** (`fast.rs`): plane-like scenes whose stages need no unit primary direction
-//!   (no specular, no mirrors): per-frame `N·eye`, unnormalised directions, one division
-//!   per pixel.
+//! - **fast** (`fast.rs`): scenes of planes and spheres whose stages need no unit
+//!   primary direction (no specular, no mirrors): per-frame `N·eye` and `|eye − c|² − r²`,
+//!   unnormalised directions stepped along the scanline, one division per pixel (and a
+//!   square root per sphere the ray meets).
 //! - **reference** (`reference.rs`): the definition, one normalised ray per pixel.
 //!
 //! A scanline the flat kernel hands back (a quantity out of the format's range) is drawn
@@ -39,11 +40,10 @@ pub(crate) enum Kernel<S: Scalar> {
     Reference,
 }
 
-/// What a frame draws with: the scene's plan, the kernel [`select`] chose for it, and the
+/// What a frame draws with: the kernel [`select`] chose for it (from the scene's plan), and the
 /// mode of the pure-geometry kernel.
 #[derive(Debug, Clone)]
 pub(crate) struct Drawing<S: Scalar> {
-    pub(crate) plan: Plan,
     pub(crate) kernel: Kernel<S>,
     pub(crate) mode: PlaneMode,
 }
@@ -64,17 +64,17 @@ pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan
     {
         return Kernel::Flat(flat);
     }
-    match fast::<S, T>(scene, plan) {
+    match fast::<S, T>(scene) {
         Some(primary) => Kernel::Fast(primary),
         None => Kernel::Reference,
     }
 }
 
-/// The fast kernel, where it applies: plane-like shapes, and stage sets that need only
-/// the side of the surface a primary ray comes from (no specular half vector, no mirror
-/// direction). Also what a scanline the flat kernel hands back is drawn with.
-fn fast<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan) -> Option<Primary<S>> {
-    if scene.rules() == Rules::Course || T::SPECULAR || T::REFLECTION || !plan.planes_like() {
+/// The fast kernel, where it applies: planes of every kind and spheres the eye is
+/// outside of ([`Primary::new`] decides), and stage sets that need only the side of the
+/// surface a primary ray comes from (no specular half vector, no mirror direction). Also what a scanline the flat kernel hands back is drawn with.
+fn fast<S: Scalar, T: Stages>(scene: &SceneView<'_, S>) -> Option<Primary<S>> {
+    if scene.rules() == Rules::Course || T::SPECULAR || T::REFLECTION {
         return None;
     }
     Primary::new(scene)
@@ -88,7 +88,7 @@ pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
     line: &mut [C],
     counters: &mut Counters,
 ) {
-    let Drawing { plan, kernel, mode } = drawing;
+    let Drawing { kernel, mode, .. } = drawing;
     let mode = *mode;
     let width = line.len().min(usize::from(scene.camera.width));
     let line = &mut line[..width];
@@ -99,7 +99,7 @@ pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
                 return;
             }
             // Handed back: this scanline takes the next kernel of the chain.
-            return fallback_line::<S, T, C>(scene, plan, row, line, counters);
+            return fallback_line::<S, T, C>(scene, row, line, counters);
         }
         Kernel::Fast(p) => Some(p),
         Kernel::Reference => None,
@@ -111,12 +111,11 @@ pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
 #[inline(never)]
 fn fallback_line<S: Scalar, T: Stages, C: From<Rgb888>>(
     scene: &SceneView<'_, S>,
-    plan: &Plan,
     row: u16,
     line: &mut [C],
     counters: &mut Counters,
 ) {
-    let primary = fast::<S, T>(scene, plan);
+    let primary = fast::<S, T>(scene);
     primary_line::<S, T, C>(scene, primary.as_ref(), row, line, counters);
 }
 
@@ -146,7 +145,7 @@ where
     C: From<Rgb888> + Clone,
     K: RowSink<C>,
 {
-    let Drawing { plan, kernel, mode } = drawing;
+    let Drawing { kernel, mode, .. } = drawing;
     let fallback;
     let primary = match kernel {
         Kernel::Flat(flat) => match flat.row(scene, row) {
@@ -161,7 +160,7 @@ where
                 };
             }
             None => {
-                fallback = fast::<S, T>(scene, plan);
+                fallback = fast::<S, T>(scene);
                 fallback.as_ref()
             }
         },

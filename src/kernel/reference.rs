@@ -54,12 +54,12 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                 // stage sets that need no more of it than its side).
                 // Shadow segments take the planes' sides from the kernel's terms.
                 let sides = match (primary, state.as_ref()) {
-                    (Some(p), Some(r)) if T::SHADOWS && !p.at_lights().is_empty() => p
-                        .sides_at(r, h.param, &mut at_hit)
-                        .map(|()| PlaneSides {
+                    (Some(p), Some(r)) if T::SHADOWS && !p.at_lights().is_empty() => {
+                        p.sides_at(r, h.param, &mut at_hit).map(|()| PlaneSides {
                             at_hit: &at_hit,
                             at_lights: p.at_lights(),
-                        }),
+                        })
+                    }
                     _ => None,
                 };
                 let incoming = Incoming {

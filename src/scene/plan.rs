@@ -42,12 +42,6 @@ impl Plan {
     pub(crate) fn planes_only(&self) -> bool {
         !(self.spheres || self.tiles || self.finite_planes || self.triangles)
     }
-
-    /// Whether every object is plane-like (infinite, tiled or finite): what the fast
-    /// primary-ray kernel takes.
-    pub(crate) fn planes_like(&self) -> bool {
-        !self.spheres
-    }
 }
 
 impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L> {

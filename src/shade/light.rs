@@ -4,8 +4,8 @@
 use super::color::{add_sat, term};
 use super::stages::Stages;
 use super::{Incoming, PlaneSides, in_own_plane, light_tolerance, occludes};
-use crate::stats::{Counters, count};
 use crate::geometry::surface_tolerance;
+use crate::stats::{Counters, count};
 use crate::{Color, Hit, Light, Material, Object, Ray, RayKind, Scalar, SceneView, Vec3};
 
 /// How the course rules light a hit where the crate's own differ (`COURSE-RULES.md` §6,
@@ -158,7 +158,15 @@ fn segment_terms<S: Scalar, T: Stages>(
     if T::SHADOWS {
         count(&mut counters.shadow_rays);
         let sides = at.ray.sides.map(|s| (s, index));
-        if occludes_segment(at.scene, sides, at.hit.point, to_light, ll, tol?, light.location) {
+        if occludes_segment(
+            at.scene,
+            sides,
+            at.hit.point,
+            to_light,
+            ll,
+            tol?,
+            light.location,
+        ) {
             return None;
         }
     }
@@ -235,18 +243,21 @@ fn occludes_segment<S: Scalar>(
         (n == scene.objects.len()).then_some((s.at_hit, at_light))
     });
     match known {
-        Some((at_hit, at_light)) => scene
+        Some((at_hit, at_light)) => {
+            scene
+                .objects
+                .iter()
+                .zip(at_hit.iter().zip(at_light))
+                .any(|(o, (&a0, &a1))| {
+                    o.shape
+                        .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
+                        && !spared(&o.shape)
+                })
+        }
+        None => scene
             .objects
             .iter()
-            .zip(at_hit.iter().zip(at_light))
-            .any(|(o, (&a0, &a1))| {
-                o.shape
-                    .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
-                    && !spared(&o.shape)
-            }),
-        None => scene.objects.iter().any(|o| {
-            o.shape.meets_segment_with(None, from, l, ll, tol, eps) && !spared(&o.shape)
-        }),
+            .any(|o| o.shape.meets_segment_with(None, from, l, ll, tol, eps) && !spared(&o.shape)),
     }
 }
 
