@@ -153,6 +153,51 @@ impl<S: Scalar> Shape<S> {
         }
     }
 
+    /// The course's shadow test along the segment from `from` (a hit point: the caller
+    /// skips the object it lies on) to the light at `from + l` (`ll = l·l`): what
+    /// [`Shape::intersect_course`] with `t < dist` decides for the unit ray, from signs
+    /// and comparisons. A plane-type shape blocks when the segment crosses its plane
+    /// strictly between the ends ([`Plane::crossing`] with no tolerance: `0 < t < dist`)
+    /// and the crossing point keeps the screen rule (`z ≤ z_limit`, `z ≤ 0` for
+    /// triangles) and the bounds; a sphere when its near root lies in `[0, dist)`
+    /// ([`Sphere::meets_segment_near`]).
+    pub fn meets_segment_course(
+        &self,
+        from: Vec3<S>,
+        l: Vec3<S>,
+        ll: S,
+        epsilon: S,
+        z_limit: S,
+    ) -> bool {
+        if let Shape::Sphere(s) = self {
+            return SPHERES
+                && s.meets_segment_near(from, l, ll).unwrap_or_else(|| {
+                    // A quantity out of range: the unit ray's own test.
+                    match (l.normalize(), l.length()) {
+                        (Some(n), Some(dist)) => {
+                            let ray = Ray {
+                                base: from,
+                                dir: n.unit,
+                                kind: super::RayKind::Secondary,
+                            };
+                            self.intersect_course(&ray, epsilon, z_limit)
+                                .is_ok_and(|h| h.t < dist)
+                        }
+                        _ => false,
+                    }
+                });
+        }
+        let z_limit = if matches!(self, Shape::Triangle(_)) {
+            S::ZERO
+        } else {
+            z_limit
+        };
+        self.plane()
+            .and_then(|p| p.crossing(from, l, ll, S::ZERO, epsilon))
+            .and_then(|(a0, nl)| from.sum(l.scale(a0.checked_div(nl)?)?))
+            .is_some_and(|x| x.z <= z_limit && self.bounds_contain(x))
+    }
+
     /// The course's intersection (`COURSE-RULES.md` §5), for every ray alike: planes
     /// miss at `t <= 0` and reject a plane-type hit with `z > z_limit` (the screen rule,
     /// 0.01 in the course; `z > 0` for triangles) whatever the ray; spheres take only the near root, with no

@@ -189,6 +189,29 @@ impl<S: Scalar> Sphere<S> {
         )
     }
 
+    /// The course's shadow test along a segment (`COURSE-RULES.md` §5, §7): whether the
+    /// near root of the ray from `from` towards `from + l` lies in `[0, 1)` with a
+    /// positive discriminant ([`Sphere::intersect_near`] with `t < dist`), from signs and
+    /// exact product comparisons: with `b`, `f₀`, `f₁` as in [`Sphere::meets_segment`],
+    /// the near root is not negative when `b ≤ 0` and `f₀ ≥ 0` (`from` not inside), and
+    /// it lies before the light when `−b < ll` or the light is inside (`f₁ < 0`). `None`
+    /// when a quantity does not fit the format.
+    pub fn meets_segment_near(&self, from: Vec3<S>, l: Vec3<S>, ll: S) -> Option<bool> {
+        let oc = from.diff(self.center)?;
+        let b = oc.dot(l)?;
+        if b > S::ZERO {
+            return Some(false);
+        }
+        let f0 = S::sub_dot3(self.radius_sq, oc.to_array(), oc.to_array())?.checked_neg()?;
+        if f0 < S::ZERO || S::cmp_products(b, b, ll, f0) != Some(core::cmp::Ordering::Greater) {
+            return Some(false);
+        }
+        if b.checked_neg()? < ll {
+            return Some(true);
+        }
+        Some(f0.checked_add(b)?.checked_add(b)?.checked_add(ll)? < S::ZERO)
+    }
+
     /// The outward unit normal at a point on the surface.
     pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
         point.diff(self.center)?.unit()

@@ -26,10 +26,10 @@ pub(super) struct CourseLight<S> {
 /// recursive frames of mirror reflections (on a 16 KB chip in I32F32 they decide whether
 /// four reflections fit the stack).
 ///
-/// Under the crate's rules a light whose `L = light − hit` squares within the format is
-/// lit by [`segment_terms`] (no square root, one division per light for diffuse light),
-/// any other light, and every light under the course's rules, by [`ray_terms`] (the
-/// normalised direction to the light and a shadow ray along it).
+/// A light whose `L = light − hit` squares within the format is lit by [`segment_terms`]
+/// (no square root, one division per light for diffuse light, shadow segments decided
+/// by comparisons), any other by [`ray_terms`] (the normalised direction to the light
+/// and a shadow ray along it), under either rule set.
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn light_with<S: Scalar, T: Stages>(
@@ -71,9 +71,9 @@ pub(super) fn light_with<S: Scalar, T: Stages>(
         let Some(to_light) = light.location.diff(hit.point) else {
             continue;
         };
-        let terms = match (course, to_light.dot(to_light)) {
-            (None, Some(ll)) if ll > S::ZERO && (tol.is_some() || !T::SHADOWS) => {
-                segment_terms::<S, T>(&at, (j, light), to_light, ll, tol, counters)
+        let terms = match to_light.dot(to_light) {
+            Some(ll) if ll > S::ZERO && (course.is_some() || tol.is_some() || !T::SHADOWS) => {
+                segment_terms::<S, T>(&at, (j, light), to_light, ll, tol, course, counters)
             }
             _ => ray_terms::<S, T>(&at, light, to_light, course, counters),
         };
@@ -119,19 +119,23 @@ fn on_own_plane<S: Scalar>(at: &Lit<'_, '_, S>, light: Vec3<S>) -> bool {
         )
 }
 
-/// One light's `(255·cos/dist, 255·(N·H)^shininess/dist)` by the crate's rules, with
-/// `L = light − hit` unnormalised and `ll = L·L`: `cos/dist = (N·L)/|L|²` (one division,
-/// no square root); the cone test compares `(−L·axis)²` with `cos²θ·|L|²`; the shadow
-/// test asks each object whether it meets the segment from the hit to the light
-/// ([`crate::Shape::meets_segment`], within `tol` of the hit's surface nothing counts). Only a
-/// specular glint normalises `L` (its half vector needs the unit direction). `None`
-/// when the light does not light the point.
+/// One light's `(255·cos/dist, 255·(N·H)^shininess/dist)` with `L = light − hit`
+/// unnormalised and `ll = L·L`: `cos/dist = (N·L)/|L|²` (one division, no square root);
+/// the cone test compares `(−L·axis)²` with `cos²θ·|L|²`; the shadow test asks each
+/// object whether it meets the segment from the hit to the light: by the crate's rules
+/// [`crate::Shape::meets_segment`] (within `tol` of the hit's surface nothing counts), by
+/// the course's [`crate::Shape::meets_segment_course`] (skipping the hit's object, the
+/// strict cone, the glint without the distance). Only a specular glint normalises `L`
+/// (its half vector needs the unit direction). `None` when the light does not light the
+/// point.
+#[allow(clippy::too_many_arguments)]
 fn segment_terms<S: Scalar, T: Stages>(
     at: &Lit<'_, '_, S>,
     (index, light): (usize, &Light<S>),
     to_light: Vec3<S>,
     ll: S,
     tol: Option<S>,
+    course: Option<CourseLight<S>>,
     counters: &mut Counters,
 ) -> Option<(S, S)> {
     let nl = at.normal.dot(to_light).filter(|c| *c > S::ZERO)?;
@@ -146,10 +150,13 @@ fn segment_terms<S: Scalar, T: Stages>(
         let c = to_light.dot(cone.axis)?.checked_neg()?;
         let cos2 = cone.cos_theta.checked_mul(cone.cos_theta)?;
         let beyond = S::cmp_products(c, c, cos2, ll);
-        let inside = if cone.cos_theta >= S::ZERO {
-            c >= S::ZERO && beyond != Some(core::cmp::Ordering::Less)
-        } else {
-            c >= S::ZERO || beyond != Some(core::cmp::Ordering::Greater)
+        use core::cmp::Ordering::{Greater, Less};
+        // The course's cone is strict (`>`), the crate's takes its edge (`>=`).
+        let inside = match (cone.cos_theta >= S::ZERO, course.is_some()) {
+            (true, false) => c >= S::ZERO && beyond != Some(Less),
+            (true, true) => c > S::ZERO && beyond == Some(Greater),
+            (false, false) => c >= S::ZERO || beyond != Some(Greater),
+            (false, true) => c >= S::ZERO || beyond == Some(Less),
         };
         if !inside {
             return None;
@@ -157,16 +164,17 @@ fn segment_terms<S: Scalar, T: Stages>(
     }
     if T::SHADOWS {
         count(&mut counters.shadow_rays);
-        let sides = at.ray.sides.map(|s| (s, index));
-        if occludes_segment(
-            at.scene,
-            sides,
-            at.hit.point,
-            to_light,
-            ll,
-            tol?,
-            light.location,
-        ) {
+        let from = at.hit.point;
+        let shadowed = match course {
+            None => {
+                let sides = at.ray.sides.map(|s| (s, index));
+                occludes_segment(at.scene, sides, from, to_light, ll, tol?, light.location)
+            }
+            Some(c) => {
+                occludes_segment_course(at.scene, from, to_light, ll, light.location, c)
+            }
+        };
+        if shadowed {
             return None;
         }
     }
@@ -183,9 +191,11 @@ fn segment_terms<S: Scalar, T: Stages>(
         to_light
             .normalize()
             .and_then(|n| {
-                glint_of(at, n.unit)
-                    .and_then(|g| g.checked_mul(k))
-                    .and_then(|g| n.divide(g))
+                let g = glint_of(at, n.unit)?.checked_mul(k)?;
+                match course {
+                    None => n.divide(g),
+                    Some(_) => Some(g),
+                }
             })
             .unwrap_or(S::ZERO)
     } else {
@@ -221,19 +231,7 @@ fn occludes_segment<S: Scalar>(
     light: Vec3<S>,
 ) -> bool {
     let eps = scene.epsilon;
-    // A light on a surface (only where the plan found one): as in `occludes`.
-    let spared = |shape: &crate::Shape<S>| {
-        scene.lights_on_surfaces
-            && shape.spares_light(
-                &Ray {
-                    base: from,
-                    dir: l,
-                    kind: RayKind::Secondary,
-                },
-                light,
-                light_tolerance(eps, light, scene.camera.viewpoint),
-            )
-    };
+    let spared = |shape: &crate::Shape<S>| spared(scene, from, l, light, shape);
     // The kernel's sides of every object at the hit and at this light, if it has them.
     let known = sides.and_then(|(s, j)| {
         let n = s.at_hit.len();
@@ -261,10 +259,51 @@ fn occludes_segment<S: Scalar>(
     }
 }
 
+/// A light on a surface (only where the plan found one): whether `shape`, which meets
+/// the shadow segment from `from` along `l`, spares it (as in [`occludes`]).
+fn spared<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    from: Vec3<S>,
+    l: Vec3<S>,
+    light: Vec3<S>,
+    shape: &crate::Shape<S>,
+) -> bool {
+    scene.lights_on_surfaces
+        && shape.spares_light(
+            &Ray {
+                base: from,
+                dir: l,
+                kind: RayKind::Secondary,
+            },
+            light,
+            light_tolerance(scene.epsilon, light, scene.camera.viewpoint),
+        )
+}
+
+/// The course's shadow test along the segment from the hit `from` to the light at
+/// `from + l`: any object but the hit's own meeting it by the course's rules
+/// ([`crate::Shape::meets_segment_course`]; a light on a surface: as in [`occludes`]).
+#[inline(never)]
+fn occludes_segment_course<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    from: Vec3<S>,
+    l: Vec3<S>,
+    ll: S,
+    light: Vec3<S>,
+    course: CourseLight<S>,
+) -> bool {
+    scene.objects.iter().enumerate().any(|(i, o)| {
+        i != course.index
+            && o.shape
+                .meets_segment_course(from, l, ll, scene.epsilon, course.z_limit)
+            && !spared(scene, from, l, light, &o.shape)
+    })
+}
+
 /// One light's `(255·cos/dist, 255·(N·H)^shininess/dist)` along the normalised direction
-/// to the light, with a shadow ray along it: under the course's rules (`course`: from
-/// the hit, skipping its object, the strict cone, the glint without the distance), and
-/// under the crate's for a light whose `|L|²` does not fit the format (spawned off the
+/// to the light, with a shadow ray along it, for a light whose `|L|²` does not fit the
+/// format: under the course's rules (`course`: from the hit, skipping its object, the
+/// strict cone, the glint without the distance) and the crate's (spawned off the
 /// surface). `None` when the light does not light the point.
 fn ray_terms<S: Scalar, T: Stages>(
     at: &Lit<'_, '_, S>,
