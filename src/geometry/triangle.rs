@@ -38,7 +38,11 @@ pub const EDGE_SLACK_ULPS: i32 = 32;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Triangle<S> {
     plane: Plane<S>,
-    vertices: [Vec3<S>; 3],
+    /// Per edge `from → to`: the inward unit normal `N × unit(to − from)` in the plane
+    /// and its offset `inward·from`, so that a point's side of the edge is
+    /// `inward·p − offset` (one wide dot product: the edge's unit vector and the cross
+    /// product are per triangle, not per test).
+    edges: [(Vec3<S>, S); 3],
 }
 
 impl<S: Scalar> Triangle<S> {
@@ -59,7 +63,19 @@ impl<S: Scalar> Triangle<S> {
             super::PlaneError::ZeroNormal => TriangleError::Degenerate,
             super::PlaneError::OffsetOutOfRange => TriangleError::OffsetOutOfRange,
         })?;
-        Ok(Self { plane, vertices })
+        let n = plane.normal();
+        let edge = |from: Vec3<S>, to: Vec3<S>| -> Option<(Vec3<S>, S)> {
+            let inward = n.cross(to.diff(from)?.unit()?)?;
+            Some((inward, inward.dot(from)?))
+        };
+        let edges = [edge(a, b), edge(b, c), edge(c, a)];
+        let [Some(ab), Some(bc), Some(ca)] = edges else {
+            return Err(TriangleError::OffsetOutOfRange);
+        };
+        Ok(Self {
+            plane,
+            edges: [ab, bc, ca],
+        })
     }
 
     /// The triangle's plane.
@@ -67,38 +83,24 @@ impl<S: Scalar> Triangle<S> {
         &self.plane
     }
 
-    /// The vertices.
-    pub fn vertices(&self) -> [Vec3<S>; 3] {
-        self.vertices
-    }
-
     /// Whether a point of the triangle's plane lies inside it, edges and vertices
     /// included: on the inner side of each edge's line, or less than
     /// [`EDGE_SLACK_ULPS`] outside it. Each edge's side is the signed distance
-    /// `(N × unit(edge))·(p − start)`, in world units, so no product exceeds the
-    /// coordinates' own magnitude. `false` where a quantity does not fit the format.
+    /// `(N × unit(edge))·(p − start)` in world units, evaluated as `inward·p − offset`
+    /// with both per-triangle parts computed once (one wide dot product per edge).
+    /// `false` where a quantity does not fit the format.
     pub fn contains(&self, p: Vec3<S>) -> bool {
-        let n = self.plane.normal();
-        let [a, b, c] = self.vertices;
-        let m = p
-            .max_abs()
-            .max(a.max_abs())
-            .max(b.max_abs())
-            .max(c.max_abs())
-            .max(S::ONE);
+        // The magnitude of the values compared: the point's and the edges' offsets.
+        let m = self
+            .edges
+            .iter()
+            .fold(p.max_abs().max(S::ONE), |m, e| m.max(e.1.abs()));
         let Some(slack) = S::from_i32(EDGE_SLACK_ULPS).and_then(|k| k.checked_mul(m.ulp())) else {
             return false;
         };
-        let Some(limit) = slack.checked_neg() else {
-            return false;
-        };
-        [(a, b), (b, c), (c, a)].into_iter().all(|(from, to)| {
-            to.diff(from)
-                .and_then(Vec3::unit)
-                .and_then(|u| n.cross(u))
-                .zip(p.diff(from))
-                .and_then(|(inward, w)| inward.dot(w))
-                .is_some_and(|side| side >= limit)
+        // side = inward·p − offset ≥ −slack, i.e. offset − inward·p ≤ slack (rounded once).
+        self.edges.iter().all(|&(inward, offset)| {
+            S::sub_dot3(offset, inward.to_array(), p.to_array()).is_some_and(|d| d <= slack)
         })
     }
 
