@@ -4,8 +4,8 @@
 //!
 //! - **flat** (`flat.rs`): pure geometry (infinite planes, no lighting, no mirrors), a
 //!   scanline at a time, no division per pixel; per-pixel or span mode.
-//! - **fast** (`fast.rs`): scenes of planes and spheres whose stages need no unit
-//!   primary direction (no specular, no mirrors): per-frame `N·eye` and `|eye − c|² − r²`,
+//! - **fast** (`fast.rs`): scenes of planes and spheres (the crate's rules): per-frame
+//!   `N·eye` and `|eye − c|² − r²`,
 //!   unnormalised directions stepped along the scanline, one division per pixel (and a
 //!   square root per sphere the ray meets).
 //! - **reference** (`reference.rs`): the definition, one normalised ray per pixel.
@@ -64,17 +64,17 @@ pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan
     {
         return Kernel::Flat(flat);
     }
-    match fast::<S, T>(scene) {
+    match fast::<S>(scene) {
         Some(primary) => Kernel::Fast(primary),
         None => Kernel::Reference,
     }
 }
 
 /// The fast kernel, where it applies: planes of every kind and spheres the eye is
-/// outside of ([`Primary::new`] decides), and stage sets that need only the side of the
-/// surface a primary ray comes from (no specular half vector, no mirror direction). Also what a scanline the flat kernel hands back is drawn with.
-fn fast<S: Scalar, T: Stages>(scene: &SceneView<'_, S>) -> Option<Primary<S>> {
-    if scene.rules() == Rules::Course || T::SPECULAR || T::REFLECTION {
+/// outside of ([`Primary::new`] decides), under the crate's rules (shading takes its
+/// unnormalised direction: `shade::Incoming`). Also what a scanline the flat kernel hands back is drawn with.
+fn fast<S: Scalar>(scene: &SceneView<'_, S>) -> Option<Primary<S>> {
+    if scene.rules() == Rules::Course {
         return None;
     }
     Primary::new(scene)
@@ -115,7 +115,7 @@ fn fallback_line<S: Scalar, T: Stages, C: From<Rgb888>>(
     line: &mut [C],
     counters: &mut Counters,
 ) {
-    let primary = fast::<S, T>(scene);
+    let primary = fast::<S>(scene);
     primary_line::<S, T, C>(scene, primary.as_ref(), row, line, counters);
 }
 
@@ -160,7 +160,7 @@ where
                 };
             }
             None => {
-                fallback = fast::<S, T>(scene);
+                fallback = fast::<S>(scene);
                 fallback.as_ref()
             }
         },

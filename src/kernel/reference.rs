@@ -65,6 +65,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                 let incoming = Incoming {
                     base: scene.camera.viewpoint,
                     dir: h.dir,
+                    unit: false,
                     sides,
                 };
                 let hit = Hit {

@@ -170,9 +170,7 @@ fn segment_terms<S: Scalar, T: Stages>(
                 let sides = at.ray.sides.map(|s| (s, index));
                 occludes_segment(at.scene, sides, from, to_light, ll, tol?, light.location)
             }
-            Some(c) => {
-                occludes_segment_course(at.scene, from, to_light, ll, light.location, c)
-            }
+            Some(c) => occludes_segment_course(at.scene, from, to_light, ll, light.location, c),
         };
         if shadowed {
             return None;
@@ -207,10 +205,13 @@ fn segment_terms<S: Scalar, T: Stages>(
 /// `(N·H)^shininess` for the unit direction `l` to the light (`H` the unit half vector
 /// of `l` and the direction to the viewer); `None` when it is not positive.
 fn glint_of<S: Scalar>(at: &Lit<'_, '_, S>, l: Vec3<S>) -> Option<S> {
-    at.ray
-        .dir
-        .checked_neg()
-        .and_then(|v| l.sum(v))
+    let to_viewer = at.ray.dir.checked_neg()?;
+    let v = if at.ray.unit {
+        to_viewer
+    } else {
+        to_viewer.unit()?
+    };
+    l.sum(v)
         .and_then(Vec3::unit)
         .and_then(|h| at.normal.dot(h))
         .filter(|nh| *nh > S::ZERO)

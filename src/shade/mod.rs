@@ -31,15 +31,18 @@ pub const MAX_REFLECTION_DEPTH: u8 = 4;
 
 /// The ray that arrives at a hit, as shading sees it: where it came from and its
 /// direction. On the reference path `dir` is the ray's unit direction; the fast
-/// primary-ray kernel hands its unnormalised `screen point − eye` instead, and takes only
-/// stage sets without specular glints and mirrors, the two stages that need `dir`'s
-/// length (diffuse light needs only the side of the surface it comes from).
+/// primary-ray kernel hands its unnormalised `screen point − eye` instead (`unit`
+/// false). Diffuse light needs only the side of the surface it comes from, a mirror's
+/// direction `d − 2(N·d)N` is linear in `d` and normalised after; only a specular
+/// glint's half vector normalises `dir` itself, for the pixels that show one.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Incoming<'a, S> {
     /// Where the ray started (secondary rays' offsets are bounded by its magnitude).
     pub(crate) base: Vec3<S>,
     /// Its direction (see above for its length).
     pub(crate) dir: Vec3<S>,
+    /// Whether `dir` is a unit vector.
+    pub(crate) unit: bool,
     /// The sides of every object's plane at the hit and at the lights, where the fast
     /// kernel knows them ([`PlaneSides`]).
     pub(crate) sides: Option<PlaneSides<'a, S>>,
@@ -50,6 +53,7 @@ impl<S: Scalar> From<&Ray<S>> for Incoming<'_, S> {
         Self {
             base: ray.base,
             dir: ray.dir,
+            unit: true,
             sides: None,
         }
     }
