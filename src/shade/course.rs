@@ -19,7 +19,7 @@
 //! take only their near root ([`crate::Shape::intersect_course`]).
 
 use super::light::{CourseLight, light_with};
-use super::stages::Stages;
+use super::stages::{LightStages, Stages};
 use super::{Incoming, Traced, surface};
 use crate::stats::{Counters, count};
 use crate::{Hit, Ray, RayKind, Scalar, SceneView, Vec3};
@@ -108,7 +108,7 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
                 index,
                 z_limit: z_limit::<S>(),
             };
-            light_with::<S, T>(
+            light_with(
                 scene,
                 &Incoming::from(&ray),
                 object,
@@ -116,6 +116,7 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
                 &hit,
                 n,
                 Some(course),
+                LightStages::of::<T>(),
                 &mut own,
                 counters,
             );

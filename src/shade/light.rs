@@ -2,7 +2,7 @@
 //! shadow rays.
 
 use super::color::{add_sat, term};
-use super::stages::Stages;
+use super::stages::LightStages;
 use super::{Incoming, PlaneSides, in_own_plane, light_tolerance, occludes};
 use crate::geometry::surface_tolerance;
 use crate::stats::{Counters, count};
@@ -32,7 +32,7 @@ pub(super) struct CourseLight<S> {
 /// and a shadow ray along it), under either rule set.
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn light_with<S: Scalar, T: Stages>(
+pub(super) fn light_with<S: Scalar>(
     scene: &SceneView<'_, S>,
     ray: &Incoming<'_, S>,
     object: &Object<S>,
@@ -40,10 +40,11 @@ pub(super) fn light_with<S: Scalar, T: Stages>(
     hit: &Hit<S>,
     normal: Vec3<S>,
     course: Option<CourseLight<S>>,
+    stages: LightStages,
     color: &mut Color<S>,
     counters: &mut Counters,
 ) {
-    let specular = T::SPECULAR
+    let specular = stages.specular
         && match course {
             None => material.specular > S::ZERO,
             Some(_) => material.specular != S::ZERO && material.shininess > S::ZERO,
@@ -52,7 +53,7 @@ pub(super) fn light_with<S: Scalar, T: Stages>(
         return;
     }
     // How far the hit may lie off its surface: the segment tests' tolerance.
-    let tol = if T::SHADOWS && course.is_none() {
+    let tol = if stages.shadows && course.is_none() {
         let m = ray.base.max_abs().max(hit.point.max_abs());
         surface_tolerance(hit.t, m)
     } else {
@@ -66,16 +67,17 @@ pub(super) fn light_with<S: Scalar, T: Stages>(
         hit,
         normal,
         specular,
+        stages,
     };
     for (j, light) in scene.lights.iter().enumerate() {
         let Some(to_light) = light.location.diff(hit.point) else {
             continue;
         };
         let terms = match to_light.dot(to_light) {
-            Some(ll) if ll > S::ZERO && (course.is_some() || tol.is_some() || !T::SHADOWS) => {
-                segment_terms::<S, T>(&at, (j, light), to_light, ll, tol, course, counters)
+            Some(ll) if ll > S::ZERO && (course.is_some() || tol.is_some() || !stages.shadows) => {
+                segment_terms(&at, (j, light), to_light, ll, tol, course, counters)
             }
-            _ => ray_terms::<S, T>(&at, light, to_light, course, counters),
+            _ => ray_terms(&at, light, to_light, course, counters),
         };
         let Some((diffuse_falloff, glint)) = terms else {
             continue;
@@ -101,6 +103,7 @@ struct Lit<'a, 'b, S> {
     hit: &'a Hit<S>,
     normal: Vec3<S>,
     specular: bool,
+    stages: LightStages,
 }
 
 /// 255 in the format (or its largest value).
@@ -129,7 +132,7 @@ fn on_own_plane<S: Scalar>(at: &Lit<'_, '_, S>, light: Vec3<S>) -> bool {
 /// (its half vector needs the unit direction). `None` when the light does not light the
 /// point.
 #[allow(clippy::too_many_arguments)]
-fn segment_terms<S: Scalar, T: Stages>(
+fn segment_terms<S: Scalar>(
     at: &Lit<'_, '_, S>,
     (index, light): (usize, &Light<S>),
     to_light: Vec3<S>,
@@ -142,7 +145,7 @@ fn segment_terms<S: Scalar, T: Stages>(
     if on_own_plane(at, light.location) {
         return None;
     }
-    if T::CONES
+    if at.stages.cones
         && let Some(cone) = light.cone
     {
         count(&mut counters.cone_tests);
@@ -162,7 +165,7 @@ fn segment_terms<S: Scalar, T: Stages>(
             return None;
         }
     }
-    if T::SHADOWS {
+    if at.stages.shadows {
         count(&mut counters.shadow_rays);
         let from = at.hit.point;
         let shadowed = match course {
@@ -306,7 +309,7 @@ fn occludes_segment_course<S: Scalar>(
 /// format: under the course's rules (`course`: from the hit, skipping its object, the
 /// strict cone, the glint without the distance) and the crate's (spawned off the
 /// surface). `None` when the light does not light the point.
-fn ray_terms<S: Scalar, T: Stages>(
+fn ray_terms<S: Scalar>(
     at: &Lit<'_, '_, S>,
     light: &Light<S>,
     to_light: Vec3<S>,
@@ -319,7 +322,7 @@ fn ray_terms<S: Scalar, T: Stages>(
     if on_own_plane(at, light.location) {
         return None;
     }
-    if T::CONES
+    if at.stages.cones
         && let Some(cone) = light.cone
     {
         count(&mut counters.cone_tests);
@@ -335,7 +338,7 @@ fn ray_terms<S: Scalar, T: Stages>(
             return None;
         }
     }
-    if T::SHADOWS {
+    if at.stages.shadows {
         count(&mut counters.shadow_rays);
         // The distance itself may not fit (a far light): nothing lies beyond it.
         let dist = to_light.length().unwrap_or(S::MAX);

@@ -208,8 +208,9 @@ pub(crate) fn shade_with<S: Scalar, T: Stages>(
         surface_normal
     };
     if lit {
-        light_with::<S, T>(
-            scene, ray, object, material, hit, facing, None, &mut color, counters,
+        let stages = stages::LightStages::of::<T>();
+        light_with(
+            scene, ray, object, material, hit, facing, None, stages, &mut color, counters,
         );
     }
     if mirror {

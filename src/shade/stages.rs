@@ -19,6 +19,30 @@ pub trait Stages {
     const REFLECTION: bool;
 }
 
+/// The lighting stages of a set as values: the light loop (`light.rs`) is compiled once
+/// and asks these per light (a branch), not once per stage set (kilobytes of flash on a
+/// 64 KB chip); a stage that is off still does no work.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LightStages {
+    /// Shadow rays.
+    pub(crate) shadows: bool,
+    /// Spotlight cones.
+    pub(crate) cones: bool,
+    /// Specular glints.
+    pub(crate) specular: bool,
+}
+
+impl LightStages {
+    /// The lighting stages of the set `T`.
+    pub(crate) const fn of<T: Stages>() -> Self {
+        Self {
+            shadows: T::SHADOWS,
+            cones: T::CONES,
+            specular: T::SPECULAR,
+        }
+    }
+}
+
 /// Ambient only: pure geometry.
 pub struct AmbientOnly;
 /// Diffuse point lights, nothing between them and the surface.
