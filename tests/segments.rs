@@ -1,0 +1,160 @@
+//! The segment shadow tests (`Shape::meets_segment`, `Shape::meets_segment_course`)
+//! against the ray tests they replace (`Shape::intersect` / `intersect_course` along the
+//! unit direction, `t` compared with the segment's length), on seeded random segments
+//! and shapes, in f64 and in I16F16: they agree on every segment whose crossing lies
+//! clear of its ends (the only place the two formulations may round differently), and
+//! the fixed-point answer equals the f64 one wherever the f64 crossing is clear of the
+//! ends by the format's error bound.
+
+use fixray::{I16F16, Plane, Ray, RayKind, Scalar, Shape, Sphere, Triangle, Vec3};
+
+/// xorshift64: a seeded, reproducible sequence in [−1, 1).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+    fn vec(&mut self, scale: f64) -> [f64; 3] {
+        [
+            self.next() * scale,
+            self.next() * scale,
+            self.next() * scale,
+        ]
+    }
+}
+
+fn v<S: Scalar>(c: [f64; 3]) -> Vec3<S> {
+    Vec3::from_f64(c).unwrap()
+}
+
+/// A random shape: a plane, a sphere or a triangle around the origin.
+fn shape<S: Scalar>(rng: &mut Rng, kind: u32) -> Option<Shape<S>> {
+    Some(match kind % 3 {
+        0 => Shape::Plane(Plane::new(v(rng.vec(1.0)), v(rng.vec(2.0))).ok()?),
+        1 => Shape::Sphere(
+            Sphere::new(v(rng.vec(2.0)), S::from_f64(0.5 + 1.5 * rng.next().abs())?).ok()?,
+        ),
+        _ => Shape::Triangle(
+            Triangle::new([v(rng.vec(3.0)), v(rng.vec(3.0)), v(rng.vec(3.0))]).ok()?,
+        ),
+    })
+}
+
+/// The ray test along the unit direction from `from` to `to`, with the crossing's
+/// parameter (for the margin check): `Some(t)` of the accepted hit.
+fn ray_hit<S: Scalar>(shape: &Shape<S>, from: Vec3<S>, to: Vec3<S>, course: bool) -> Option<S> {
+    let l = to.diff(from)?;
+    let ray = Ray {
+        base: from,
+        dir: l.unit()?,
+        kind: RayKind::Secondary,
+    };
+    let hit = if course {
+        shape.intersect_course(&ray, S::DEFAULT_EPSILON, S::from_f64(0.01)?)
+    } else {
+        shape.intersect(&ray, S::DEFAULT_EPSILON)
+    };
+    hit.ok().map(|h| h.t)
+}
+
+/// Whether a ray test's answer for a segment of length `dist` is clear of the ends by
+/// `margin` (or missed): where the two formulations must agree.
+fn clear<S: Scalar>(t: Option<S>, dist: f64, margin: f64) -> bool {
+    t.is_none_or(|t| {
+        let t = t.to_f64();
+        (t - 0.0).abs() > margin && (t - dist).abs() > margin
+    })
+}
+
+fn agree_with_rays<S: Scalar>(course: bool, margin: f64) -> (u32, u32) {
+    let mut rng = Rng(0x5E65_2026_1202_0014);
+    let (mut checked, mut blocked) = (0, 0);
+    for case in 0..40_000u32 {
+        let Some(shape) = shape::<S>(&mut rng, case) else {
+            continue;
+        };
+        let (from, to) = (v::<S>(rng.vec(6.0)), v::<S>(rng.vec(6.0)));
+        let Some(l) = to.diff(from) else { continue };
+        let Some(ll) = l.dot(l) else { continue };
+        if ll <= S::ZERO {
+            continue;
+        }
+        let dist = l.length().unwrap().to_f64();
+        let t = ray_hit(&shape, from, to, course);
+        // Segments whose ends lie on the shape (within the margin) are the tolerance's
+        // business, not this test's.
+        if !clear(t, dist, margin) || shape.holds(from, S::from_f64(margin).unwrap()) {
+            continue;
+        }
+        let by_ray = t.is_some_and(|t| t.to_f64() < dist);
+        let by_segment = if course {
+            shape.meets_segment_course(from, l, ll, S::DEFAULT_EPSILON, S::from_f64(0.01).unwrap())
+        } else {
+            shape.meets_segment(from, l, ll, S::ZERO, S::DEFAULT_EPSILON)
+        };
+        assert_eq!(
+            by_segment,
+            by_ray,
+            "{} case {case} ({}): {shape:?} from {:?} to {:?}, ray t {:?} of {dist}",
+            S::NAME,
+            if course { "course" } else { "fixray" },
+            from.to_f64(),
+            to.to_f64(),
+            t.map(Scalar::to_f64),
+        );
+        checked += 1;
+        blocked += u32::from(by_ray);
+    }
+    (checked, blocked)
+}
+
+#[test]
+fn segment_tests_agree_with_ray_tests_clear_of_the_ends() {
+    for course in [false, true] {
+        let (n, hits) = agree_with_rays::<f64>(course, 1e-9);
+        println!("f64 course={course}: {n} segments compared, {hits} blocked");
+        assert!(
+            n > 20_000 && hits > 2_000,
+            "f64 {course}: {n} segments, {hits} blocked"
+        );
+        // I16F16: the ray test's rounding (a unit direction, a division) is a few DELTAs
+        // per unit of t; 0.01 clears it for segments of up to ~20 units.
+        let (n, hits) = agree_with_rays::<I16F16>(course, 0.01);
+        println!("i16f16 course={course}: {n} segments compared, {hits} blocked");
+        assert!(
+            n > 20_000 && hits > 2_000,
+            "i16f16 {course}: {n} segments, {hits} blocked"
+        );
+    }
+}
+
+#[test]
+fn a_segment_from_a_surface_does_not_meet_it_again_unless_it_goes_through() {
+    // From a point on a plane: never (the segment leaves it at its start).
+    let p = Shape::<I16F16>::Plane(Plane::new(v([0.0, 1.0, 0.0]), v([0.0, 0.0, 0.0])).unwrap());
+    let tol = I16F16::from_f64(0.001).unwrap();
+    let eps = I16F16::DEFAULT_EPSILON;
+    let from = v([1.0, 0.0, -3.0]);
+    for to in [[2.0, 5.0, -3.0], [2.0, -5.0, -3.0], [9.0, 0.0001, 1.0]] {
+        let l = v::<I16F16>(to).diff(from).unwrap();
+        let ll = l.dot(l).unwrap();
+        assert!(!p.meets_segment(from, l, ll, tol, eps), "{to:?}");
+    }
+    // From a point on a sphere: only a segment into the sphere meets it (it leaves
+    // again before the far end), one away from it does not.
+    let s = Shape::<I16F16>::Sphere(Sphere::new(v([0.0, 0.0, -5.0]), I16F16::ONE).unwrap());
+    let from = v([0.0, 1.0, -5.0]);
+    let through = v::<I16F16>([0.0, -3.0, -5.0]).diff(from).unwrap();
+    let away = v::<I16F16>([0.0, 4.0, -5.0]).diff(from).unwrap();
+    let inside = v::<I16F16>([0.0, 0.0, -5.0]).diff(from).unwrap();
+    let sq = |l: Vec3<I16F16>| l.dot(l).unwrap();
+    assert!(s.meets_segment(from, through, sq(through), tol, eps));
+    assert!(!s.meets_segment(from, away, sq(away), tol, eps));
+    assert!(
+        !s.meets_segment(from, inside, sq(inside), tol, eps),
+        "ends inside: no exit"
+    );
+}
