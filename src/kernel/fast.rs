@@ -25,7 +25,6 @@ use heapless::Vec;
 
 use core::cmp::Ordering;
 
-use crate::scene::MAX_OBJECTS;
 use crate::{Scalar, SceneView, Shape, Vec3};
 
 /// A term of the fast path: which object and, for a plane, `num = D' − N·eye`, for a
@@ -58,10 +57,10 @@ pub const RESYNC_PIXELS: u16 = 8;
 /// made of planes only or a per-frame quantity does not fit the format.
 #[derive(Debug, Clone)]
 pub struct Primary<S: Scalar> {
-    terms: Vec<Term<S>, MAX_OBJECTS>,
+    terms: Vec<Term<S>, FAST_OBJECTS>,
     /// `N_i.x × step_x` of every term, unrounded: what `N·D` grows by from pixel to
     /// pixel ([`Scalar::Acc`]).
-    steps: Vec<S::Acc, MAX_OBJECTS>,
+    steps: Vec<S::Acc, FAST_OBJECTS>,
     /// `D'_i − N_i·light_j` at `j × objects + i` (the lights' sides of every plane, for
     /// shadow segments: [`crate::shade::PlaneSides`]); empty when they do not fit
     /// [`MAX_SIDES`] or the format.
@@ -75,9 +74,15 @@ pub struct Primary<S: Scalar> {
 }
 
 /// How many plane–light sides a frame keeps (objects × lights; beyond, shadow segments
-/// compute their sides themselves): 256 bytes in I16F16, a RAM budget a 16 KB chip
-/// affords.
-pub const MAX_SIDES: usize = 64;
+/// compute their sides themselves): 128 bytes in I16F16, 256 in I32F32, a RAM budget a
+/// 16 KB chip affords beside the rest of the frame.
+pub const MAX_SIDES: usize = 32;
+
+/// The most objects the fast kernel takes: a scene with more is drawn on the reference
+/// path. Its per-frame and per-scanline vectors (terms, steps, `N·D` and its unrounded
+/// sum, the planes' sides at a hit) are sized by it, and on a 16 KB chip in I32F32 the
+/// frame and the deepest shading stack must fit beside the scene.
+pub const FAST_OBJECTS: usize = 8;
 
 /// What the fast path found at one pixel.
 #[derive(Debug, Clone, Copy)]
@@ -98,8 +103,8 @@ pub struct FastHit<S> {
 /// current pixel (rounded, and the unrounded sum it steps), `D`, and `D.y² + D.z²`.
 #[derive(Debug, Clone)]
 pub struct Row<S: Scalar> {
-    nd: Vec<S, MAX_OBJECTS>,
-    acc: Vec<S::Acc, MAX_OBJECTS>,
+    nd: Vec<S, FAST_OBJECTS>,
+    acc: Vec<S::Acc, FAST_OBJECTS>,
     yz: S::Acc,
     dir: Vec3<S>,
     column: u16,
@@ -174,8 +179,9 @@ fn sphere_root<S: Scalar>(c: S, b: S, a: S) -> Result<Option<(S, S)>, ()> {
 }
 
 impl<S: Scalar> Primary<S> {
-    /// Prepares a frame, or `None` when the fast path does not apply (a sphere, more than
-    /// [`MAX_OBJECTS`] objects, or a quantity out of range): the caller then uses the
+    /// Prepares a frame, or `None` when the fast path does not apply (the eye inside a
+    /// sphere, more than
+    /// [`FAST_OBJECTS`] objects, or a quantity out of range): the caller then uses the
     /// reference path.
     pub fn new(scene: &SceneView<'_, S>) -> Option<Self> {
         let eye = scene.camera.viewpoint;
@@ -387,7 +393,7 @@ impl<S: Scalar> Primary<S> {
         &self,
         row: &Row<S>,
         param: S,
-        sides: &mut Vec<S, MAX_OBJECTS>,
+        sides: &mut Vec<S, FAST_OBJECTS>,
     ) -> Option<()> {
         sides.clear();
         for (term, &nd) in self.terms.iter().zip(&row.nd) {

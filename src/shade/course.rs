@@ -61,6 +61,9 @@ pub(crate) fn nearest_course<S: Scalar>(
 
 /// Traces a ray under the course rules with the stages of `T` (see the module
 /// documentation): the first hit and the colour in channel units.
+/// Not inlined: its locals stay out of the crate's rules' recursive mirror frames
+/// (`trace_with` dispatches here), which a 16 KB chip's stack holds four deep.
+#[inline(never)]
 pub(crate) fn trace_course<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     ray: &Ray<S>,

@@ -76,6 +76,9 @@ pub fn nearest_hit<S: Scalar>(scene: &impl AsView<S>, ray: &Ray<S>) -> Option<(u
     nearest(&scene.view(), ray)
 }
 
+/// Not inlined: the intersections' locals stay out of the recursive frames of mirror
+/// reflections (see `own_color`).
+#[inline(never)]
 fn nearest<S: Scalar>(scene: &SceneView<'_, S>, ray: &Ray<S>) -> Option<(usize, Hit<S>)> {
     let mut best: Option<(usize, Hit<S>)> = None;
     for (i, object) in scene.objects.iter().enumerate() {
@@ -188,18 +191,50 @@ pub(crate) fn shade_with<S: Scalar, T: Stages>(
     depth: u8,
     counters: &mut Counters,
 ) -> Color<S> {
+    let (mut color, mirror) = own_color::<S, T>(scene, ray, index, hit, depth, counters);
+    if let Some((reflected, k)) = mirror {
+        let seen = match reflected {
+            Some(r) => trace_with::<S, T>(scene, &r, depth + 1, counters).color,
+            None => scene.background,
+        };
+        let own = S::ONE.checked_sub(k).unwrap_or(S::ZERO);
+        for (c, s) in color.iter_mut().zip(seen) {
+            *c = add_sat(
+                c.checked_mul(own).unwrap_or(S::MAX),
+                s.checked_mul(k).unwrap_or(S::MAX),
+            );
+        }
+    }
+    color
+}
+
+/// A hit's own colour (ambient and lights) and, for a mirror, the reflected ray (`None`
+/// when it does not fit the format: the mirror then shows the background) and its
+/// weight `K`. Not inlined: its locals (the normal, the lights' terms) stay out of the
+/// recursive frames of mirror reflections, which hold only a colour and a ray (on a
+/// 16 KB chip in I32F32 that is what lets four reflections fit the stack).
+#[inline(never)]
+#[allow(clippy::type_complexity)]
+fn own_color<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    ray: &Incoming<'_, S>,
+    index: usize,
+    hit: &Hit<S>,
+    depth: u8,
+    counters: &mut Counters,
+) -> (Color<S>, Option<(Option<Ray<S>>, S)>) {
     // An index comes from a hit; a material index out of the scene shows black.
     let Some((object, material)) = surface(scene, index, hit.point, counters) else {
-        return [S::ZERO; 3];
+        return ([S::ZERO; 3], None);
     };
     let mut color = material.ambient;
     let lit = T::LIGHTING && !scene.lights.is_empty();
     let mirror = T::REFLECTION && material.reflective > S::ZERO && depth < MAX_REFLECTION_DEPTH;
     if !lit && !mirror {
-        return color;
+        return (color, None);
     }
     let Some(surface_normal) = object.shape.normal_at(hit.point) else {
-        return color;
+        return (color, None);
     };
     // The normal facing the incoming ray.
     let facing = if surface_normal.dot(ray.dir).is_some_and(|d| d > S::ZERO) {
@@ -213,30 +248,19 @@ pub(crate) fn shade_with<S: Scalar, T: Stages>(
             scene, ray, object, material, hit, facing, None, stages, &mut color, counters,
         );
     }
-    if mirror {
-        count(&mut counters.reflection_rays);
-        // r = d − 2 (N·d) N
-        let reflected = surface_normal
-            .dot(ray.dir)
-            .and_then(|nd| nd.checked_add(nd))
-            .and_then(|two_nd| surface_normal.scale(two_nd))
-            .and_then(|n2| ray.dir.diff(n2))
-            .and_then(Vec3::unit)
-            .and_then(|r| object.shape.spawn_from(ray.base, hit, r));
-        let seen = match reflected {
-            Some(r) => trace_with::<S, T>(scene, &r, depth + 1, counters).color,
-            None => scene.background,
-        };
-        let k = material.reflective;
-        let own = S::ONE.checked_sub(k).unwrap_or(S::ZERO);
-        for (c, s) in color.iter_mut().zip(seen) {
-            *c = add_sat(
-                c.checked_mul(own).unwrap_or(S::MAX),
-                s.checked_mul(k).unwrap_or(S::MAX),
-            );
-        }
+    if !mirror {
+        return (color, None);
     }
-    color
+    count(&mut counters.reflection_rays);
+    // r = d − 2 (N·d) N
+    let reflected = surface_normal
+        .dot(ray.dir)
+        .and_then(|nd| nd.checked_add(nd))
+        .and_then(|two_nd| surface_normal.scale(two_nd))
+        .and_then(|n2| ray.dir.diff(n2))
+        .and_then(Vec3::unit)
+        .and_then(|r| object.shape.spawn_from(ray.base, hit, r));
+    (color, Some((reflected, material.reflective)))
 }
 
 /// Traces a ray with the stages of `T`, by the scene's rules.
