@@ -1,11 +1,16 @@
-//! Fast primary rays for scenes of planes (infinite, tiled and finite).
+//! Fast primary rays for scenes of planes (infinite, tiled, finite, triangles) and
+//! spheres, under the crate's rules.
 //!
 //! The reference path ([`crate::trace_pixel`]) normalises every primary ray and
 //! divides once per plane. Here, per frame, `num = D' − N·eye` is computed once per plane
 //! (the eye is every primary ray's base), and per pixel the ray's direction is left
-//! unnormalised, `D = screen point − eye` (its x stepped along the scanline), so that a
-//! pixel costs one wide dot product `N·D` per plane and no normalisation. The plane test
-//! of `scene-format.md` is then evaluated in an equivalent form without dividing:
+//! unnormalised, `D = screen point − eye` (its x stepped along the scanline). `N·D` is
+//! linear along the scanline: it is kept as the unrounded double-width sum
+//! ([`crate::Scalar::Acc`]) and grows by the per-frame `N.x × step` per pixel, so that a
+//! pixel costs no product for it (in the fixed formats bit for bit the wide dot product
+//! of the stepped `D`). Spheres keep `oc·D` the same way (`oc = eye − centre`) and test
+//! the discriminant's sign exactly (`sphere_root`). The plane test of `scene-format.md`
+//! is then evaluated in an equivalent form without dividing:
 //!
 //! - parallel, `|N·d| < EPS` with `d = D/|D|`  ⇔  `(N·D)² < EPS·(EPS·|D|²)`;
 //! - behind, `t < 0`  ⇔  `num` and `N·D` of opposite signs;
