@@ -139,15 +139,7 @@ impl<S: Scalar> Shape<S> {
                 .is_some_and(|x| self.bounds_contain(x)),
             Shape::Sphere(s) if SPHERES => s.meets_segment(from, l, ll, tol).unwrap_or_else(|| {
                 // Far from `from` (a quantity out of range): the ray's own test.
-                let ray = l.normalize().map(|n| Ray {
-                    base: from,
-                    dir: n.unit,
-                    kind: super::RayKind::Secondary,
-                });
-                match (ray, l.length()) {
-                    (Some(r), Some(dist)) => self.occludes(&r, epsilon, dist),
-                    _ => false,
-                }
+                unit_ray(from, l).is_some_and(|(r, dist)| self.occludes(&r, epsilon, dist))
             }),
             Shape::Sphere(_) => false,
         }
@@ -173,18 +165,10 @@ impl<S: Scalar> Shape<S> {
             return SPHERES
                 && s.meets_segment_near(from, l, ll).unwrap_or_else(|| {
                     // A quantity out of range: the unit ray's own test.
-                    match (l.normalize(), l.length()) {
-                        (Some(n), Some(dist)) => {
-                            let ray = Ray {
-                                base: from,
-                                dir: n.unit,
-                                kind: super::RayKind::Secondary,
-                            };
-                            self.intersect_course(&ray, epsilon, z_limit)
-                                .is_ok_and(|h| h.t < dist)
-                        }
-                        _ => false,
-                    }
+                    unit_ray(from, l).is_some_and(|(r, dist)| {
+                        self.intersect_course(&r, epsilon, z_limit)
+                            .is_ok_and(|h| h.t < dist)
+                    })
                 });
         }
         let z_limit = if matches!(self, Shape::Triangle(_)) {
@@ -338,6 +322,18 @@ impl<S: Scalar> Shape<S> {
         };
         self.spawn(&from, hit, dir)
     }
+}
+
+/// The secondary ray from `from` along `l` with a unit direction, and the segment's
+/// length (what the segment tests fall back to when a quantity does not fit the format).
+fn unit_ray<S: Scalar>(from: Vec3<S>, l: Vec3<S>) -> Option<(Ray<S>, S)> {
+    let n = l.normalize()?;
+    let ray = Ray {
+        base: from,
+        dir: n.unit,
+        kind: super::RayKind::Secondary,
+    };
+    Some((ray, n.length()?))
 }
 
 #[cfg(test)]

@@ -164,9 +164,7 @@ impl<S: Scalar> Sphere<S> {
     /// `None` when a quantity does not fit the format (a sphere far from `from`): the
     /// caller then decides by intersecting the ray.
     pub fn meets_segment(&self, from: Vec3<S>, l: Vec3<S>, ll: S, tol: S) -> Option<bool> {
-        let oc = from.diff(self.center)?;
-        let b = oc.dot(l)?;
-        let f0 = S::sub_dot3(self.radius_sq, oc.to_array(), oc.to_array())?.checked_neg()?;
+        let (b, f0) = self.segment_terms(from, l)?;
         let band = self
             .radius
             .checked_add(self.radius)?
@@ -189,6 +187,15 @@ impl<S: Scalar> Sphere<S> {
         )
     }
 
+    /// The segment's terms of both segment tests: `b = (from − c)·l` and
+    /// `f₀ = |from − c|² − r²` (one wide step).
+    fn segment_terms(&self, from: Vec3<S>, l: Vec3<S>) -> Option<(S, S)> {
+        let oc = from.diff(self.center)?;
+        let b = oc.dot(l)?;
+        let f0 = S::sub_dot3(self.radius_sq, oc.to_array(), oc.to_array())?.checked_neg()?;
+        Some((b, f0))
+    }
+
     /// The course's shadow test along a segment (`COURSE-RULES.md` §5, §7): whether the
     /// near root of the ray from `from` towards `from + l` lies in `[0, 1)` with a
     /// positive discriminant ([`Sphere::intersect_near`] with `t < dist`), from signs and
@@ -197,13 +204,11 @@ impl<S: Scalar> Sphere<S> {
     /// it lies before the light when `−b < ll` or the light is inside (`f₁ < 0`). `None`
     /// when a quantity does not fit the format.
     pub fn meets_segment_near(&self, from: Vec3<S>, l: Vec3<S>, ll: S) -> Option<bool> {
-        let oc = from.diff(self.center)?;
-        let b = oc.dot(l)?;
-        if b > S::ZERO {
-            return Some(false);
-        }
-        let f0 = S::sub_dot3(self.radius_sq, oc.to_array(), oc.to_array())?.checked_neg()?;
-        if f0 < S::ZERO || S::cmp_products(b, b, ll, f0) != Some(core::cmp::Ordering::Greater) {
+        let (b, f0) = self.segment_terms(from, l)?;
+        if b > S::ZERO
+            || f0 < S::ZERO
+            || S::cmp_products(b, b, ll, f0) != Some(core::cmp::Ordering::Greater)
+        {
             return Some(false);
         }
         if b.checked_neg()? < ll {

@@ -124,12 +124,15 @@ pub(crate) fn accepts<S: Scalar>(num: S, nd: S, eps: S, eps_d2: S) -> bool {
     if S::cmp_products(nd, nd, eps, eps_d2) == Some(Ordering::Less) || nd == S::ZERO {
         return false;
     }
-    // Behind: t' < 0. (num = 0 puts the hit at the eye: in front of the screen.)
-    if (num > S::ZERO) != (nd > S::ZERO) || num == S::ZERO {
-        return false;
-    }
-    // In front of the screen: t' < 1.
-    num.abs() >= nd.abs()
+    ahead(num, nd)
+}
+
+/// The rest of the plane test for a plane not parallel to the ray: not behind (`t' < 0`;
+/// `num = 0` puts the hit at the eye, in front of the screen) and not in front of the
+/// screen (`t' < 1`). `false` for `N·D = 0`.
+#[inline]
+fn ahead<S: Scalar>(num: S, nd: S) -> bool {
+    nd != S::ZERO && num != S::ZERO && (num > S::ZERO) == (nd > S::ZERO) && num.abs() >= nd.abs()
 }
 
 /// [`accepts`] with a bound first: `|N·D| ≥ ε·‖D‖₁` (`eps_l1`, with a margin of two
@@ -146,11 +149,7 @@ fn accepts_bounded<S: Scalar>(
     eps_d2: impl FnOnce() -> Option<S>,
 ) -> Option<bool> {
     match eps_l1 {
-        Some(bound) if nd.abs() >= bound && nd != S::ZERO => {
-            // Behind: t' < 0 (num = 0 puts the hit at the eye: in front of the screen);
-            // in front of the screen: t' < 1.
-            Some((num > S::ZERO) == (nd > S::ZERO) && num != S::ZERO && num.abs() >= nd.abs())
-        }
+        Some(bound) if nd.abs() >= bound => Some(ahead(num, nd)),
         _ => eps_d2().map(|e| accepts(num, nd, eps, e)),
     }
 }

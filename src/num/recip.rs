@@ -94,6 +94,7 @@ fn leading_zeros_soft(x: u32) -> u32 {
 #[inline(always)]
 #[cfg_attr(not(target_pointer_width = "32"), allow(dead_code))]
 fn shr(x: u64, s: u32) -> u64 {
+    // The two halves: truncation is the split itself.
     let (hi, lo) = ((x >> 32) as u32, x as u32);
     if s >= 32 {
         u64::from(hi >> (s - 32))
