@@ -33,6 +33,7 @@
 #![deny(missing_docs)]
 
 pub mod num;
+pub mod ppm;
 
 pub mod geometry;
 pub mod scene;
