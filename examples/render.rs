@@ -149,12 +149,18 @@ fn time_frames<S: Scalar>(scene: &Scene<S>) -> (Image, Duration) {
     (image, times[times.len() / 2])
 }
 
-/// Reads a scene, drawn by `rules` if given (else by the file's own).
+/// The scene file's path, for its texture files (none for the built-in scene).
+static SCENE_PATH: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
+
+/// Reads a scene, drawn by `rules` if given (else by the file's own), its textures from
+/// beside the scene file.
 fn read<S: Scalar>(text: &str, rules: Option<Rules>) -> Result<Scene<S>, SceneError> {
-    match rules {
-        Some(r) => Scene::<S>::parse_as(text, r),
-        None => Scene::<S>::parse(text),
+    let mut scene = Scene::<S>::empty();
+    match SCENE_PATH.get() {
+        Some(path) => scene.read_with(text, rules, &mut fixray::scene::files::beside(path))?,
+        None => scene.read_with(text, rules, &mut |_| None)?,
     }
+    Ok(scene)
 }
 
 fn run<S: Scalar>(text: &str, reference: &Scene<f64>) -> Result<Run, SceneError> {
@@ -240,7 +246,10 @@ fn main() -> ExitCode {
     let (scene_name, text) = match &args.scene {
         None => (DEFAULT_SCENE_NAME.to_string(), DEFAULT_SCENE.to_string()),
         Some(path) => match std::fs::read_to_string(path) {
-            Ok(t) => (path.clone(), t),
+            Ok(t) => {
+                let _ = SCENE_PATH.set(path.into());
+                (path.clone(), t)
+            }
             Err(e) => {
                 eprintln!("render: cannot read {path}: {e}");
                 return ExitCode::from(1);

@@ -28,7 +28,7 @@
 //! [`num`] (number formats), [`geometry`] (rays and shapes), [`scene`] (scene, camera,
 //! plan, parser), then the crate's private shading and kernels, the renderer (the
 //! functions and [`Frame`] at the crate root), and the tools [`compare`] and [`hash`].
-#![cfg_attr(not(test), no_std)]
+#![cfg_attr(not(any(test, feature = "std")), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
@@ -55,14 +55,14 @@ pub mod hash;
 pub struct ReadmeDoctests;
 
 pub use geometry::{
-    FrameError, Hit, Miss, Normalized, Plane, PlaneError, PlaneFrame, Ray, RayKind, Shape, Sphere,
-    SphereError, Tiling, Triangle, TriangleError, Vec3,
+    FrameError, Hit, Miss, Normalized, Plane, PlaneError, PlaneFrame, Ray, RayKind, Shape, Slide,
+    Sphere, SphereError, TexMode, Tiling, Triangle, TriangleError, Vec3,
 };
 pub use kernel::flat::PlaneMode;
 pub use num::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};
 pub use render::{Frame, render, render_counted, render_line, render_line_counted};
 pub use scene::{
-    AsView, Camera, Color, Cone, LargeScene, Light, Material, Object, PixelGrid, Plan, Rules,
+    AsView, Beam, Camera, Color, Cone, LargeScene, Light, Material, Object, PixelGrid, Plan, Rules,
     Scene, SceneError, SceneErrorKind, SceneView,
 };
 pub use shade::color::{to_pixel, to_rgb888};

@@ -18,6 +18,10 @@ pub struct Counters {
     pub cone_tests: u32,
     /// Checkerboard tile lookups.
     pub tile_lookups: u32,
+    /// Rays transmitted through translucent surfaces (course rules).
+    pub transmitted_rays: u32,
+    /// Texel lookups of projectors.
+    pub texel_lookups: u32,
 }
 
 #[inline(always)]

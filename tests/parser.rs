@@ -471,7 +471,7 @@ fn every_entity_of_the_format_is_read_and_checked() {
         (3, 1, 3)
     );
     // cos 30° = 0.866025…, from the Taylor series in I16F16.
-    let cone = s.lights[0].cone.unwrap();
+    let cone = s.lights[0].cone().copied().unwrap();
     assert!((cone.cos_theta.to_f64() - 0.866_025_4).abs() < 4.0 * I16F16::DELTA.to_f64());
     assert_eq!(s.materials[2].shininess.to_f64(), 20.0);
     let plan = s.plan();

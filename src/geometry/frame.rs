@@ -132,3 +132,24 @@ impl<S: Scalar> PlaneFrame<S> {
         })
     }
 }
+
+/// How a texture lies on a [`Slide`]'s rectangle (the course's `mode`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TexMode {
+    /// `mode 0`: the texture is stretched over the rectangle.
+    Fit,
+    /// `mode 1`: the texture repeats, one texel per screen pixel's size in world units.
+    Tile,
+}
+
+/// A rectangle of a plane with a texture on it: a textured plane (`texplane`) or a
+/// projector's slide. The texture is the scene's `textures[texture]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Slide<S> {
+    /// The rectangle.
+    pub frame: PlaneFrame<S>,
+    /// Index into the scene's textures.
+    pub texture: u8,
+    /// How the texture lies on it.
+    pub mode: TexMode,
+}

@@ -40,7 +40,7 @@ mod sphere;
 mod triangle;
 mod vec3;
 
-pub use frame::{FrameError, PlaneFrame, Tiling};
+pub use frame::{FrameError, PlaneFrame, Slide, TexMode, Tiling};
 pub use plane::{Plane, PlaneError};
 pub use shape::Shape;
 pub(crate) use spawn::surface_tolerance;

@@ -1,7 +1,7 @@
 //! [`Shape`]: the shapes of a scene, dispatched through an enum (no `dyn`).
 
 use super::plane::crossing_of_sides;
-use super::{Hit, Miss, Plane, PlaneFrame, Ray, Sphere, Triangle, Vec3};
+use super::{Hit, Miss, Plane, PlaneFrame, Ray, Slide, Sphere, Triangle, Vec3};
 use crate::Scalar;
 
 /// A shape of the scene. Shapes dispatch through this enum (no `dyn`).
@@ -26,6 +26,9 @@ pub enum Shape<S> {
     },
     /// A finite rectangle of a plane.
     Finite(PlaneFrame<S>),
+    /// A finite rectangle with a texture on it (the course's `texplane`): its material's
+    /// ambient and diffuse colours are multiplied by the texel.
+    Textured(Slide<S>),
     /// A triangle.
     Triangle(Triangle<S>),
 }
@@ -41,6 +44,7 @@ impl<S: Scalar> Shape<S> {
         match self {
             Shape::Plane(p) => Some(p),
             Shape::Tiled { frame, .. } | Shape::Finite(frame) => Some(frame.plane()),
+            Shape::Textured(slide) => Some(slide.frame.plane()),
             Shape::Triangle(t) => Some(t.plane()),
             Shape::Sphere(_) => None,
         }
@@ -55,6 +59,7 @@ impl<S: Scalar> Shape<S> {
         match self {
             Shape::Plane(_) | Shape::Tiled { .. } => true,
             Shape::Finite(frame) => frame.contains(point),
+            Shape::Textured(slide) => slide.frame.contains(point),
             Shape::Triangle(t) => t.contains(point),
             Shape::Sphere(_) => false,
         }
@@ -71,7 +76,7 @@ impl<S: Scalar> Shape<S> {
             Shape::Sphere(s) if SPHERES => s.intersect(ray),
             Shape::Sphere(_) => Err(Miss::NotBuiltIn),
             Shape::Tiled { frame, .. } => frame.plane().intersect(ray, epsilon),
-            Shape::Finite(frame) => {
+            Shape::Finite(frame) | Shape::Textured(Slide { frame, .. }) => {
                 let hit = frame.plane().intersect(ray, epsilon)?;
                 if frame.contains(hit.point) {
                     Ok(hit)
@@ -91,7 +96,7 @@ impl<S: Scalar> Shape<S> {
         match self {
             Shape::Plane(p) => p.occludes(ray, epsilon, dist),
             Shape::Tiled { frame, .. } => frame.plane().occludes(ray, epsilon, dist),
-            Shape::Sphere(_) | Shape::Finite(_) | Shape::Triangle(_) => {
+            Shape::Sphere(_) | Shape::Finite(_) | Shape::Textured(_) | Shape::Triangle(_) => {
                 self.intersect(ray, epsilon).is_ok_and(|hit| hit.t < dist)
             }
         }
@@ -132,7 +137,7 @@ impl<S: Scalar> Shape<S> {
         match self {
             Shape::Plane(p) => crossing(p).is_some(),
             Shape::Tiled { frame, .. } => crossing(frame.plane()).is_some(),
-            Shape::Finite(_) | Shape::Triangle(_) => self
+            Shape::Finite(_) | Shape::Textured(_) | Shape::Triangle(_) => self
                 .plane()
                 .and_then(crossing)
                 .and_then(|(a0, nl)| from.sum(l.scale(a0.checked_div(nl)?)?))

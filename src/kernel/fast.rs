@@ -361,7 +361,7 @@ impl<S: Scalar> Primary<S> {
             {
                 continue;
             }
-            if let Some(shape @ (Shape::Finite(_) | Shape::Triangle(_))) =
+            if let Some(shape @ (Shape::Finite(_) | Shape::Textured(_) | Shape::Triangle(_))) =
                 scene.objects.get(usize::from(term.index)).map(|o| &o.shape)
             {
                 let (point, _, _) = self.point(scene, p, q, d).ok_or(())?;

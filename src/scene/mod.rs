@@ -15,15 +15,18 @@
 
 use heapless::Vec;
 
-use crate::{Plane, Scalar, Shape, Vec3};
+use crate::ppm::Ppm;
+use crate::{Plane, Scalar, Shape, Slide, Vec3};
 
 mod camera;
+#[cfg(feature = "std")]
+pub mod files;
 mod parse;
 mod plan;
 mod rules;
 
 pub use camera::{Camera, PixelGrid};
-pub use parse::{MAX_QUOTED, Quoted, SceneError, SceneErrorKind};
+pub use parse::{MAX_QUOTED, Quoted, SceneError, SceneErrorKind, TextureProblem};
 pub use plan::Plan;
 pub use rules::{Rules, UnknownRules};
 
@@ -33,6 +36,12 @@ pub const MAX_MATERIALS: usize = 16;
 pub const MAX_LIGHTS: usize = 8;
 /// Maximum number of objects (planes, spheres, tiled and finite planes together).
 pub const MAX_OBJECTS: usize = 32;
+/// Maximum number of textures (the course's `texture` entity) in a scene: 8 with the
+/// cargo feature `textures`, none without it (a scene then keeps no room for them).
+pub const MAX_TEXTURES: usize = if cfg!(feature = "textures") { 8 } else { 0 };
+/// Maximum number of projectors (lights that project a texture) in a scene: 2 with the
+/// cargo feature `textures`, none without it.
+pub const MAX_PROJECTORS: usize = if cfg!(feature = "textures") { 2 } else { 0 };
 /// Largest `pixeldim` in either direction, as the scene format states.
 pub const MAX_PIXELDIM: u16 = 4096;
 
@@ -53,6 +62,10 @@ pub struct Material<S> {
     pub shininess: S,
     /// Mirror share K in [0, 1] (0: not reflective).
     pub reflective: S,
+    /// The course's `transparency` T in [0, 1] (0: opaque): a translucent surface shows
+    /// `(1 − T)` of its own colour and filters what lies behind it and the light through
+    /// it (`COURSE-RULES.md` §11).
+    pub transparency: S,
 }
 
 impl<S: Scalar> Material<S> {
@@ -64,6 +77,7 @@ impl<S: Scalar> Material<S> {
             specular: S::ZERO,
             shininess: S::ONE,
             reflective: S::ZERO,
+            transparency: S::ZERO,
         }
     }
 }
@@ -84,15 +98,39 @@ pub struct Cone<S> {
     pub cos_theta: S,
 }
 
-/// A point light, or a spotlight when it has a cone.
+/// Where a light shines.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Beam<S> {
+    /// Everywhere: a point light.
+    Everywhere,
+    /// Within a cone: a spotlight.
+    Cone(Cone<S>),
+    /// Through a slide: a projector (the course's `projector`), which lights a point only
+    /// through the slide's rectangle, with its emissivity times the texel there. The
+    /// index is into [`Scene::projectors`].
+    Projector(u8),
+}
+
+/// A point light, a spotlight or a projector.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Light<S> {
     /// Position.
     pub location: Vec3<S>,
     /// Emissivity per channel (plain reals, not channel units).
     pub emissivity: Color<S>,
-    /// The spotlight's cone; `None` for a point light.
-    pub cone: Option<Cone<S>>,
+    /// Where it shines.
+    pub beam: Beam<S>,
+}
+
+impl<S> Light<S> {
+    /// The spotlight's cone; `None` for a point light or a projector.
+    #[inline]
+    pub fn cone(&self) -> Option<&Cone<S>> {
+        match &self.beam {
+            Beam::Cone(c) => Some(c),
+            _ => None,
+        }
+    }
 }
 
 /// A shape with its material.
@@ -152,6 +190,11 @@ pub struct Scene<
     pub lights: Vec<Light<S>, LIGHTS>,
     /// Objects.
     pub objects: Vec<Object<S>, OBJECTS>,
+    /// Textures, indexed by [`Slide::texture`]: binary PPM images borrowed for the
+    /// program's life (flash on a chip, e.g. `include_bytes!`; see [`Scene::read_with`]).
+    pub textures: Vec<Ppm<'static>, MAX_TEXTURES>,
+    /// Projectors' slides, indexed by [`Beam::Projector`].
+    pub projectors: Vec<Slide<S>, MAX_PROJECTORS>,
     /// Colour where no object is hit.
     pub background: Color<S>,
     /// The precision epsilon of every intersection test in this scene: the scene's
@@ -177,6 +220,10 @@ pub struct SceneView<'a, S> {
     pub lights: &'a [Light<S>],
     /// Objects.
     pub objects: &'a [Object<S>],
+    /// Textures.
+    pub textures: &'a [Ppm<'static>],
+    /// Projectors' slides.
+    pub projectors: &'a [Slide<S>],
     /// Colour where no object is hit.
     pub background: Color<S>,
     /// The precision epsilon.
@@ -235,6 +282,8 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
             materials: &self.materials,
             lights: &self.lights,
             objects: &self.objects,
+            textures: &self.textures,
+            projectors: &self.projectors,
             background: self.background,
             epsilon: self.epsilon,
             rules: self.rules,
@@ -250,6 +299,8 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
             materials: Vec::new(),
             lights: Vec::new(),
             objects: Vec::new(),
+            textures: Vec::new(),
+            projectors: Vec::new(),
             background: [S::ZERO; 3],
             epsilon: S::DEFAULT_EPSILON,
             rules: Rules::Fixray,

@@ -22,6 +22,8 @@ pub struct Plan {
     pub spotlights: bool,
     /// Some material is reflective.
     pub reflection: bool,
+    /// Some material is translucent (the course's `transparency`).
+    pub transparency: bool,
     /// Some object is a tiled plane.
     pub tiles: bool,
     /// Some object is a finite plane.
@@ -30,6 +32,10 @@ pub struct Plan {
     pub spheres: bool,
     /// Some object is a triangle.
     pub triangles: bool,
+    /// Some object is a textured plane.
+    pub textures: bool,
+    /// Some light is a projector.
+    pub projectors: bool,
     /// Some light lies on some surface (within its tolerance): the ties of shadow rays
     /// and of a surface's own plane are resolved for it (`docs/numerics.md`, "Lights on
     /// surfaces"); without such a light those checks are not run.
@@ -40,7 +46,7 @@ impl Plan {
     /// Whether every object is an infinite plane (no sphere, tile or finite plane): what
     /// the pure-geometry kernel draws.
     pub(crate) fn planes_only(&self) -> bool {
-        !(self.spheres || self.tiles || self.finite_planes || self.triangles)
+        !(self.spheres || self.tiles || self.finite_planes || self.triangles || self.textures)
     }
 }
 
@@ -88,8 +94,9 @@ impl<S: Scalar> SceneView<'_, S> {
             lighting,
             shadows: lighting && (self.objects.len() > 1 || spheres),
             specular,
-            spotlights: self.lights.iter().any(|l| l.cone.is_some()),
+            spotlights: self.lights.iter().any(|l| l.cone().is_some()),
             reflection,
+            transparency: used(&|m| m.transparency > S::ZERO),
             tiles: self
                 .objects
                 .iter()
@@ -103,6 +110,14 @@ impl<S: Scalar> SceneView<'_, S> {
                 .objects
                 .iter()
                 .any(|o| matches!(o.shape, Shape::Triangle(_))),
+            textures: self
+                .objects
+                .iter()
+                .any(|o| matches!(o.shape, Shape::Textured(_))),
+            projectors: self
+                .lights
+                .iter()
+                .any(|l| matches!(l.beam, crate::Beam::Projector(_))),
             lights_on_surfaces: self.lights.iter().any(|l| {
                 let tol = super::light_tolerance(self.epsilon, l.location, self.camera.viewpoint);
                 self.objects.iter().any(|o| o.shape.holds(l.location, tol))

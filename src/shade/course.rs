@@ -22,7 +22,9 @@ use super::light::{CourseLight, light_with};
 use super::stages::{LightStages, Stages};
 use super::{Incoming, Traced, surface};
 use crate::stats::{Counters, count};
-use crate::{Hit, Ray, RayKind, Scalar, SceneView, Vec3};
+use heapless::Vec;
+
+use crate::{Hit, Material, Ray, RayKind, Scalar, SceneView, Vec3};
 
 /// Paths from the eye longer than this many world units are black (the course's
 /// `MAX_DIST`).
@@ -59,10 +61,52 @@ pub(crate) fn nearest_course<S: Scalar>(
     best
 }
 
+/// The most rays a course pixel keeps waiting: a hit both mirror and translucent
+/// continues along one and keeps the other here (no material of the course's files is
+/// both); a branch beyond this many is dropped (it would add black).
+pub const MAX_COURSE_BRANCHES: usize = 4;
+
+/// A ray of a course pixel still to be followed: where it starts, what it skips, the
+/// path length so far and the weight per channel of what it sees.
+#[derive(Debug, Clone, Copy)]
+struct Branch<S> {
+    ray: Ray<S>,
+    skip: Option<usize>,
+    travelled: S,
+    weight: [S; 3],
+}
+
+/// A translucent material's filter, `T · diffuse / max(diffuse)` per channel
+/// (`COURSE-RULES.md` §11: what it passes of the light and of what lies behind it);
+/// `None` for an opaque material. A material without diffuse colour passes nothing.
+pub(crate) fn filter_of<S: Scalar>(m: &Material<S>) -> Option<[S; 3]> {
+    if m.transparency <= S::ZERO {
+        return None;
+    }
+    let top = m.diffuse[0].max(m.diffuse[1]).max(m.diffuse[2]);
+    let mut f = [S::ZERO; 3];
+    if top > S::ZERO {
+        for (fk, d) in f.iter_mut().zip(m.diffuse) {
+            *fk = d
+                .max(S::ZERO)
+                .checked_div(top)
+                .and_then(|q| q.checked_mul(m.transparency))
+                .unwrap_or(S::ZERO);
+        }
+    }
+    Some(f)
+}
+
 /// Traces a ray under the course rules with the stages of `T` (see the module
 /// documentation): the first hit and the colour in channel units.
 /// Not inlined: its locals stay out of the crate's rules' recursive mirror frames
 /// (`trace_with` dispatches here), which a 16 KB chip's stack holds four deep.
+///
+/// A hit on a material with `specular K` and `transparency T` (filter `f`, see
+/// [`filter_of`]) adds `W (1 − T) own / D` and continues along the mirror ray with weight
+/// `W (1 − T) K` and along the same direction, skipping the object, with weight `W ⊙ f`
+/// (`COURSE-RULES.md` §8, §11: the mirror first, then translucency). Both are followed
+/// by the same loop (one of them kept in a [`MAX_COURSE_BRANCHES`] list): no recursion.
 #[inline(never)]
 pub(crate) fn trace_course<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
@@ -70,38 +114,50 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
     counters: &mut Counters,
 ) -> Traced<S> {
     let max_path = S::from_i32(MAX_PATH).unwrap_or(S::MAX);
-    let mut ray = Ray {
-        kind: RayKind::Secondary,
-        ..*ray
-    };
-    let mut skip = None;
-    let mut travelled = S::ZERO;
-    let mut weight = S::ONE;
+    let mut next = Some(Branch {
+        ray: Ray {
+            kind: RayKind::Secondary,
+            ..*ray
+        },
+        skip: None,
+        travelled: S::ZERO,
+        weight: [S::ONE; 3],
+    });
+    let mut waiting: Vec<Branch<S>, MAX_COURSE_BRANCHES> = Vec::new();
     let mut color = [S::ZERO; 3];
     let mut first = None;
-    for bounce in 0..=MAX_COURSE_BOUNCES {
-        if travelled > max_path {
-            break;
+    let mut bounces = 0u8;
+    let mut primary = true;
+    while let Some(branch) = next.take().or_else(|| waiting.pop()) {
+        let Branch {
+            ray,
+            skip,
+            travelled,
+            weight,
+        } = branch;
+        let was_primary = core::mem::replace(&mut primary, false);
+        if travelled > max_path || bounces > MAX_COURSE_BOUNCES {
+            continue;
         }
+        bounces += 1;
         let Some((index, hit)) = nearest_course(scene, &ray, skip) else {
             // The course has no background: a miss is black. A primary miss shows the
             // scene's `background` (black unless the file sets one, which course files
             // never do).
-            if bounce == 0 {
+            if was_primary {
                 color = scene.background;
             }
-            break;
+            continue;
         };
-        if bounce == 0 {
+        if was_primary {
             first = Some((index, hit));
         }
         let Some((object, material)) = surface(scene, index, hit.point, counters) else {
-            break;
+            continue;
         };
-        let Some(d) = travelled.checked_add(hit.t) else {
-            break;
+        let Some(travelled) = travelled.checked_add(hit.t) else {
+            continue;
         };
-        travelled = d;
         let normal = object.shape.normal_at(hit.point);
         let mut own = material.ambient;
         if T::LIGHTING
@@ -115,7 +171,7 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
                 scene,
                 &Incoming::from(&ray),
                 object,
-                material,
+                &material,
                 &hit,
                 n,
                 Some(course),
@@ -124,20 +180,50 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
                 counters,
             );
         }
-        // W · own / D per channel (D > 0: every accepted t is).
-        for (c, o) in color.iter_mut().zip(own) {
+        // A translucent surface keeps (1 − T) of its own colour and of its mirror image.
+        let filter = if T::TRANSPARENCY {
+            filter_of(&material)
+        } else {
+            None
+        };
+        let kept = match filter {
+            Some(_) => S::ONE.checked_sub(material.transparency).unwrap_or(S::ZERO),
+            None => S::ONE,
+        };
+        // W · (1 − T) · own / D per channel (D > 0: every accepted t is).
+        for ((c, o), w) in color.iter_mut().zip(own).zip(weight) {
             let share = o
-                .checked_mul(weight)
+                .checked_mul(w)
+                .and_then(|wo| wo.checked_mul(kept))
                 .and_then(|wo| wo.checked_div(travelled))
                 .unwrap_or(if o < S::ZERO { S::ZERO } else { S::MAX });
             *c = c.checked_add(share).unwrap_or(S::MAX);
         }
+        if let Some(f) = filter {
+            count(&mut counters.transmitted_rays);
+            let mut w = weight;
+            for (wk, fk) in w.iter_mut().zip(f) {
+                *wk = wk.checked_mul(fk).unwrap_or(S::ZERO);
+            }
+            if w != [S::ZERO; 3] {
+                next = Some(Branch {
+                    ray: Ray {
+                        base: hit.point,
+                        dir: ray.dir,
+                        kind: RayKind::Secondary,
+                    },
+                    skip: Some(index),
+                    travelled,
+                    weight: w,
+                });
+            }
+        }
         let k = material.specular;
         if !T::REFLECTION || k == S::ZERO {
-            break;
+            continue;
         }
         let Some(n) = normal else {
-            break;
+            continue;
         };
         count(&mut counters.reflection_rays);
         // r = d − 2 (d·N) N
@@ -148,18 +234,32 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
             .and_then(|n2| ray.dir.diff(n2))
             .and_then(Vec3::unit)
         else {
-            break;
+            continue;
         };
-        let Some(w) = weight.checked_mul(k).filter(|w| *w != S::ZERO) else {
-            break;
+        let Some(k) = k.checked_mul(kept) else {
+            continue;
         };
-        weight = w;
-        ray = Ray {
-            base: hit.point,
-            dir,
-            kind: RayKind::Secondary,
+        let mut w = weight;
+        for wk in &mut w {
+            *wk = wk.checked_mul(k).unwrap_or(S::ZERO);
+        }
+        if w == [S::ZERO; 3] {
+            continue;
+        }
+        let mirror = Branch {
+            ray: Ray {
+                base: hit.point,
+                dir,
+                kind: RayKind::Secondary,
+            },
+            skip: Some(index),
+            travelled,
+            weight: w,
         };
-        skip = Some(index);
+        // The mirror ray first; a transmitted ray of the same hit waits.
+        if let Some(t) = next.replace(mirror) {
+            let _ = waiting.push(t);
+        }
     }
     Traced { hit: first, color }
 }

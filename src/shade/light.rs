@@ -6,7 +6,7 @@ use super::stages::LightStages;
 use super::{Incoming, PlaneSides, in_own_plane, light_tolerance, occludes};
 use crate::geometry::surface_tolerance;
 use crate::stats::{Counters, count};
-use crate::{Color, Hit, Light, Material, Object, Ray, RayKind, Scalar, SceneView, Vec3};
+use crate::{Beam, Color, Hit, Light, Material, Object, Ray, RayKind, Scalar, SceneView, Vec3};
 
 /// How the course rules light a hit where the crate's own differ (`COURSE-RULES.md` §6,
 /// §7, §9): the shadow ray starts on the hit and skips its object (`index`), plane-type
@@ -79,13 +79,17 @@ pub(super) fn light_with<S: Scalar>(
             }
             _ => ray_terms(&at, light, to_light, course, counters),
         };
-        let Some((diffuse_falloff, glint)) = terms else {
+        let Some((diffuse_falloff, glint, filter)) = terms else {
             continue;
         };
         count(&mut counters.diffuse);
-        for ((c, diffuse), emissivity) in
-            color.iter_mut().zip(material.diffuse).zip(light.emissivity)
-        {
+        let mut emissivities = light.emissivity;
+        if let Some(f) = filter {
+            for (e, fk) in emissivities.iter_mut().zip(f) {
+                *e = e.checked_mul(fk).unwrap_or(S::ZERO);
+            }
+        }
+        for ((c, diffuse), emissivity) in color.iter_mut().zip(material.diffuse).zip(emissivities) {
             *c = add_sat(*c, term([emissivity, diffuse, diffuse_falloff]));
             if specular {
                 *c = add_sat(*c, term([emissivity, material.specular, glint]));
@@ -140,13 +144,13 @@ fn segment_terms<S: Scalar>(
     tol: Option<S>,
     course: Option<CourseLight<S>>,
     counters: &mut Counters,
-) -> Option<(S, S)> {
+) -> Option<(S, S, Option<[S; 3]>)> {
     let nl = at.normal.dot(to_light).filter(|c| *c > S::ZERO)?;
     if on_own_plane(at, light.location) {
         return None;
     }
     if at.stages.cones
-        && let Some(cone) = light.cone
+        && let Some(cone) = light.cone()
     {
         count(&mut counters.cone_tests);
         // cos(angle) = (−L·axis)/|L| ≥ cos θ, squared with the signs kept.
@@ -165,18 +169,25 @@ fn segment_terms<S: Scalar>(
             return None;
         }
     }
+    let mut filter = projected(at.scene, light, to_light, counters)?;
     if at.stages.shadows {
         count(&mut counters.shadow_rays);
         let from = at.hit.point;
-        let shadowed = match course {
+        match course {
             None => {
                 let sides = at.ray.sides.map(|s| (s, index));
-                occludes_segment(at.scene, sides, from, to_light, ll, tol?, light.location)
+                if occludes_segment(at.scene, sides, from, to_light, ll, tol?, light.location) {
+                    return None;
+                }
             }
-            Some(c) => occludes_segment_course(at.scene, from, to_light, ll, light.location, c),
-        };
-        if shadowed {
-            return None;
+            Some(c) => {
+                let blocks = |o: &Object<S>| {
+                    o.shape
+                        .meets_segment_course(from, to_light, ll, at.scene.epsilon, c.z_limit)
+                        && !spared(at.scene, from, to_light, light.location, &o.shape)
+                };
+                filter = combine(filter, passage(at, c, blocks)?);
+            }
         }
     }
     // 255·(N·L)/|L|², scaled to channel units before the division where that fits (the
@@ -202,7 +213,84 @@ fn segment_terms<S: Scalar>(
     } else {
         S::ZERO
     };
-    Some((diffuse_falloff, glint))
+    Some((diffuse_falloff, glint, filter))
+}
+
+/// A projector's filter for the point `light − to_light`: the texel where the ray from
+/// the projector to the point crosses its slide's plane (ahead of the projector, no
+/// screen rule), as a share of 255 per channel; `None` when the crossing misses the
+/// slide (the projector does not light the point). `Some(None)` for other lights.
+#[allow(clippy::option_option)]
+fn projected<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    light: &Light<S>,
+    to_light: Vec3<S>,
+    counters: &mut Counters,
+) -> Option<Option<[S; 3]>> {
+    let Beam::Projector(i) = light.beam else {
+        return Some(None);
+    };
+    count(&mut counters.texel_lookups);
+    let slide = scene.projectors.get(usize::from(i))?;
+    let plane = slide.frame.plane();
+    // x = light + s (point − light) = light − s L with N·x = D'.
+    let num = S::sub_dot3(
+        plane.offset(),
+        plane.normal().to_array(),
+        light.location.to_array(),
+    )?;
+    let den = plane.normal().dot(to_light)?.checked_neg()?;
+    let s = num.checked_div(den).filter(|s| *s > S::ZERO)?;
+    let x = light.location.diff(to_light.scale(s)?)?;
+    if !slide.frame.contains(x) {
+        return None;
+    }
+    let t = super::texture::texel(scene, slide, x)?;
+    let share = |v: u8| S::ONE.mul_ratio(i32::from(v), 255).unwrap_or(S::ZERO);
+    Some(Some([share(t[0]), share(t[1]), share(t[2])]))
+}
+
+/// Two filters one after the other (`None`: passes everything).
+fn combine<S: Scalar>(a: Option<[S; 3]>, b: Option<[S; 3]>) -> Option<[S; 3]> {
+    match (a, b) {
+        (Some(mut a), Some(b)) => {
+            for (x, y) in a.iter_mut().zip(b) {
+                *x = x.checked_mul(y).unwrap_or(S::ZERO);
+            }
+            Some(a)
+        }
+        (a, None) => a,
+        (None, b) => b,
+    }
+}
+
+/// The course's shadow along a segment or ray: every object but the hit's own that
+/// `blocks` it either stops the light (opaque) or, with the `transparency` stage,
+/// filters it by its material's filter (`COURSE-RULES.md` §11: a second translucent
+/// occluder filters again). `None`: in shadow; `Some(None)`: unfiltered.
+#[allow(clippy::option_option)]
+fn passage<S: Scalar>(
+    at: &Lit<'_, '_, S>,
+    course: CourseLight<S>,
+    blocks: impl Fn(&Object<S>) -> bool,
+) -> Option<Option<[S; 3]>> {
+    let scene = at.scene;
+    let mut filter = None;
+    for (i, o) in scene.objects.iter().enumerate() {
+        if i == course.index || !blocks(o) {
+            continue;
+        }
+        let f = if at.stages.transparency {
+            scene
+                .materials
+                .get(usize::from(o.material))
+                .and_then(super::course::filter_of)
+        } else {
+            None
+        };
+        filter = combine(filter, Some(f?));
+    }
+    Some(filter)
 }
 
 /// `(N·H)^shininess` for the unit direction `l` to the light (`H` the unit half vector
@@ -284,26 +372,6 @@ fn spared<S: Scalar>(
         )
 }
 
-/// The course's shadow test along the segment from the hit `from` to the light at
-/// `from + l`: any object but the hit's own meeting it by the course's rules
-/// ([`crate::Shape::meets_segment_course`]; a light on a surface: as in [`occludes`]).
-#[inline(never)]
-fn occludes_segment_course<S: Scalar>(
-    scene: &SceneView<'_, S>,
-    from: Vec3<S>,
-    l: Vec3<S>,
-    ll: S,
-    light: Vec3<S>,
-    course: CourseLight<S>,
-) -> bool {
-    scene.objects.iter().enumerate().any(|(i, o)| {
-        i != course.index
-            && o.shape
-                .meets_segment_course(from, l, ll, scene.epsilon, course.z_limit)
-            && !spared(scene, from, l, light, &o.shape)
-    })
-}
-
 /// One light's `(255·cos/dist, 255·(N·H)^shininess/dist)` along the normalised direction
 /// to the light, with a shadow ray along it, for a light whose `|L|²` does not fit the
 /// format: under the course's rules (`course`: from the hit, skipping its object, the
@@ -315,7 +383,8 @@ fn ray_terms<S: Scalar>(
     to_light: Vec3<S>,
     course: Option<CourseLight<S>>,
     counters: &mut Counters,
-) -> Option<(S, S)> {
+) -> Option<(S, S, Option<[S; 3]>)> {
+    let mut filter = projected(at.scene, light, to_light, counters)?;
     let to_light = to_light.normalize()?;
     let l = to_light.unit;
     let cos = at.normal.dot(l).filter(|c| *c > S::ZERO)?;
@@ -323,7 +392,7 @@ fn ray_terms<S: Scalar>(
         return None;
     }
     if at.stages.cones
-        && let Some(cone) = light.cone
+        && let Some(cone) = light.cone()
     {
         count(&mut counters.cone_tests);
         // The angle between the axis and the direction light → point.
@@ -342,30 +411,32 @@ fn ray_terms<S: Scalar>(
         count(&mut counters.shadow_rays);
         // The distance itself may not fit (a far light): nothing lies beyond it.
         let dist = to_light.length().unwrap_or(S::MAX);
-        let shadowed = match course {
-            None => at
-                .object
-                .shape
-                .spawn_from(at.ray.base, at.hit, l)
-                .is_some_and(|r| occludes(at.scene, &r, dist, light.location, None, None)),
+        match course {
+            None => {
+                let shadowed = at
+                    .object
+                    .shape
+                    .spawn_from(at.ray.base, at.hit, l)
+                    .is_some_and(|r| occludes(at.scene, &r, dist, light.location, None, None));
+                if shadowed {
+                    return None;
+                }
+            }
             Some(c) => {
                 let from = Ray {
                     base: at.hit.point,
                     dir: l,
                     kind: RayKind::Secondary,
                 };
-                occludes(
-                    at.scene,
-                    &from,
-                    dist,
-                    light.location,
-                    Some(c.index),
-                    Some(c.z_limit),
-                )
+                let eps = at.scene.epsilon;
+                let blocks = |o: &Object<S>| {
+                    o.shape
+                        .intersect_course(&from, eps, c.z_limit)
+                        .is_ok_and(|h| h.t < dist)
+                        && !spared(at.scene, from.base, l, light.location, &o.shape)
+                };
+                filter = combine(filter, passage(at, c, blocks)?);
             }
-        };
-        if shadowed {
-            return None;
         }
     }
     // 255 cos / dist and 255 (N·H)^shininess / dist, without forming dist; scaled
@@ -387,5 +458,5 @@ fn ray_terms<S: Scalar>(
     } else {
         S::ZERO
     };
-    Some((diffuse_falloff, glint))
+    Some((diffuse_falloff, glint, filter))
 }

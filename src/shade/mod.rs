@@ -16,6 +16,7 @@ mod course;
 pub use course::{MAX_COURSE_BOUNCES, MAX_PATH};
 mod light;
 pub(crate) mod stages;
+mod texture;
 
 use crate::stats::{Counters, count};
 use crate::{
@@ -163,17 +164,25 @@ pub(crate) fn material_at<S: Scalar>(
     }
 }
 
-/// The object `objects[index]` and the material it shows at `point` (both rule sets);
-/// `None` for an index or material out of the scene.
+/// The object `objects[index]` and the material it shows at `point` (both rule sets): a
+/// tiled plane's tile's, a textured plane's times its texel; `None` for an index or
+/// material out of the scene.
 pub(crate) fn surface<'a, S: Scalar>(
     scene: &'a SceneView<'_, S>,
     index: usize,
     point: Vec3<S>,
     counters: &mut Counters,
-) -> Option<(&'a Object<S>, &'a Material<S>)> {
+) -> Option<(&'a Object<S>, Material<S>)> {
     let object = scene.objects.get(index)?;
     let material = material_at(object, point, scene.rules(), counters);
-    Some((object, scene.materials.get(usize::from(material))?))
+    let material = scene.materials.get(usize::from(material))?;
+    Some(match &object.shape {
+        Shape::Textured(slide) => (
+            object,
+            texture::textured(material, texture::texel(scene, slide, point)),
+        ),
+        _ => (object, *material),
+    })
 }
 
 /// The colour of a hit on `objects[index]` in channel units, with the stages of `T`.
@@ -245,7 +254,7 @@ fn own_color<S: Scalar, T: Stages>(
     if lit {
         let stages = stages::LightStages::of::<T>();
         light_with(
-            scene, ray, object, material, hit, facing, None, stages, &mut color, counters,
+            scene, ray, object, &material, hit, facing, None, stages, &mut color, counters,
         );
     }
     if !mirror {

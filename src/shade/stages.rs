@@ -17,6 +17,9 @@ pub trait Stages {
     const CONES: bool;
     /// Mirror reflection.
     const REFLECTION: bool;
+    /// Translucent materials (the course's `transparency`): transmitted rays and light
+    /// filtered through translucent occluders.
+    const TRANSPARENCY: bool;
 }
 
 /// The lighting stages of a set as values: the light loop (`light.rs`) is compiled once
@@ -30,6 +33,8 @@ pub(crate) struct LightStages {
     pub(crate) cones: bool,
     /// Specular glints.
     pub(crate) specular: bool,
+    /// Light filtered through translucent occluders.
+    pub(crate) transparency: bool,
 }
 
 impl LightStages {
@@ -39,6 +44,7 @@ impl LightStages {
             shadows: T::SHADOWS,
             cones: T::CONES,
             specular: T::SPECULAR,
+            transparency: T::TRANSPARENCY,
         }
     }
 }
@@ -58,6 +64,7 @@ impl Stages for AmbientOnly {
     const SPECULAR: bool = false;
     const CONES: bool = false;
     const REFLECTION: bool = false;
+    const TRANSPARENCY: bool = false;
 }
 impl Stages for Diffuse {
     const LIGHTING: bool = cfg!(feature = "lighting");
@@ -65,6 +72,7 @@ impl Stages for Diffuse {
     const SPECULAR: bool = false;
     const CONES: bool = false;
     const REFLECTION: bool = false;
+    const TRANSPARENCY: bool = false;
 }
 impl Stages for DiffuseShadows {
     const LIGHTING: bool = cfg!(feature = "lighting");
@@ -72,6 +80,7 @@ impl Stages for DiffuseShadows {
     const SPECULAR: bool = false;
     const CONES: bool = false;
     const REFLECTION: bool = false;
+    const TRANSPARENCY: bool = false;
 }
 impl Stages for Full {
     const LIGHTING: bool = cfg!(feature = "lighting");
@@ -79,6 +88,7 @@ impl Stages for Full {
     const SPECULAR: bool = cfg!(feature = "lighting");
     const CONES: bool = cfg!(feature = "lighting");
     const REFLECTION: bool = cfg!(feature = "reflection");
+    const TRANSPARENCY: bool = true;
 }
 
 /// Which compiled stage set a plan needs.
@@ -96,7 +106,7 @@ pub(crate) enum Shading {
 
 /// The smallest stage set that covers a plan.
 pub(crate) fn shading_for(plan: &Plan) -> Shading {
-    if plan.reflection || plan.specular || plan.spotlights {
+    if plan.reflection || plan.specular || plan.spotlights || plan.transparency {
         Shading::Full
     } else if plan.lighting && plan.shadows {
         Shading::DiffuseShadows

@@ -3,15 +3,17 @@
 
 use core::cmp::Ordering;
 
+use super::error::TextureProblem;
 use super::error::{SceneError, SceneErrorKind};
 use super::schema::Entity;
 use super::too_many;
 use super::{Block, Number, Parser, Result, Value, quote};
 use crate::num::Decimal;
-use crate::scene::{Cone, MAX_PIXELDIM, Object};
+use crate::ppm::Ppm;
+use crate::scene::{Beam, Cone, MAX_PIXELDIM, MAX_PROJECTORS, MAX_TEXTURES, Object};
 use crate::{
     Camera, Color, FrameError, Light, Material, Plane, PlaneError, PlaneFrame, Rules, Scalar,
-    Shape, Sphere, Tiling, Triangle, TriangleError, Vec3,
+    Shape, Slide, Sphere, TexMode, Tiling, Triangle, TriangleError, Vec3,
 };
 
 impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '_, S, O, M, L> {
@@ -53,15 +55,15 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                 }
                 self.register(b)?;
                 let location = vector(b.required("location")?)?;
-                let cone = if b.entity == Entity::Spotlight {
-                    Some(cone::<S>(b, location)?)
+                let beam = if b.entity == Entity::Spotlight {
+                    Beam::Cone(cone::<S>(b, location)?)
                 } else {
-                    None
+                    Beam::Everywhere
                 };
                 let light = Light {
                     location,
                     emissivity: colour3(b.required("emissivity")?, "emissivity", self.rules)?,
-                    cone,
+                    beam,
                 };
                 self.scene
                     .lights
@@ -136,8 +138,135 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                 self.push(b, shape, material)?;
             }
             Entity::Triangle | Entity::Tri => self.triangle(b)?,
+            Entity::Texture => self.texture(b)?,
+            Entity::TexPlane => {
+                self.textures_built_in(b)?;
+                self.register(b)?;
+                let material = self.material_index(b, "material")?;
+                let slide = self.slide(b)?;
+                self.push(b, Shape::Textured(slide), material)?;
+            }
+            Entity::Projector => {
+                self.textures_built_in(b)?;
+                if !cfg!(feature = "lighting") {
+                    return Err(b.error(SceneErrorKind::NotBuiltIn {
+                        what: "lights are",
+                        feature: "lighting",
+                    }));
+                }
+                self.register(b)?;
+                let slide = self.slide(b)?;
+                let full = || {
+                    b.error(SceneErrorKind::Full {
+                        what: "projectors",
+                        capacity: MAX_PROJECTORS,
+                    })
+                };
+                let index = u8::try_from(self.scene.projectors.len()).map_err(|_| full())?;
+                self.scene.projectors.push(slide).map_err(|_| full())?;
+                let light = Light {
+                    location: vector(b.required("location")?)?,
+                    emissivity: colour3(b.required("emissivity")?, "emissivity", self.rules)?,
+                    beam: Beam::Projector(index),
+                };
+                self.scene
+                    .lights
+                    .push(light)
+                    .map_err(|_| too_many(b, "lights", L, "LIGHTS"))?;
+            }
         }
         Ok(())
+    }
+
+    fn textures_built_in(&self, b: &Block<'a>) -> Result<()> {
+        if cfg!(feature = "textures") {
+            Ok(())
+        } else {
+            Err(b.error(SceneErrorKind::NotBuiltIn {
+                what: "textures are",
+                feature: "textures",
+            }))
+        }
+    }
+
+    /// `texture NAME { filename PATH }`: the file's bytes from the caller's source, read
+    /// as a binary PPM.
+    fn texture(&mut self, b: &Block<'a>) -> Result<()> {
+        self.textures_built_in(b)?;
+        let name = b.name.text;
+        if self.rules == Rules::Fixray && self.texture_names.contains(&name) {
+            return Err(b.name.pos.error(SceneErrorKind::DuplicateName {
+                entity: "texture",
+                name: quote(name),
+            }));
+        }
+        let file = b
+            .required("filename")?
+            .name
+            .ok_or_else(|| b.error(SceneErrorKind::ExpectedName(quote("filename"))))?;
+        let error = |problem| {
+            file.pos.error(SceneErrorKind::TextureFile {
+                file: quote(file.text),
+                problem,
+            })
+        };
+        let bytes = (self.files)(file.text).ok_or_else(|| error(TextureProblem::NotFound))?;
+        let image = Ppm::parse(bytes).map_err(|e| error(TextureProblem::Ppm(e)))?;
+        let full = || {
+            b.error(SceneErrorKind::Full {
+                what: "textures",
+                capacity: MAX_TEXTURES,
+            })
+        };
+        self.scene.textures.push(image).map_err(|_| full())?;
+        self.texture_names.push(name).map_err(|_| full())?;
+        Ok(())
+    }
+
+    /// A textured rectangle: `normal`, `point`, `xdir`, `dimensions`, `texname`, `mode`.
+    fn slide(&self, b: &Block<'a>) -> Result<Slide<S>> {
+        let normal = b.required("normal")?;
+        let xdir = b.required("xdir")?;
+        let d = b.required("dimensions")?;
+        let size = [
+            positive::<S>(&d.nums[0], "dimensions")?,
+            positive::<S>(&d.nums[1], "dimensions")?,
+        ];
+        let frame = PlaneFrame::new(
+            vector(normal)?,
+            vector(b.required("point")?)?,
+            vector(xdir)?,
+            size,
+        )
+        .map_err(|e| frame_error::<S>(b, [normal, xdir, d], "dimensions", e))?;
+        let t = b
+            .required("texname")?
+            .name
+            .ok_or_else(|| b.error(SceneErrorKind::ExpectedName(quote("texname"))))?;
+        let texture = self
+            .texture_names
+            .iter()
+            .position(|n| *n == t.text)
+            .and_then(|i| u8::try_from(i).ok())
+            .ok_or_else(|| t.pos.error(SceneErrorKind::UnknownTexture(quote(t.text))))?;
+        let mode = match b.get("mode") {
+            None => TexMode::Fit,
+            Some(v) => match v.nums[0].value.to_integer() {
+                Some(0) => TexMode::Fit,
+                Some(1) => TexMode::Tile,
+                _ => {
+                    return Err(v.nums[0].pos.error(SceneErrorKind::OutOfDomain {
+                        attribute: "mode",
+                        rule: "0 (fit) or 1 (tile)",
+                    }));
+                }
+            },
+        };
+        Ok(Slide {
+            frame,
+            texture,
+            mode,
+        })
     }
 
     fn triangle(&mut self, b: &Block<'a>) -> Result<()> {
@@ -388,6 +517,17 @@ fn material_of<S: Scalar>(b: &Block<'_>, rules: Rules) -> Result<Material<S>> {
             in_domain(n, ok, "shininess", rule)?;
             m.shininess = convert(n, 1)?;
         }
+    }
+    if let Some(v) = b.get("transparency") {
+        if rules == Rules::Fixray {
+            return Err(v.pos.error(SceneErrorKind::OtherRules {
+                attribute: "transparency",
+                rules: "course",
+            }));
+        }
+        let ok = |d: &Decimal| non_negative_value(d) && d.cmp_int(1) != Ordering::Greater;
+        in_domain(&v.nums[0], ok, "transparency", "in [0, 1]")?;
+        m.transparency = convert(&v.nums[0], 1)?;
     }
     if let Some(v) = b.get("reflective") {
         if rules == Rules::Course {

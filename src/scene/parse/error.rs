@@ -98,6 +98,23 @@ pub enum SceneErrorKind {
         /// The const parameter of [`Scene`](crate::Scene) that sets it.
         parameter: &'static str,
     },
+    /// More entities of a kind than every scene holds ([`MAX_TEXTURES`](crate::scene::MAX_TEXTURES),
+    /// [`MAX_PROJECTORS`](crate::scene::MAX_PROJECTORS)).
+    Full {
+        /// The kind.
+        what: &'static str,
+        /// How many a scene holds.
+        capacity: usize,
+    },
+    /// A texture file that cannot be had or read.
+    TextureFile {
+        /// The file name as written.
+        file: Quoted,
+        /// What is wrong with it.
+        problem: TextureProblem,
+    },
+    /// A texture named before it was defined, or never.
+    UnknownTexture(Quoted),
     /// `rules` names no rule set (`course` or `fixray`).
     UnknownRules(Quoted),
     /// An attribute that only the other rule set has (`reflective` is the crate's own;
@@ -109,7 +126,7 @@ pub enum SceneErrorKind {
         rules: &'static str,
     },
     /// An entity or attribute of the course's format that this crate does not draw yet
-    /// (`triangle`, `texture`, `texplane`, `projector`, `revsurf`, `transparency`).
+    /// (`revsurf`).
     NotSupportedYet(&'static str),
     /// A valid entity or attribute whose stage this build leaves out (a firmware built
     /// without one of the cargo features `lighting`, `spheres`, `reflection`).
@@ -119,6 +136,16 @@ pub enum SceneErrorKind {
         /// The cargo feature that builds it in.
         feature: &'static str,
     },
+}
+
+/// What is wrong with a texture file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TextureProblem {
+    /// The file source has no such file ([`Scene::parse`](crate::Scene::parse) reads no
+    /// files: see [`Scene::read_with`](crate::Scene::read_with)).
+    NotFound,
+    /// The file is not a well-formed binary PPM.
+    Ppm(crate::ppm::PpmError),
 }
 
 impl fmt::Display for SceneError {
@@ -181,6 +208,21 @@ impl fmt::Display for SceneErrorKind {
                 f,
                 "too many {what}: the scene type holds {capacity} (raise its `{parameter}` \
                  parameter, e.g. `fixray::LargeScene`)"
+            ),
+            K::Full { what, capacity } => {
+                write!(f, "too many {what}: a scene holds {capacity}")
+            }
+            K::TextureFile { file, problem } => match problem {
+                TextureProblem::NotFound => write!(
+                    f,
+                    "texture file `{file}` not found (`Scene::parse` reads no files: \
+                     `Scene::read_with` takes them)"
+                ),
+                TextureProblem::Ppm(e) => write!(f, "texture file `{file}`: {e}"),
+            },
+            K::UnknownTexture(t) => write!(
+                f,
+                "unknown texture `{t}` (a texture must be defined before it is named)"
             ),
             K::UnknownRules(w) => {
                 write!(f, "unknown rule set `{w}` (expected `course` or `fixray`)")

@@ -29,7 +29,7 @@ mod schema;
 
 use heapless::Vec;
 
-pub use error::{MAX_QUOTED, Quoted, SceneError, SceneErrorKind};
+pub use error::{MAX_QUOTED, Quoted, SceneError, SceneErrorKind, TextureProblem};
 
 use crate::num::Decimal;
 use crate::{Camera, Color, Rules, Scalar, Scene, Vec3};
@@ -108,6 +108,10 @@ struct Parser<'a, 's, S, const O: usize, const M: usize, const L: usize> {
     object_names: Vec<(Entity, &'a str), O>,
     /// Names of the lights, with their kind.
     light_names: Vec<(Entity, &'a str), L>,
+    /// Names of the textures.
+    texture_names: Vec<&'a str, { crate::scene::MAX_TEXTURES }>,
+    /// Where texture files come from ([`Scene::read_with`]).
+    files: &'s mut dyn FnMut(&str) -> Option<&'static [u8]>,
 }
 
 type Result<T> = core::result::Result<T, SceneError>;
@@ -180,6 +184,13 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
             };
             match specs[i].arity {
                 Arity::Name => v.name = Some(self.name()?),
+                Arity::Path => {
+                    let t = self.expect("a file name")?;
+                    if t.text == "{" || t.text == "}" {
+                        return Err(t.pos.error(SceneErrorKind::ExpectedName(quote(t.text))));
+                    }
+                    v.name = Some(t);
+                }
                 Arity::Numbers(n) => {
                     for slot in v.nums.iter_mut().take(n) {
                         *slot = self.number()?;
@@ -230,7 +241,10 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
             return Ok(());
         }
         let name = block.name.text;
-        let light = matches!(block.entity, Entity::Light | Entity::Spotlight);
+        let light = matches!(
+            block.entity,
+            Entity::Light | Entity::Spotlight | Entity::Projector
+        );
         let taken =
             |list: &[(Entity, &str)]| list.iter().any(|&(e, n)| e == block.entity && n == name);
         let duplicate = if light {
@@ -419,6 +433,8 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
         self.materials.clear();
         self.lights.clear();
         self.objects.clear();
+        self.textures.clear();
+        self.projectors.clear();
         self.background = [S::ZERO; 3];
         self.epsilon = S::DEFAULT_EPSILON;
         self.set_rules(Rules::Fixray);
@@ -444,11 +460,52 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
 
     /// [`Scene::read`] by the rule set `rules` if given ([`Scene::parse_as`]), else by
     /// the file's.
-    #[inline(never)]
     fn read_by(
         &mut self,
         text: &str,
         rules: Option<Rules>,
+    ) -> core::result::Result<(), SceneError> {
+        self.read_with(text, rules, &mut |_| None)
+    }
+
+    /// Reads a scene whose `texture` entities name image files: `files` returns the bytes
+    /// of the file a `filename` names (a binary PPM, borrowed for the program's life:
+    /// `include_bytes!` on a chip, or bytes the caller leaks or keeps in a `static`), or
+    /// `None` when there is no such file. [`Scene::read`] and [`Scene::parse`] read no
+    /// files: there a `texture` is an error that names its file. On a host,
+    /// `fixray::scene::files::beside` (cargo feature `std`) reads the files beside the
+    /// scene file. `rules` overrides the file's rule set, as in [`Scene::parse_as`].
+    ///
+    /// # Errors
+    /// A [`SceneError`] with the line and column of the first problem (a missing or
+    /// malformed image: [`SceneErrorKind::TextureFile`], at its file name); the scene is
+    /// then left empty.
+    ///
+    /// ```
+    /// # #[cfg(feature = "textures")] {
+    /// use fixray::{Scene, I16F16};
+    ///
+    /// static CHECKER: &[u8] = b"P6 2 2 255\n\xff\xff\xff\x00\x00\x00\x00\x00\x00\xff\xff\xff";
+    /// let text = "camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+    ///     material m { ambient 1 1 1 }
+    ///     texture checker { filename checker.ppm }
+    ///     texplane wall { material m normal 0 0 1 point 0 0 -1 xdir 1 0 0
+    ///                     dimensions 4 3 texname checker mode 0 }";
+    /// let mut scene = Scene::<I16F16>::empty();
+    /// scene
+    ///     .read_with(text, None, &mut |name| (name == "checker.ppm").then_some(CHECKER))
+    ///     .unwrap();
+    /// assert_eq!(scene.textures[0].width(), 2);
+    /// let err = Scene::<I16F16>::parse(text).unwrap_err();
+    /// assert_eq!((err.line, err.column), (3, 36));
+    /// # }
+    /// ```
+    #[inline(never)]
+    pub fn read_with(
+        &mut self,
+        text: &str,
+        rules: Option<Rules>,
+        files: &mut dyn FnMut(&str) -> Option<&'static [u8]>,
     ) -> core::result::Result<(), SceneError> {
         self.clear();
         let found = rules_of(text);
@@ -463,6 +520,8 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
                 material_names: Vec::new(),
                 object_names: Vec::new(),
                 light_names: Vec::new(),
+                texture_names: Vec::new(),
+                files,
             }
             .parse()
         });

@@ -18,13 +18,18 @@ pub(super) enum Entity {
     FPlane,
     Triangle,
     Tri,
+    Texture,
+    TexPlane,
+    Projector,
 }
 
 /// How an attribute's value is written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Arity {
-    /// A material name.
+    /// A name (of a material or a texture).
     Name,
+    /// A file path: any token but a brace.
+    Path,
     /// This many numbers.
     Numbers(usize),
     /// One number, or three under the course rules (`specular R G B`, the course's
@@ -72,6 +77,15 @@ const fn material(name: &'static str) -> AttrSpec {
         required: true,
     }
 }
+/// A texture's name.
+const fn texname() -> AttrSpec {
+    AttrSpec {
+        name: "texname",
+        alias: None,
+        arity: Arity::Name,
+        required: true,
+    }
+}
 /// Two numbers that real files spell either way.
 const fn dimensions(name: &'static str, alias: &'static str) -> AttrSpec {
     AttrSpec {
@@ -90,7 +104,7 @@ pub(super) struct EntitySpec {
 }
 
 /// Every entity of the format.
-pub(super) const SCHEMA: [EntitySpec; 10] = [
+pub(super) const SCHEMA: [EntitySpec; 13] = [
     EntitySpec {
         entity: Entity::Camera,
         keyword: "camera",
@@ -114,6 +128,7 @@ pub(super) const SCHEMA: [EntitySpec; 10] = [
             },
             optional("shininess", 1),
             optional("reflective", 1),
+            optional("transparency", 1),
         ],
     },
     EntitySpec {
@@ -196,6 +211,44 @@ pub(super) const SCHEMA: [EntitySpec; 10] = [
             numbers("v2", 3),
         ],
     },
+    EntitySpec {
+        entity: Entity::Texture,
+        keyword: "texture",
+        attributes: &[AttrSpec {
+            name: "filename",
+            alias: None,
+            arity: Arity::Path,
+            required: true,
+        }],
+    },
+    EntitySpec {
+        entity: Entity::TexPlane,
+        keyword: "texplane",
+        attributes: &[
+            material("material"),
+            numbers("normal", 3),
+            numbers("point", 3),
+            numbers("xdir", 3),
+            dimensions("dimensions", "dimension"),
+            texname(),
+            // 0 (fit) when absent, as the course's zeroed structures read it.
+            optional("mode", 1),
+        ],
+    },
+    EntitySpec {
+        entity: Entity::Projector,
+        keyword: "projector",
+        attributes: &[
+            numbers("location", 3),
+            numbers("emissivity", 3),
+            numbers("point", 3),
+            numbers("normal", 3),
+            numbers("xdir", 3),
+            dimensions("dimensions", "dimension"),
+            texname(),
+            optional("mode", 1),
+        ],
+    },
 ];
 
 // The table is in the order of the variants, so `Entity::spec` indexes it in bounds.
@@ -216,13 +269,7 @@ pub(super) const STATEMENTS: [&str; 3] = ["background", "precision", "rules"];
 /// What real course files have that this crate does not draw yet: entities and material
 /// attributes, refused with [`super::SceneErrorKind::NotSupportedYet`] at their
 /// `line:column`, never silently ignored.
-pub(super) const NOT_YET: [&str; 5] = [
-    "texture",
-    "texplane",
-    "projector",
-    "revsurf",
-    "transparency",
-];
+pub(super) const NOT_YET: [&str; 1] = ["revsurf"];
 
 /// Whether `word` is a keyword of the format (it cannot be a name).
 pub(super) fn is_keyword(word: &str) -> bool {
@@ -252,7 +299,7 @@ pub(super) const MAX_NUMBERS: usize = {
             let n = match SCHEMA[i].attributes[j].arity {
                 Arity::Numbers(n) => n,
                 Arity::OneOrThree => 3,
-                Arity::Name => 0,
+                Arity::Name | Arity::Path => 0,
             };
             if n > max {
                 max = n;
@@ -308,7 +355,12 @@ mod tests {
 
     #[test]
     fn both_spellings_of_the_dimensions_are_one_attribute() {
-        for entity in [Entity::TiledPlane, Entity::FPlane] {
+        for entity in [
+            Entity::TiledPlane,
+            Entity::FPlane,
+            Entity::TexPlane,
+            Entity::Projector,
+        ] {
             let dims: std::vec::Vec<_> = entity
                 .attributes()
                 .iter()
@@ -324,7 +376,7 @@ mod tests {
     fn table_sizes_come_from_the_schema() {
         let most = SCHEMA.iter().map(|s| s.attributes.len()).max();
         assert_eq!(Some(MAX_ATTRS), most);
-        assert_eq!(MAX_ATTRS, 6);
+        assert_eq!(MAX_ATTRS, 8);
         assert_eq!(MAX_NUMBERS, 3);
     }
 }
