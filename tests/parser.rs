@@ -68,7 +68,8 @@ fn unknown_keyword() {
         1,
         1,
         "unknown keyword `camer` (expected camera, material, light, spotlight, plane, sphere, \
-         tiled_plane, fplane, triangle, tri, background, precision or rules)",
+         tiled_plane, fplane, triangle, tri, texture, texplane, projector, background, \
+         precision or rules)",
     );
 }
 
@@ -171,24 +172,68 @@ fn course_names_and_both_dimension_spellings_are_read() {
 #[test]
 fn course_entities_not_supported_yet_are_refused_where_they_are() {
     let cam = "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n";
-    for entity in ["texture", "texplane", "projector", "revsurf"] {
-        check(
-            &format!("{cam}{entity} t {{ }}"),
-            2,
-            1,
-            &format!(
-                "`{entity}` is not supported yet (fixray does not draw it; the scene is \
-                 refused rather than drawn without it)"
-            ),
-        );
-    }
+    check(
+        &format!("{cam}revsurf t {{ }}"),
+        2,
+        1,
+        "`revsurf` is not supported yet (fixray does not draw it; the scene is \
+         refused rather than drawn without it)",
+    );
     check(
         &format!("{cam}material glass {{ ambient 0 0 0 transparency 0.5 }}"),
         2,
         32,
-        "`transparency` is not supported yet (fixray does not draw it; the scene is \
-         refused rather than drawn without it)",
+        "`transparency` belongs to the course rules (write `rules course` to use it)",
     );
+}
+
+/// Textures: a file the parser cannot have, a malformed one, a name never defined, a
+/// bad mode, each at its position and naming what is wrong; what `read_with` reads.
+#[test]
+fn texture_errors_name_the_file_and_the_position() {
+    let cam = "rules course camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n";
+    let course = |text: &str, files: &mut dyn FnMut(&str) -> Option<&'static [u8]>| {
+        let mut scene = Scene::<I16F16>::empty();
+        scene.read_with(text, None, files).map(|_| scene)
+    };
+    let text = format!("{cam}texture t {{ filename ../img/a.ppm }}");
+    let e = course(&text, &mut |_| None).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "2:22: texture file `../img/a.ppm` not found (`Scene::parse` reads no files: \
+         `Scene::read_with` takes them)"
+    );
+    let e = course(&text, &mut |_| Some(b"P6 4 4 255\n\x00".as_slice())).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "2:22: texture file `../img/a.ppm`: the PPM is truncated: its header promises 48 \
+         bytes of pixels, it holds 1"
+    );
+    static PIXEL: &[u8] = b"P6 1 1 255\n\x80\x40\x20";
+    let named = |name: &str| (name == "../img/a.ppm").then_some(PIXEL);
+    let plane = "material m { ambient 1 1 1 } texplane p { material m normal 0 0 1 \
+                 point 0 0 -1 xdir 1 0 0 dimensions 8 6";
+    let e = course(&format!("{text}\n{plane} texname b }}"), &mut { named }).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "3:114: unknown texture `b` (a texture must be defined before it is named)"
+    );
+    let e = course(&format!("{text}\n{plane} texname t mode 2 }}"), &mut {
+        named
+    })
+    .unwrap_err();
+    assert_eq!(e.to_string(), "3:121: `mode` must be 0 (fit) or 1 (tile)");
+    let scene = course(&format!("{text}\n{plane} texname t mode 1 }}"), &mut {
+        named
+    })
+    .unwrap();
+    assert_eq!(scene.textures.len(), 1);
+    assert_eq!(scene.textures[0].pixel(0, 0), Some([0x80, 0x40, 0x20]));
+    // The texel multiplies the ambient (255 → 128, 64, 32), then the path length divides.
+    use embedded_graphics::pixelcolor::RgbColor;
+    let p = fixray::pixel(&scene, 4, 3);
+    assert!(p.r() > p.g() && p.g() > p.b() && p.b() > 0, "{p:?}");
+    assert_eq!((p.r() / 2, p.g() / 2), (p.g(), p.b()), "{p:?}");
 }
 
 #[test]

@@ -217,6 +217,22 @@ impl<S: Scalar> Sphere<S> {
         Some(f0.checked_add(b)?.checked_add(b)?.checked_add(ll)? < S::ZERO)
     }
 
+    /// Where the segment from `from` to `from + l` (`ll = l·l`) enters the sphere, as a
+    /// share `s` of the segment (`from + s l` is the entry point): the near root
+    /// `f₀ / (√(b² − ll f₀) − b)` with `b = (from − c)·l` and `f₀ = |from − c|² − r²`
+    /// (no cancellation: it is asked of a segment that meets the sphere, `b < 0`).
+    /// `None` when the segment does not enter it ahead of `from` or a quantity does not
+    /// fit the format.
+    pub fn segment_entry(&self, from: Vec3<S>, l: Vec3<S>, ll: S) -> Option<S> {
+        let (b, f0) = self.segment_terms(from, l)?;
+        if b >= S::ZERO || f0 < S::ZERO {
+            return None;
+        }
+        let disc = b.checked_mul(b)?.checked_sub(ll.checked_mul(f0)?)?;
+        let root = disc.checked_sqrt()?.checked_sub(b)?;
+        f0.checked_div(root)
+    }
+
     /// The outward unit normal at a point on the surface.
     pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
         point.diff(self.center)?.unit()

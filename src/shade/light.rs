@@ -170,6 +170,7 @@ fn segment_terms<S: Scalar>(
         }
     }
     let mut filter = projected(at.scene, light, to_light, counters)?;
+    let mut entered = None;
     if at.stages.shadows {
         count(&mut counters.shadow_rays);
         let from = at.hit.point;
@@ -186,18 +187,37 @@ fn segment_terms<S: Scalar>(
                         .meets_segment_course(from, to_light, ll, at.scene.epsilon, c.z_limit)
                         && !spared(at.scene, from, to_light, light.location, &o.shape)
                 };
-                filter = combine(filter, passage(at, c, blocks)?);
+                // The open case of §11, settled by the pictures (`docs/numerics.md`,
+                // "Translucency"): a light in front of the screen seen through a
+                // translucent sphere falls off from where the segment enters it.
+                let entry = |o: &Object<S>| match &o.shape {
+                    crate::Shape::Sphere(s) if light.location.z > S::ZERO => {
+                        s.segment_entry(from, to_light, ll)
+                    }
+                    _ => None,
+                };
+                let (f, e) = passage(at, c, blocks, entry)?;
+                filter = combine(filter, f);
+                entered = e;
             }
         }
     }
     // 255·(N·L)/|L|², scaled to channel units before the division where that fits (the
     // quotient then keeps the format's relative precision).
     let k = channel_max::<S>();
-    let diffuse_falloff = match nl.checked_mul(k) {
+    let mut diffuse_falloff = match nl.checked_mul(k) {
         Some(knl) => knl.checked_div(ll),
         None => nl.checked_div(ll).and_then(|q| q.checked_mul(k)),
     }
     .unwrap_or(S::MAX);
+    // Through a translucent sphere (see `entry` above): cos/dist' with
+    // dist' = (1 − s)|L| from the entry point nearest the light, s its share of L.
+    if let Some(e) = entered {
+        diffuse_falloff = S::ONE
+            .checked_sub(e)
+            .and_then(|r| diffuse_falloff.checked_div(r))
+            .unwrap_or(S::MAX);
+    }
     let glint = if at.specular {
         count(&mut counters.specular);
         to_light
@@ -273,9 +293,11 @@ fn passage<S: Scalar>(
     at: &Lit<'_, '_, S>,
     course: CourseLight<S>,
     blocks: impl Fn(&Object<S>) -> bool,
-) -> Option<Option<[S; 3]>> {
+    entry: impl Fn(&Object<S>) -> Option<S>,
+) -> Option<(Option<[S; 3]>, Option<S>)> {
     let scene = at.scene;
     let mut filter = None;
+    let mut last: Option<S> = None;
     for (i, o) in scene.objects.iter().enumerate() {
         if i == course.index || !blocks(o) {
             continue;
@@ -289,8 +311,11 @@ fn passage<S: Scalar>(
             None
         };
         filter = combine(filter, Some(f?));
+        if let Some(e) = entry(o) {
+            last = Some(last.map_or(e, |l: S| l.max(e)));
+        }
     }
-    Some(filter)
+    Some((filter, last))
 }
 
 /// `(N·H)^shininess` for the unit direction `l` to the light (`H` the unit half vector
@@ -435,7 +460,7 @@ fn ray_terms<S: Scalar>(
                         .is_ok_and(|h| h.t < dist)
                         && !spared(at.scene, from.base, l, light.location, &o.shape)
                 };
-                filter = combine(filter, passage(at, c, blocks)?);
+                filter = combine(filter, passage(at, c, blocks, |_| None)?.0);
             }
         }
     }

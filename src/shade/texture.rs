@@ -53,10 +53,10 @@ fn tile<S: Scalar>(a: S, pixels: u16, world: S, n: u32) -> Option<u32> {
 pub(crate) fn textured<S: Scalar>(material: &Material<S>, texel: Option<[u8; 3]>) -> Material<S> {
     let t = texel.unwrap_or([0; 3]);
     let mut m = *material;
-    for k in 0..3 {
-        let f = |c: S| c.mul_ratio(i32::from(t[k]), 255).unwrap_or(S::ZERO);
-        m.ambient[k] = f(m.ambient[k]);
-        m.diffuse[k] = f(m.diffuse[k]);
+    for ((a, d), tk) in m.ambient.iter_mut().zip(&mut m.diffuse).zip(t) {
+        let f = |c: S| c.mul_ratio(i32::from(tk), 255).unwrap_or(S::ZERO);
+        *a = f(*a);
+        *d = f(*d);
     }
     m
 }

@@ -497,7 +497,7 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
     ///     .unwrap();
     /// assert_eq!(scene.textures[0].width(), 2);
     /// let err = Scene::<I16F16>::parse(text).unwrap_err();
-    /// assert_eq!((err.line, err.column), (3, 36));
+    /// assert_eq!((err.line, err.column), (3, 32));
     /// # }
     /// ```
     #[inline(never)]
