@@ -5,6 +5,10 @@
 //! - The scene parser, in every format, on 200 000 inputs: random bytes, soups of the
 //!   format's own tokens and numbers at the edges of every range, and valid scenes with
 //!   one token replaced.
+//! - The PPM reader on 1 000 000 byte strings (random bytes, valid images with flipped,
+//!   cut or lying headers), and the course's texture, projector and translucency scenes
+//!   on 200 000 mutated files whose textures are such byte strings (parsed in every
+//!   format, 20 000 of them drawn at 3×2 pixels).
 //! - The plane test, in every format, on 1 000 000 planes and rays made of arbitrary bit
 //!   patterns (any normal, point, base, direction and epsilon the format can hold), and
 //!   the renderer on 2 000 one-pixel scenes made of random numbers.
@@ -17,7 +21,14 @@ use fixray::num::variants::{F32Micro, I16F16Narrow};
 use fixray::{I16F16, I20F12, I32F32, Plane, Ray, RayKind, Scalar, Scene, Vec3, render_line};
 use sampling::SplitMix;
 
-const TOKENS: [&str; 40] = [
+const TOKENS: [&str; 47] = [
+    "texture",
+    "texplane",
+    "projector",
+    "transparency",
+    "filename",
+    "texname",
+    "mode",
     "camera",
     "material",
     "light",
@@ -233,4 +244,147 @@ fn the_renderer_survives_random_scenes() {
     fuzz_render::<I32F32>(2_000);
     fuzz_render::<f32>(2_000);
     fuzz_render::<f64>(2_000);
+}
+
+/// A PPM-like byte string: random bytes, or a valid image (up to 5×4, maxval 255 or
+/// 65535) with a header number replaced, bytes flipped, or cut short.
+fn ppm_bytes(rng: &mut SplitMix) -> Vec<u8> {
+    if rng.next().is_multiple_of(5) {
+        let len = rng.next() % 64;
+        return (0..len).map(|_| rng.next() as u8).collect();
+    }
+    let (w, h) = (1 + rng.next() % 5, 1 + rng.next() % 4);
+    let maxval = if rng.next().is_multiple_of(4) {
+        65535
+    } else {
+        255
+    };
+    let mut fields = [w.to_string(), h.to_string(), maxval.to_string()];
+    if rng.next().is_multiple_of(3) {
+        let lies = [
+            "0",
+            "-1",
+            "99999999999",
+            "16385",
+            "65536",
+            "4x",
+            "",
+            "#",
+            "1e3",
+        ];
+        fields[rng.below(3)] = lies[rng.below(lies.len())].to_string();
+    }
+    let comment = if rng.next().is_multiple_of(2) {
+        "# c\n"
+    } else {
+        ""
+    };
+    let mut bytes =
+        format!("P6\n{comment}{} {}\n{}\n", fields[0], fields[1], fields[2]).into_bytes();
+    let samples = (w * h * 3 * if maxval > 255 { 2 } else { 1 }) as usize;
+    bytes.extend((0..samples).map(|_| rng.next() as u8));
+    match rng.next() % 4 {
+        0 => {
+            let cut = rng.below(bytes.len() + 1);
+            bytes.truncate(cut);
+        }
+        1 => {
+            for _ in 0..1 + rng.next() % 3 {
+                let at = rng.below(bytes.len());
+                bytes[at] ^= 1 << (rng.next() % 8);
+            }
+        }
+        _ => {}
+    }
+    bytes
+}
+
+#[test]
+fn the_ppm_reader_survives_a_million_inputs() {
+    let mut rng = SplitMix(0x99A1_2026);
+    let mut read = 0u32;
+    for _ in 0..1_000_000u32 {
+        let bytes = ppm_bytes(&mut rng);
+        if let Ok(image) = fixray::ppm::Ppm::parse(&bytes) {
+            read += 1;
+            let (w, h) = (image.width(), image.height());
+            for (x, y) in [(0, 0), (w - 1, h - 1), (w, 0), (0, h), (u32::MAX, u32::MAX)] {
+                let inside = x < w && y < h;
+                assert_eq!(image.pixel(x, y).is_some(), inside, "{w}x{h} ({x}, {y})");
+            }
+        }
+    }
+    // Both outcomes occur: the generator reaches valid and invalid images.
+    assert!(read > 100_000 && read < 900_000, "{read} read");
+}
+
+/// The course's scenes with textures, projectors and translucency, mutated (a token
+/// replaced, numbers at the edges of the ranges), their texture files fuzzed PPM bytes:
+/// parsed in every format, the small ones drawn.
+#[test]
+fn the_course_entities_survive_200_000_mutated_files() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/course/scenes");
+    let bases: Vec<Vec<String>> = ["texplane1", "texplane3", "translucent", "proj1", "proj3"]
+        .iter()
+        .map(|n| {
+            let text = std::fs::read_to_string(format!("{dir}/{n}.txt")).unwrap();
+            // Drawn at 3×2 pixels: the pixel count is not what is fuzzed.
+            let text = text.replace("640 480", "3 2").replace("800 600", "3 2");
+            text.split_whitespace().map(str::to_string).collect()
+        })
+        .collect();
+    let mut rng = SplitMix(0x7E47_2026);
+    let (mut parsed, mut drawn) = (0u32, 0u32);
+    for i in 0..200_000u32 {
+        let mut words = bases[rng.below(bases.len())].clone();
+        for _ in 0..1 + rng.next() % 2 {
+            let at = rng.below(words.len());
+            words[at] = if rng.next().is_multiple_of(2) {
+                NUMBERS[rng.below(NUMBERS.len())].to_string()
+            } else {
+                TOKENS[rng.below(TOKENS.len())].to_string()
+            };
+        }
+        let text = words.join(" ");
+        // Most files get a valid 2×2 texture, some fuzzed bytes.
+        let bytes: &'static [u8] = if rng.next().is_multiple_of(4) {
+            Box::leak(ppm_bytes(&mut rng).into_boxed_slice())
+        } else {
+            b"P6 2 2 255\n\xff\x00\x00\x00\xff\x00\x00\x00\xff\xff\xff\xff"
+        };
+        let mut files = |_: &str| (!rng.next().is_multiple_of(50)).then_some(bytes);
+        fn one<S: Scalar>(
+            text: &str,
+            files: &mut dyn FnMut(&str) -> Option<&'static [u8]>,
+            draw: bool,
+        ) -> (bool, bool) {
+            let mut scene = fixray::LargeScene::<S>::empty();
+            if scene.read_with(text, None, files).is_err() {
+                return (false, false);
+            }
+            if draw && u32::from(scene.camera.width) * u32::from(scene.camera.height) <= 16 {
+                let mut line = vec![Rgb888::new(0, 0, 0); usize::from(scene.camera.width)];
+                for row in 0..scene.camera.height {
+                    render_line(&scene, row, &mut line);
+                }
+                return (true, true);
+            }
+            (true, false)
+        }
+        let draw = i % 10 == 0;
+        let (p, d) = match i % 5 {
+            0 => one::<I16F16>(&text, &mut files, draw),
+            1 => one::<I20F12>(&text, &mut files, draw),
+            2 => one::<I32F32>(&text, &mut files, draw),
+            3 => one::<f32>(&text, &mut files, draw),
+            _ => one::<f64>(&text, &mut files, draw),
+        };
+        parsed += u32::from(p);
+        drawn += u32::from(d);
+    }
+    assert!(
+        parsed > 20_000 && drawn > 2_000,
+        "{parsed} parsed, {drawn} drawn"
+    );
+    println!("{parsed} of 200000 mutated course files parsed, {drawn} drawn");
 }
