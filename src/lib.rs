@@ -55,8 +55,9 @@ pub mod hash;
 pub struct ReadmeDoctests;
 
 pub use geometry::{
-    FrameError, Hit, Miss, Normalized, Plane, PlaneError, PlaneFrame, Ray, RayKind, Shape, Slide,
-    Sphere, SphereError, TexMode, Tiling, Triangle, TriangleError, Vec3,
+    FrameError, Hit, Miss, Normalized, Plane, PlaneError, PlaneFrame, Ray, RayKind, Revsurf,
+    RevsurfError, Shape, Slide, Sphere, SphereError, TexMode, Tiling, Triangle, TriangleError,
+    Vec3,
 };
 pub use kernel::flat::PlaneMode;
 pub use num::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};

@@ -171,7 +171,8 @@ fn scenes_without_a_picture_draw_the_f64_picture() {
 /// without them.
 #[test]
 fn every_corpus_file_is_read_or_refused_where_it_says_what_is_missing() {
-    let refused = [("revsurfa", "revsurf", 40, 1)];
+    // Nothing is refused any more; the list stays for the next entity.
+    let refused: [(&str, &str, u32, u32); 0] = [];
     let dir = format!("{}/course/scenes", env!("CARGO_MANIFEST_DIR"));
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()

@@ -68,8 +68,8 @@ fn unknown_keyword() {
         1,
         1,
         "unknown keyword `camer` (expected camera, material, light, spotlight, plane, sphere, \
-         tiled_plane, fplane, triangle, tri, texture, texplane, projector, background, \
-         precision or rules)",
+         tiled_plane, fplane, triangle, tri, texture, texplane, projector, revsurf, \
+         background, precision or rules)",
     );
 }
 
@@ -172,12 +172,25 @@ fn course_names_and_both_dimension_spellings_are_read() {
 #[test]
 fn course_entities_not_supported_yet_are_refused_where_they_are() {
     let cam = "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n";
+    // revsurf: only the cone's profile is known.
     check(
-        &format!("{cam}revsurf t {{ }}"),
+        &format!(
+            "{cam}material m {{ }} revsurf r {{ material m surfer 2 base 0 0 0 \
+             direction 0 1 0 height 6.28 }}"
+        ),
         2,
-        1,
-        "`revsurf` is not supported yet (fixray does not draw it; the scene is \
-         refused rather than drawn without it)",
+        46,
+        "`surfer` must be 1 (the cone; the profiles of 2 and 3 are not known: no public \
+         picture shows them)",
+    );
+    check(
+        &format!(
+            "{cam}material m {{ }} revsurf r {{ material m surfer 1 base 0 0 0 \
+             direction 0 0 0 height 6 }}"
+        ),
+        2,
+        59,
+        "`direction` must be a non-zero vector",
     );
     check(
         &format!("{cam}material glass {{ ambient 0 0 0 transparency 0.5 }}"),

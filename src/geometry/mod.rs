@@ -34,6 +34,7 @@
 
 mod frame;
 mod plane;
+mod revsurf;
 mod shape;
 mod spawn;
 mod sphere;
@@ -42,6 +43,7 @@ mod vec3;
 
 pub use frame::{FrameError, PlaneFrame, Slide, TexMode, Tiling};
 pub use plane::{Plane, PlaneError};
+pub use revsurf::{CONE_BASE_RADIUS, Revsurf, RevsurfError};
 pub use shape::Shape;
 pub(crate) use spawn::surface_tolerance;
 pub use spawn::{RESIDUAL_ULPS, SPAWN_MARGIN_ULPS};

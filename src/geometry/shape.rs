@@ -1,7 +1,7 @@
 //! [`Shape`]: the shapes of a scene, dispatched through an enum (no `dyn`).
 
 use super::plane::crossing_of_sides;
-use super::{Hit, Miss, Plane, PlaneFrame, Ray, Slide, Sphere, Triangle, Vec3};
+use super::{Hit, Miss, Plane, PlaneFrame, Ray, Revsurf, Slide, Sphere, Triangle, Vec3};
 use crate::Scalar;
 
 /// A shape of the scene. Shapes dispatch through this enum (no `dyn`).
@@ -31,6 +31,8 @@ pub enum Shape<S> {
     Textured(Slide<S>),
     /// A triangle.
     Triangle(Triangle<S>),
+    /// A surface of revolution (the course's `revsurf`).
+    Revsurf(Revsurf<S>),
 }
 
 /// Whether the sphere code is built in (cargo feature `spheres`).
@@ -46,7 +48,7 @@ impl<S: Scalar> Shape<S> {
             Shape::Tiled { frame, .. } | Shape::Finite(frame) => Some(frame.plane()),
             Shape::Textured(slide) => Some(slide.frame.plane()),
             Shape::Triangle(t) => Some(t.plane()),
-            Shape::Sphere(_) => None,
+            Shape::Sphere(_) | Shape::Revsurf(_) => None,
         }
     }
 
@@ -61,7 +63,7 @@ impl<S: Scalar> Shape<S> {
             Shape::Finite(frame) => frame.contains(point),
             Shape::Textured(slide) => slide.frame.contains(point),
             Shape::Triangle(t) => t.contains(point),
-            Shape::Sphere(_) => false,
+            Shape::Sphere(_) | Shape::Revsurf(_) => false,
         }
     }
 
@@ -85,6 +87,7 @@ impl<S: Scalar> Shape<S> {
                 }
             }
             Shape::Triangle(t) => t.intersect(ray, epsilon),
+            Shape::Revsurf(r) => r.intersect(ray),
         }
     }
 
@@ -96,9 +99,11 @@ impl<S: Scalar> Shape<S> {
         match self {
             Shape::Plane(p) => p.occludes(ray, epsilon, dist),
             Shape::Tiled { frame, .. } => frame.plane().occludes(ray, epsilon, dist),
-            Shape::Sphere(_) | Shape::Finite(_) | Shape::Textured(_) | Shape::Triangle(_) => {
-                self.intersect(ray, epsilon).is_ok_and(|hit| hit.t < dist)
-            }
+            Shape::Sphere(_)
+            | Shape::Finite(_)
+            | Shape::Textured(_)
+            | Shape::Triangle(_)
+            | Shape::Revsurf(_) => self.intersect(ray, epsilon).is_ok_and(|hit| hit.t < dist),
         }
     }
 
@@ -147,6 +152,10 @@ impl<S: Scalar> Shape<S> {
                 unit_ray(from, l).is_some_and(|(r, dist)| self.occludes(&r, epsilon, dist))
             }),
             Shape::Sphere(_) => false,
+            // No segment form: the unit ray's own test.
+            Shape::Revsurf(_) => {
+                unit_ray(from, l).is_some_and(|(r, dist)| self.occludes(&r, epsilon, dist))
+            }
         }
     }
 
@@ -166,6 +175,12 @@ impl<S: Scalar> Shape<S> {
         epsilon: S,
         z_limit: S,
     ) -> bool {
+        if let Shape::Revsurf(_) = self {
+            return unit_ray(from, l).is_some_and(|(r, dist)| {
+                self.intersect_course(&r, epsilon, z_limit)
+                    .is_ok_and(|h| h.t < dist)
+            });
+        }
         if let Shape::Sphere(s) = self {
             return SPHERES
                 && s.meets_segment_near(from, l, ll).unwrap_or_else(|| {
@@ -208,6 +223,9 @@ impl<S: Scalar> Shape<S> {
                 Err(Miss::NotBuiltIn)
             };
         }
+        if let Shape::Revsurf(r) = self {
+            return r.intersect_course(&ray);
+        }
         let hit = self.intersect(&ray, epsilon)?;
         // The course's triangles reject `z > 0` (§14), its planes `z > 0.01`.
         let z_limit = if matches!(self, Shape::Triangle(_)) {
@@ -241,6 +259,9 @@ impl<S: Scalar> Shape<S> {
                     .and_then(|d| d.checked_mul(tol));
                 matches!((excess, band), (Some(e), Some(b)) if e.abs() <= b)
             }
+            // Not resolved for surfaces of revolution: a light on one is not treated
+            // as the tie (`docs/numerics.md`, "Lights on surfaces").
+            Shape::Revsurf(_) => false,
             _ => self.plane().is_some_and(|p| {
                 S::sub_dot3(p.offset(), p.normal().to_array(), point.to_array())
                     .is_some_and(|d| d.abs() <= tol)
@@ -299,6 +320,7 @@ impl<S: Scalar> Shape<S> {
         match self {
             Shape::Sphere(s) if SPHERES => s.normal_at(point),
             Shape::Sphere(_) => None,
+            Shape::Revsurf(r) => r.normal_at(point),
             _ => self.plane().map(Plane::normal),
         }
     }
@@ -310,6 +332,7 @@ impl<S: Scalar> Shape<S> {
         match self {
             Shape::Sphere(s) if SPHERES => s.spawn(ray, hit, dir),
             Shape::Sphere(_) => None,
+            Shape::Revsurf(r) => r.spawn(ray, hit, dir),
             _ => self.plane()?.spawn(ray, hit, dir),
         }
     }

@@ -12,8 +12,9 @@ use crate::num::Decimal;
 use crate::ppm::Ppm;
 use crate::scene::{Beam, Cone, MAX_PIXELDIM, MAX_PROJECTORS, MAX_TEXTURES, Object};
 use crate::{
-    Camera, Color, FrameError, Light, Material, Plane, PlaneError, PlaneFrame, Rules, Scalar,
-    Shape, Slide, Sphere, TexMode, Tiling, Triangle, TriangleError, Vec3,
+    Camera, Color, FrameError, Light, Material, Plane, PlaneError, PlaneFrame, Revsurf,
+    RevsurfError, Rules, Scalar, Shape, Slide, Sphere, TexMode, Tiling, Triangle, TriangleError,
+    Vec3,
 };
 
 impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '_, S, O, M, L> {
@@ -139,6 +140,44 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
             }
             Entity::Triangle | Entity::Tri => self.triangle(b)?,
             Entity::Texture => self.texture(b)?,
+            Entity::Revsurf => {
+                self.register(b)?;
+                let material = self.material_index(b, "material")?;
+                let surfer = &b.required("surfer")?.nums[0];
+                let direction = b.required("direction")?;
+                let height = positive::<S>(&b.required("height")?.nums[0], "height")?;
+                let k = surfer.value.to_integer().unwrap_or(-1);
+                let shape =
+                    Revsurf::new(k, vector(b.required("base")?)?, vector(direction)?, height)
+                        .map_err(|e| match e {
+                            RevsurfError::UnknownProfile => {
+                                surfer.pos.error(SceneErrorKind::OutOfDomain {
+                                    attribute: "surfer",
+                                    rule: "1 (the cone; the profiles of 2 and 3 are not known: no \
+                               public picture shows them)",
+                                })
+                            }
+                            RevsurfError::ZeroDirection => {
+                                direction.pos.error(SceneErrorKind::OutOfDomain {
+                                    attribute: "direction",
+                                    rule: "a non-zero vector",
+                                })
+                            }
+                            RevsurfError::NonPositiveHeight => {
+                                b.error(SceneErrorKind::OutOfDomain {
+                                    attribute: "height",
+                                    rule: "> 0",
+                                })
+                            }
+                            RevsurfError::OutOfRange => {
+                                b.error(SceneErrorKind::DerivedDoesNotFit {
+                                    what: "the profile's slope",
+                                    format: S::NAME,
+                                })
+                            }
+                        })?;
+                self.push(b, Shape::Revsurf(shape), material)?;
+            }
             Entity::TexPlane => {
                 self.textures_built_in(b)?;
                 self.register(b)?;
