@@ -14,7 +14,8 @@
 //!   renders (checked against the one list, `src/num/formats.rs`, and handed to the
 //!   firmware as `FIXRAY_FW_FORMATS_BUILT`), so that flash can be measured per format;
 //! - `FIXRAY_FW_SCENES` (default `default`) chooses which scenes of `scenes/` the firmware
-//!   embeds and renders (`$OUT_DIR/fw_scenes.rs`);
+//!   embeds and renders (`$OUT_DIR/fw_scenes.rs`), with the texture files they name
+//!   (`include_bytes!`, in flash);
 //! - `FIXRAY_FW_SPANS=1` draws pure-geometry plane scenes in span mode (`fw_spans`);
 //! - `FIXRAY_FW_PPM=1` makes the firmware also write each frame to the host as a PPM file
 //!   through semihosting (`fw_ppm`).
@@ -104,6 +105,7 @@ fn main() {
         chosen.join(",")
     );
     let scenes = env::var("FIXRAY_FW_SCENES").unwrap_or_else(|_| "default".into());
+    let mut textures: Vec<(String, String)> = Vec::new();
     let mut table = String::from(
         "/// The scenes this firmware renders: (name, text).\nconst SCENES: &[(&str, &str)] = &[\n",
     );
@@ -119,6 +121,29 @@ fn main() {
         );
         println!("cargo:rerun-if-changed={path}");
         table.push_str(&format!("    (\"{name}\", include_str!({path:?})),\n"));
+        // The texture files it names (`filename PATH`, relative to `scenes/`).
+        let text = fs::read_to_string(&path).expect("the scene is readable");
+        let words: Vec<&str> = text.split_whitespace().collect();
+        for pair in words.windows(2).filter(|w| w[0] == "filename") {
+            let file = pair[1];
+            let full = format!("{dir}/scenes/{file}");
+            assert!(
+                fs::metadata(&full).is_ok(),
+                "FIXRAY_FW_SCENES: {name} names a texture file {full} that is not there"
+            );
+            if !textures.iter().any(|(f, _)| f == file) {
+                println!("cargo:rerun-if-changed={full}");
+                textures.push((file.to_string(), full));
+            }
+        }
+    }
+    table.push_str("];\n");
+    table.push_str(
+        "/// The texture files those scenes name: (name as written, bytes), in flash.\n\
+         const TEXTURES: &[(&str, &[u8])] = &[\n",
+    );
+    for (file, full) in &textures {
+        table.push_str(&format!("    ({file:?}, include_bytes!({full:?})),\n"));
     }
     table.push_str("];\n");
     fs::write(out.join("fw_scenes.rs"), table).expect("OUT_DIR is writable");

@@ -220,7 +220,8 @@ mod firmware {
         paint_stack();
         let start = instructions();
         let mut scene = Scene::<S>::empty();
-        if let Err(e) = scene.read(text) {
+        let mut files = |name: &str| TEXTURES.iter().find(|t| t.0 == name).map(|t| t.1);
+        if let Err(e) = scene.read_with(text, None, &mut files) {
             hprintln!(
                 "format={} scene={} error=\"scenes/{}.scene:{}\"",
                 S::NAME,

@@ -198,3 +198,84 @@ fn absent_effects_cost_nothing_on_the_chip() {
     println!("ambient-only scene, full renderer / stages compiled out: {ratio:.4}");
     assert!(ratio <= 1.05, "{ratio}");
 }
+
+/// The course's entities on the chips (issue 15): one shipped scene each (translucency,
+/// a textured plane, a projector, a surface of revolution), built with the `textures`
+/// feature (its texture, 32×32, in flash), in I16F16 and f32 on both cores: instructions
+/// per pixel, flash, and the frame hash against the host's (equal in I16F16, asserted).
+#[test]
+#[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
+fn course_entities_on_the_chips() {
+    assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
+    let scenes = [
+        ("translucent", include_str!("../scenes/translucent.scene")),
+        ("texplane", include_str!("../scenes/texplane.scene")),
+        ("projector", include_str!("../scenes/projector.scene")),
+        ("revsurf", include_str!("../scenes/revsurf.scene")),
+    ];
+    let names = scenes.map(|s| s.0).join(",");
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/x.scene");
+    let host = |format: &str, text: &str| -> u32 {
+        fn hash<S: Scalar>(text: &str, dir: &str) -> u32 {
+            let mut scene = Scene::<S>::empty();
+            scene
+                .read_with(text, None, &mut fixray::scene::files::beside(dir.as_ref()))
+                .unwrap();
+            let mut line = vec![Rgb888::BLACK; usize::from(scene.camera.width)];
+            let mut h = FrameHash::new();
+            for row in 0..scene.camera.height {
+                render_line(&scene, row, &mut line);
+                line.iter().for_each(|c| h.push(*c));
+            }
+            h.value()
+        }
+        fixray::with_format!(format, hash(text, dir)).unwrap()
+    };
+    let mut report = String::from(
+        "| core | format | scene | instructions/pixel | flash bytes | stack bytes | hash equal to host |\n|---|---|---|---|---|---|---|\n",
+    );
+    let mut mismatches = Vec::new();
+    for (target, core) in qemu::CORES {
+        for format in ["i16f16", "f32"] {
+            let run = qemu::run_with_features(
+                target,
+                format,
+                &names,
+                Some("lighting,spheres,reflection,textures"),
+            )
+            .unwrap();
+            assert_eq!(
+                run.frames.len(),
+                scenes.len(),
+                "{target} {format}: {:?}",
+                run.frames
+            );
+            for (f, (scene, text)) in run.frames.iter().zip(scenes) {
+                assert_eq!(f.get("scene"), scene);
+                let equal = f.hash() == host(format, text);
+                writeln!(
+                    report,
+                    "| {core} | {format} | {scene} | {} | {} | {} | {} |",
+                    f.get("per_pixel"),
+                    run.flash,
+                    f.get("stack"),
+                    if equal { "yes" } else { "no" }
+                )
+                .unwrap();
+                if !equal && format == "i16f16" {
+                    mismatches.push(format!("{target} {format} {scene}"));
+                }
+            }
+        }
+    }
+    println!("{report}");
+    std::fs::write(
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/target/course-entities-report.md"
+        ),
+        &report,
+    )
+    .unwrap();
+    assert!(mismatches.is_empty(), "{mismatches:?}");
+}

@@ -58,7 +58,11 @@ impl DrawTarget for Capture {
 /// The three entry points in one plane mode: the image they agree on, and how many
 /// scanlines the pure-geometry kernel handed back.
 fn agree<S: Scalar>(name: &str, text: &str, mode: PlaneMode) -> (Vec<Rgb888>, usize) {
-    let scene = Scene::<S>::parse(text).unwrap_or_else(|e| panic!("{name}: {e}"));
+    // A shipped scene's textures lie beside it (`name` is its path); others name none.
+    let mut scene = Scene::<S>::empty();
+    scene
+        .read_with(text, None, &mut fixray::scene::files::beside(name.as_ref()))
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
     let (w, h) = (scene.camera.width, scene.camera.height);
     let frame = Frame::with_mode(&scene, mode);
     let mut streamed = Capture::new(w, h);
@@ -134,6 +138,9 @@ fn both_modes<S: Scalar>(name: &str, text: &str, handed_back: &mut usize) {
 fn shipped<S: Scalar>(handed_back: &mut usize) {
     for entry in std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes")).unwrap() {
         let path = entry.unwrap().path();
+        if path.extension().is_none_or(|x| x != "scene") {
+            continue; // scenes/textures/
+        }
         let text = std::fs::read_to_string(&path).unwrap();
         both_modes::<S>(&path.display().to_string(), &text, handed_back);
     }

@@ -250,3 +250,129 @@ pub fn run<S: Scalar>(n: u64, seed: u64) -> Stats {
     }
     st
 }
+
+/// What [`revsurf_stats`] measured in one format against f64 on the same inputs.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct RevsurfStats {
+    /// Rays cast.
+    pub rays: u64,
+    /// Rays f64 finds a hit for.
+    pub hits: u64,
+    /// Hit/miss disagreements where the f64 root is clear of tangency
+    /// (`disc ≥ 10⁻² B²`) and of the profile's ends (`s` more than 10⁻³ height inside).
+    pub disagree_clear: u64,
+    /// Hit/miss disagreements near tangency, the apex or an end.
+    pub disagree_near: u64,
+    /// Largest `|Δt| / ((1 + t)(1 + |B|/√disc) δ)` over clear hits both found.
+    pub max_clear: f64,
+    /// Largest `|Δt| / √δ` over the other hits both found (the roots coalesce there).
+    pub max_near: f64,
+}
+
+/// Seeded random cones (`surfer 1`: random base in ±8, axis, height 1..8) and rays aimed
+/// near them (from ±16, towards a point within the cone's bounding ball): the cone test
+/// in format `S` against f64 on the same (converted) inputs.
+pub fn revsurf_stats<S: Scalar>(n: u64, seed: u64) -> RevsurfStats {
+    use fixray::Revsurf;
+    let mut rng = SplitMix(seed);
+    let mut st = RevsurfStats::default();
+    let to_s = |v: [f64; 3]| Vec3::<S>::from_f64(v);
+    let back = |v: Vec3<S>| [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()];
+    while st.rays < n {
+        let base = rng.vector(8.0);
+        let axis = rng.unit();
+        let height = rng.uniform(1.0, 8.0);
+        let (Some(b), Some(a), Some(h)) = (to_s(base), to_s(axis), S::from_f64(height)) else {
+            continue;
+        };
+        let Ok(cone) = Revsurf::new(1, b, a, h) else {
+            continue;
+        };
+        let (bf, af, hf) = (back(cone.base()), back(cone.axis()), cone.height().to_f64());
+        let Ok(exact) = Revsurf::<f64>::new(
+            1,
+            Vec3::new(bf[0], bf[1], bf[2]),
+            Vec3::new(af[0], af[1], af[2]),
+            hf,
+        ) else {
+            continue;
+        };
+        for _ in 0..16 {
+            let from = rng.vector(16.0);
+            let r = 4.0f64.max(hf);
+            let target = rng.vector(r);
+            let mid = [
+                bf[0] + af[0] * hf / 2.0,
+                bf[1] + af[1] * hf / 2.0,
+                bf[2] + af[2] * hf / 2.0,
+            ];
+            let dir = unit([
+                mid[0] + target[0] - from[0],
+                mid[1] + target[1] - from[1],
+                mid[2] + target[2] - from[2],
+            ]);
+            let (Some(o), Some(d)) = (to_s(from), to_s(dir)) else {
+                continue;
+            };
+            let ray = Ray {
+                base: o,
+                dir: d,
+                kind: RayKind::Secondary,
+            };
+            let (of, df) = (back(o), back(d));
+            let exact_ray = Ray {
+                base: Vec3::new(of[0], of[1], of[2]),
+                dir: Vec3::new(df[0], df[1], df[2]),
+                kind: RayKind::Secondary,
+            };
+            st.rays += 1;
+            let want = exact.intersect(&exact_ray);
+            let got = cone.intersect(&ray);
+            // The f64 root's conditioning, recomputed here independently.
+            let taper = 4.0 / hf;
+            let w0 = [of[0] - bf[0], of[1] - bf[1], of[2] - bf[2]];
+            let (s0, sd) = (dot(w0, af), dot(df, af));
+            let q0 = [w0[0] - s0 * af[0], w0[1] - s0 * af[1], w0[2] - s0 * af[2]];
+            let qd = [df[0] - sd * af[0], df[1] - sd * af[1], df[2] - sd * af[2]];
+            let r0 = 4.0 - taper * s0;
+            let big_a = dot(qd, qd) - taper * taper * sd * sd;
+            let big_b = dot(q0, qd) + taper * sd * r0;
+            let big_c = dot(q0, q0) - r0 * r0;
+            let disc = big_b * big_b - big_a * big_c;
+            let clear_of_ends = |t: f64| {
+                let s = s0 + t * sd;
+                s > 1e-3 * hf && s < hf * (1.0 - 1e-3)
+            };
+            let clear = disc >= 1e-2 * big_b * big_b
+                && match want {
+                    Ok(hit) => clear_of_ends(hit.t),
+                    Err(_) => true,
+                };
+            if want.is_ok() {
+                st.hits += 1;
+            }
+            match (want, got) {
+                (Ok(w), Ok(g)) => {
+                    let dt = (w.t - g.t.to_f64()).abs();
+                    if clear {
+                        let cond = 1.0 + big_b.abs() / disc.sqrt();
+                        st.max_clear = st
+                            .max_clear
+                            .max(dt / ((1.0 + w.t) * cond * S::DELTA.to_f64()));
+                    } else {
+                        st.max_near = st.max_near.max(dt / S::DELTA.to_f64().sqrt());
+                    }
+                }
+                (Ok(_), Err(_)) | (Err(_), Ok(_)) => {
+                    if clear {
+                        st.disagree_clear += 1;
+                    } else {
+                        st.disagree_near += 1;
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    st
+}
