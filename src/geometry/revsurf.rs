@@ -30,7 +30,7 @@
 //! only; at the apex the normal is the axis (or none, where `r` rounds to 0 exactly: lit
 //! by nothing).
 
-use super::spawn::{offset_base, residual};
+use super::spawn::spawn_along;
 use super::{Hit, Miss, Ray, RayKind, Vec3};
 use crate::Scalar;
 
@@ -211,13 +211,7 @@ impl<S: Scalar> Revsurf<S> {
             .max(self.base.max_abs())
             .max(self.height)
             .max(self.radius);
-        let bound = residual(hit.t, m)?;
-        let base = offset_base(hit.point, self.normal_at(hit.point)?, dir, bound, m)?;
-        Some(Ray {
-            base,
-            dir,
-            kind: RayKind::Secondary,
-        })
+        spawn_along(hit, self.normal_at(hit.point)?, dir, m)
     }
 }
 

@@ -1,7 +1,7 @@
 //! Where secondary rays start: off the surface they leave by a computed bound on how far
 //! a hit point lies off it (pbrt's offset by an error bound, not a magic number).
 
-use super::Vec3;
+use super::{Hit, Ray, RayKind, Vec3};
 use crate::Scalar;
 
 /// Units of [`Scalar::ulp`] in the hit-point residual bound ([`super::Plane::residual_bound`]):
@@ -59,4 +59,22 @@ pub(crate) fn offset_base<S: Scalar>(
         off = off.checked_neg()?;
     }
     point.sum(normal.scale(off)?)
+}
+
+/// A secondary ray leaving `hit` of a curved surface in direction `dir`, based off it
+/// along its unit `normal` there by [`residual`] at magnitude `m` (spheres and surfaces of
+/// revolution); `None` when the offset base does not fit the format.
+pub(crate) fn spawn_along<S: Scalar>(
+    hit: &Hit<S>,
+    normal: Vec3<S>,
+    dir: Vec3<S>,
+    m: S,
+) -> Option<Ray<S>> {
+    let bound = residual(hit.t, m)?;
+    let base = offset_base(hit.point, normal, dir, bound, m)?;
+    Some(Ray {
+        base,
+        dir,
+        kind: RayKind::Secondary,
+    })
 }

@@ -1,6 +1,6 @@
 //! The sphere, with the numerically careful intersection.
 
-use super::spawn::{offset_base, residual};
+use super::spawn::spawn_along;
 use super::{Hit, Miss, Ray, RayKind, Vec3};
 use crate::Scalar;
 
@@ -250,13 +250,11 @@ impl<S: Scalar> Sphere<S> {
     /// surface along the sphere's normal by the bound of [`super::Plane::spawn`].
     /// `None` when the offset base does not fit the format.
     pub fn spawn(&self, ray: &Ray<S>, hit: &Hit<S>, dir: Vec3<S>) -> Option<Ray<S>> {
-        let m = self.magnitude(ray, hit);
-        let bound = residual(hit.t, m)?;
-        let base = offset_base(hit.point, self.normal_at(hit.point)?, dir, bound, m)?;
-        Some(Ray {
-            base,
+        spawn_along(
+            hit,
+            self.normal_at(hit.point)?,
             dir,
-            kind: RayKind::Secondary,
-        })
+            self.magnitude(ray, hit),
+        )
     }
 }

@@ -557,35 +557,47 @@ fn material_of<S: Scalar>(b: &Block<'_>, rules: Rules) -> Result<Material<S>> {
             m.shininess = convert(n, 1)?;
         }
     }
-    if let Some(v) = b.get("transparency") {
-        if rules == Rules::Fixray {
-            return Err(v.pos.error(SceneErrorKind::OtherRules {
-                attribute: "transparency",
-                rules: "course",
-            }));
-        }
-        let ok = |d: &Decimal| non_negative_value(d) && d.cmp_int(1) != Ordering::Greater;
-        in_domain(&v.nums[0], ok, "transparency", "in [0, 1]")?;
-        m.transparency = convert(&v.nums[0], 1)?;
+    if let Some(t) = share(b, "transparency", Rules::Course, rules)? {
+        m.transparency = t;
     }
-    if let Some(v) = b.get("reflective") {
-        if rules == Rules::Course {
-            return Err(v.pos.error(SceneErrorKind::OtherRules {
-                attribute: "reflective",
-                rules: "fixray",
-            }));
-        }
-        let ok = |d: &Decimal| non_negative_value(d) && d.cmp_int(1) != Ordering::Greater;
-        in_domain(&v.nums[0], ok, "reflective", "in [0, 1]")?;
-        m.reflective = convert(&v.nums[0], 1)?;
+    if let Some(k) = share(b, "reflective", Rules::Fixray, rules)? {
+        m.reflective = k;
         if m.reflective > S::ZERO && !cfg!(feature = "reflection") {
-            return Err(v.pos.error(SceneErrorKind::NotBuiltIn {
-                what: "reflective materials are",
-                feature: "reflection",
-            }));
+            return Err(b
+                .required("reflective")?
+                .pos
+                .error(SceneErrorKind::NotBuiltIn {
+                    what: "reflective materials are",
+                    feature: "reflection",
+                }));
         }
     }
     Ok(m)
+}
+
+/// A material's share in [0, 1] that only the rule set `own` has (`reflective`: the
+/// crate's, `transparency`: the course's); `None` when the block has none.
+fn share<S: Scalar>(
+    b: &Block<'_>,
+    attribute: &'static str,
+    own: Rules,
+    rules: Rules,
+) -> Result<Option<S>> {
+    let Some(v) = b.get(attribute) else {
+        return Ok(None);
+    };
+    if rules != own {
+        return Err(v.pos.error(SceneErrorKind::OtherRules {
+            attribute,
+            rules: match own {
+                Rules::Course => "course",
+                Rules::Fixray => "fixray",
+            },
+        }));
+    }
+    let ok = |d: &Decimal| non_negative_value(d) && d.cmp_int(1) != Ordering::Greater;
+    in_domain(&v.nums[0], ok, attribute, "in [0, 1]")?;
+    Ok(Some(convert(&v.nums[0], 1)?))
 }
 
 /// The precision epsilon: a real > 0 that must stay > 0 in the format.
