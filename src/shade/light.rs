@@ -169,7 +169,10 @@ fn segment_terms<S: Scalar>(
             return None;
         }
     }
-    let mut filter = projected(at.scene, light, to_light, counters)?;
+    let mut filter = match light.beam {
+        Beam::Projector(_) => projected(at.scene, light, to_light, counters)?,
+        _ => None,
+    };
     let mut entered = None;
     if at.stages.shadows {
         count(&mut counters.shadow_rays);
@@ -182,21 +185,7 @@ fn segment_terms<S: Scalar>(
                 }
             }
             Some(c) => {
-                let blocks = |o: &Object<S>| {
-                    o.shape
-                        .meets_segment_course(from, to_light, ll, at.scene.epsilon, c.z_limit)
-                        && !spared(at.scene, from, to_light, light.location, &o.shape)
-                };
-                // The open case of §11, settled by the pictures (`docs/numerics.md`,
-                // "Translucency"): a light in front of the screen seen through a
-                // translucent sphere falls off from where the segment enters it.
-                let entry = |o: &Object<S>| match &o.shape {
-                    crate::Shape::Sphere(s) if light.location.z > S::ZERO => {
-                        s.segment_entry(from, to_light, ll)
-                    }
-                    _ => None,
-                };
-                let (f, e) = passage(at, c, blocks, entry)?;
+                let (f, e) = segment_passage(at, c, light, from, to_light, ll)?;
                 filter = combine(filter, f);
                 entered = e;
             }
@@ -241,6 +230,7 @@ fn segment_terms<S: Scalar>(
 /// screen rule), as a share of 255 per channel; `None` when the crossing misses the
 /// slide (the projector does not light the point). `Some(None)` for other lights.
 #[allow(clippy::option_option)]
+#[inline(never)]
 fn projected<S: Scalar>(
     scene: &SceneView<'_, S>,
     light: &Light<S>,
@@ -268,6 +258,38 @@ fn projected<S: Scalar>(
     let t = super::texture::texel(scene, slide, x)?;
     let share = |v: u8| S::ONE.mul_ratio(i32::from(v), 255).unwrap_or(S::ZERO);
     Some(Some([share(t[0]), share(t[1]), share(t[2])]))
+}
+
+/// The course's shadow segment from `from` to the light at `from + l` ([`passage`] with
+/// the segment tests), and the share of the segment at which it enters the translucent
+/// sphere nearest the light, where that sets the falloff. Not inlined: its locals stay
+/// out of the crate's rules' light loop (a mirror recursion's leaf frames on a 16 KB
+/// chip).
+#[inline(never)]
+#[allow(clippy::type_complexity)]
+fn segment_passage<S: Scalar>(
+    at: &Lit<'_, '_, S>,
+    c: CourseLight<S>,
+    light: &Light<S>,
+    from: Vec3<S>,
+    to_light: Vec3<S>,
+    ll: S,
+) -> Option<(Option<[S; 3]>, Option<S>)> {
+    let blocks = |o: &Object<S>| {
+        o.shape
+            .meets_segment_course(from, to_light, ll, at.scene.epsilon, c.z_limit)
+            && !spared(at.scene, from, to_light, light.location, &o.shape)
+    };
+    // The open case of §11, settled by the pictures (`docs/numerics.md`,
+    // "Translucency"): a light in front of the screen seen through a translucent sphere
+    // falls off from where the segment enters it.
+    let entry = |o: &Object<S>| match &o.shape {
+        crate::Shape::Sphere(s) if light.location.z > S::ZERO => {
+            s.segment_entry(from, to_light, ll)
+        }
+        _ => None,
+    };
+    passage(at, c, blocks, entry)
 }
 
 /// Two filters one after the other (`None`: passes everything).
@@ -409,7 +431,10 @@ fn ray_terms<S: Scalar>(
     course: Option<CourseLight<S>>,
     counters: &mut Counters,
 ) -> Option<(S, S, Option<[S; 3]>)> {
-    let mut filter = projected(at.scene, light, to_light, counters)?;
+    let mut filter = match light.beam {
+        Beam::Projector(_) => projected(at.scene, light, to_light, counters)?,
+        _ => None,
+    };
     let to_light = to_light.normalize()?;
     let l = to_light.unit;
     let cos = at.normal.dot(l).filter(|c| *c > S::ZERO)?;

@@ -140,80 +140,85 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
             }
             Entity::Triangle | Entity::Tri => self.triangle(b)?,
             Entity::Texture => self.texture(b)?,
-            Entity::Revsurf => {
-                self.register(b)?;
-                let material = self.material_index(b, "material")?;
-                let surfer = &b.required("surfer")?.nums[0];
-                let direction = b.required("direction")?;
-                let height = positive::<S>(&b.required("height")?.nums[0], "height")?;
-                let k = surfer.value.to_integer().unwrap_or(-1);
-                let shape =
-                    Revsurf::new(k, vector(b.required("base")?)?, vector(direction)?, height)
-                        .map_err(|e| match e {
-                            RevsurfError::UnknownProfile => {
-                                surfer.pos.error(SceneErrorKind::OutOfDomain {
-                                    attribute: "surfer",
-                                    rule: "1 (the cone; the profiles of 2 and 3 are not known: no \
-                               public picture shows them)",
-                                })
-                            }
-                            RevsurfError::ZeroDirection => {
-                                direction.pos.error(SceneErrorKind::OutOfDomain {
-                                    attribute: "direction",
-                                    rule: "a non-zero vector",
-                                })
-                            }
-                            RevsurfError::NonPositiveHeight => {
-                                b.error(SceneErrorKind::OutOfDomain {
-                                    attribute: "height",
-                                    rule: "> 0",
-                                })
-                            }
-                            RevsurfError::OutOfRange => {
-                                b.error(SceneErrorKind::DerivedDoesNotFit {
-                                    what: "the profile's slope",
-                                    format: S::NAME,
-                                })
-                            }
-                        })?;
-                self.push(b, Shape::Revsurf(shape), material)?;
-            }
-            Entity::TexPlane => {
-                self.textures_built_in(b)?;
-                self.register(b)?;
-                let material = self.material_index(b, "material")?;
-                let slide = self.slide(b)?;
-                self.push(b, Shape::Textured(slide), material)?;
-            }
-            Entity::Projector => {
-                self.textures_built_in(b)?;
-                if !cfg!(feature = "lighting") {
-                    return Err(b.error(SceneErrorKind::NotBuiltIn {
-                        what: "lights are",
-                        feature: "lighting",
-                    }));
-                }
-                self.register(b)?;
-                let slide = self.slide(b)?;
-                let full = || {
-                    b.error(SceneErrorKind::Full {
-                        what: "projectors",
-                        capacity: MAX_PROJECTORS,
-                    })
-                };
-                let index = u8::try_from(self.scene.projectors.len()).map_err(|_| full())?;
-                self.scene.projectors.push(slide).map_err(|_| full())?;
-                let light = Light {
-                    location: vector(b.required("location")?)?,
-                    emissivity: colour3(b.required("emissivity")?, "emissivity", self.rules)?,
-                    beam: Beam::Projector(index),
-                };
-                self.scene
-                    .lights
-                    .push(light)
-                    .map_err(|_| too_many(b, "lights", L, "LIGHTS"))?;
-            }
+            Entity::Revsurf => self.revsurf(b)?,
+            Entity::TexPlane => self.texplane(b)?,
+            Entity::Projector => self.projector(b)?,
         }
+        Ok(())
+    }
+
+    /// Not inlined, as every arm with large locals: the parser's frames are the deepest
+    /// stack of a firmware (a 16 KB chip holds a `Scene<I32F32>` beside them).
+    #[inline(never)]
+    fn texplane(&mut self, b: &Block<'a>) -> Result<()> {
+        self.textures_built_in(b)?;
+        self.register(b)?;
+        let material = self.material_index(b, "material")?;
+        let slide = self.slide(b)?;
+        self.push(b, Shape::Textured(slide), material)?;
+        Ok(())
+    }
+
+    #[inline(never)]
+    fn projector(&mut self, b: &Block<'a>) -> Result<()> {
+        self.textures_built_in(b)?;
+        if !cfg!(feature = "lighting") {
+            return Err(b.error(SceneErrorKind::NotBuiltIn {
+                what: "lights are",
+                feature: "lighting",
+            }));
+        }
+        self.register(b)?;
+        let slide = self.slide(b)?;
+        let full = || {
+            b.error(SceneErrorKind::Full {
+                what: "projectors",
+                capacity: MAX_PROJECTORS,
+            })
+        };
+        let index = u8::try_from(self.scene.projectors.len()).map_err(|_| full())?;
+        self.scene.projectors.push(slide).map_err(|_| full())?;
+        let light = Light {
+            location: vector(b.required("location")?)?,
+            emissivity: colour3(b.required("emissivity")?, "emissivity", self.rules)?,
+            beam: Beam::Projector(index),
+        };
+        self.scene
+            .lights
+            .push(light)
+            .map_err(|_| too_many(b, "lights", L, "LIGHTS"))?;
+        Ok(())
+    }
+
+    #[inline(never)]
+    fn revsurf(&mut self, b: &Block<'a>) -> Result<()> {
+        self.register(b)?;
+        let material = self.material_index(b, "material")?;
+        let surfer = &b.required("surfer")?.nums[0];
+        let direction = b.required("direction")?;
+        let height = positive::<S>(&b.required("height")?.nums[0], "height")?;
+        let k = surfer.value.to_integer().unwrap_or(-1);
+        let shape = Revsurf::new(k, vector(b.required("base")?)?, vector(direction)?, height)
+            .map_err(|e| match e {
+                RevsurfError::UnknownProfile => surfer.pos.error(SceneErrorKind::OutOfDomain {
+                    attribute: "surfer",
+                    rule: "1 (the cone; the profiles of 2 and 3 are not known: no \
+                       public picture shows them)",
+                }),
+                RevsurfError::ZeroDirection => direction.pos.error(SceneErrorKind::OutOfDomain {
+                    attribute: "direction",
+                    rule: "a non-zero vector",
+                }),
+                RevsurfError::NonPositiveHeight => b.error(SceneErrorKind::OutOfDomain {
+                    attribute: "height",
+                    rule: "> 0",
+                }),
+                RevsurfError::OutOfRange => b.error(SceneErrorKind::DerivedDoesNotFit {
+                    what: "the profile's slope",
+                    format: S::NAME,
+                }),
+            })?;
+        self.push(b, Shape::Revsurf(shape), material)?;
         Ok(())
     }
 
@@ -230,6 +235,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
 
     /// `texture NAME { filename PATH }`: the file's bytes from the caller's source, read
     /// as a binary PPM.
+    #[inline(never)]
     fn texture(&mut self, b: &Block<'a>) -> Result<()> {
         self.textures_built_in(b)?;
         let name = b.name.text;

@@ -148,7 +148,11 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
         }
     }
 
-    fn block(&mut self, entity: Entity, pos: Pos) -> Result<Block<'a>> {
+    /// Reads a block into `out` (its entity and position set): in place, since a block's
+    /// value table is the parser's largest local (a copy of it is stack on a chip).
+    #[inline(never)]
+    fn block(&mut self, out: &mut Block<'a>) -> Result<()> {
+        let (entity, pos) = (out.entity, out.pos);
         let specs = entity.attributes();
         let name = self.name()?;
         let open = self.expect("`{`")?;
@@ -157,7 +161,8 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                 .pos
                 .error(SceneErrorKind::ExpectedOpenBrace(quote(open.text))));
         }
-        let mut values: [Option<Value<'a>>; MAX_ATTRS] = [None; MAX_ATTRS];
+        out.name = name;
+        let values = &mut out.values;
         loop {
             let t = self.expect("an attribute or `}`")?;
             if t.text == "}" {
@@ -226,12 +231,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                 }));
             }
         }
-        Ok(Block {
-            entity,
-            pos,
-            name,
-            values,
-        })
+        Ok(())
     }
 
     /// Registers a name for the uniqueness rule (materials have their own list).
@@ -319,7 +319,13 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                     let Some(entity) = Entity::from_keyword(t.text) else {
                         return Err(t.pos.error(SceneErrorKind::UnknownKeyword(quote(t.text))));
                     };
-                    let block = self.block(entity, t.pos)?;
+                    let mut block = Block {
+                        entity,
+                        pos: t.pos,
+                        name: t,
+                        values: [None; MAX_ATTRS],
+                    };
+                    self.block(&mut block)?;
                     self.entity(&block)?;
                 }
             }
