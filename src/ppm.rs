@@ -110,8 +110,12 @@ impl<'a> Ppm<'a> {
         }
         let pixels = bytes.get(at + 1..).unwrap_or(&[]);
         let sample = if maxval > 255 { 2 } else { 1 };
-        // ≤ 16384² × 6 < 2^31: no overflow on 32-bit targets.
-        let expected = (width as usize) * (height as usize) * 3 * sample;
+        // ≤ 16384² × 6 < 2^31: fits a 32-bit usize (checked all the same).
+        let expected = usize::try_from(width)
+            .ok()
+            .and_then(|w| w.checked_mul(usize::try_from(height).ok()?))
+            .and_then(|n| n.checked_mul(3 * sample))
+            .ok_or(PpmError::TooLarge)?;
         let data = pixels.get(..expected).ok_or(PpmError::Truncated {
             expected,
             found: pixels.len(),
@@ -146,7 +150,12 @@ impl<'a> Ppm<'a> {
         if x >= self.width || y >= self.height {
             return None;
         }
-        let index = (y as usize * self.width as usize + x as usize) * 3;
+        let (x, y, w) = (
+            usize::try_from(x).ok()?,
+            usize::try_from(y).ok()?,
+            usize::try_from(self.width).ok()?,
+        );
+        let index = y.checked_mul(w)?.checked_add(x)?.checked_mul(3)?;
         let mut out = [0u8; 3];
         for (k, o) in out.iter_mut().enumerate() {
             let v = if self.maxval > 255 {
@@ -156,13 +165,14 @@ impl<'a> Ppm<'a> {
             } else {
                 u32::from(*self.data.get(index + k)?)
             };
-            *o = if self.maxval == 255 {
-                v as u8
+            let m = u32::from(self.maxval);
+            // v ≤ maxval after the clamp: the quotient is ≤ 255.
+            let scaled = if m == 255 {
+                v
             } else {
-                // v ≤ maxval after the clamp: the quotient is ≤ 255.
-                let m = u32::from(self.maxval);
-                ((v.min(m) * 255 + m / 2) / m) as u8
+                (v.min(m) * 255 + m / 2) / m
             };
+            *o = u8::try_from(scaled).ok()?;
         }
         Some(out)
     }

@@ -32,9 +32,12 @@ pub(crate) fn texel<S: Scalar>(
 
 /// `int(a / size · n)`, kept within `0 ..= n − 1` (the rectangle's far edge is in it).
 fn fit<S: Scalar>(a: S, size: S, n: u32) -> Option<u32> {
-    let n_s = S::from_i32(i32::try_from(n).ok()?)?;
-    let i = a.checked_div(size)?.checked_mul(n_s)?.floor_to_i32()?;
-    Some(i.clamp(0, n as i32 - 1) as u32)
+    let n = i32::try_from(n).ok()?;
+    let i = a
+        .checked_div(size)?
+        .checked_mul(S::from_i32(n)?)?
+        .floor_to_i32()?;
+    u32::try_from(i.clamp(0, n - 1)).ok()
 }
 
 /// `int(a · pixels / world) mod n`: the product first where it fits (one rounding).
@@ -45,7 +48,7 @@ fn tile<S: Scalar>(a: S, pixels: u16, world: S, n: u32) -> Option<u32> {
         None => a.checked_div(world)?.checked_mul(p)?,
     };
     let i = cells.floor_to_i32()?;
-    Some(i.rem_euclid(i32::try_from(n).ok()?) as u32)
+    u32::try_from(i.rem_euclid(i32::try_from(n).ok()?)).ok()
 }
 
 /// A material seen through a texel: ambient and diffuse times `texel / 255`, channel by
