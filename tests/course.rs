@@ -129,9 +129,11 @@ course_scenes!(
 );
 
 /// texplane3 misses the goal, and this is its measured figure (not a goal): three
-/// overlapping translucent spheres, where the instructor's picture is brighter behind
-/// the region all three cover (≈ 1 % of the pixels, in every format: what the course's
-/// rules do there is not known, `COURSE-RULES.md` §11 measures the same 1.2 %), plus
+/// overlapping translucent spheres, where the instructor's picture shows a farther
+/// surface in the region all three cover (the oak frame behind Mike's picture, the brick
+/// wall behind both: ≈ 1 % of the pixels, in every format; which object the course's
+/// transmitted ray hits there is not known, `COURSE-RULES.md` §11 measures the same
+/// 1.2 %), plus
 /// texel ties of its one-texel-per-pixel tiles, which the fixed formats' hit points
 /// (off by ~10⁻⁴ world units) move across texel edges (I16F16 2.1 %).
 #[test]

@@ -302,9 +302,14 @@ off without; translucent3 (an fplane, lights at z = 3) is exact with the full di
 texplane3 (three spheres, lights at z ≤ 0) is 1.26 % off with the full distance and
 24.4 % off with the entry distance. What the course does for a sphere lit from behind the
 screen plane is the rule above's guess from one picture; texplane3's remaining 1.26 % is
-the region all three of its spheres cover, where the instructor's picture is brighter
-(neither the far roots of spheres containing the ray's base nor light filtered by them
-reproduce it: 5.6 % and 4.1 % off).
+the region all three of its spheres cover. There the instructor's picture is darker and
+shows a farther surface than ours: the oak frame behind Mike's picture, and nearer the
+middle the brick wall behind both (5,103 of the 6,044 pixels beyond 2 levels are brighter
+in ours; 3,252 of them are rays that enter the top sphere first, the other two nested
+inside it). So it is which object the course's transmitted ray hits, not the falloff.
+Neither the far roots of spheres containing the ray's base, nor light filtered by them,
+nor leaving Mike's picture out reproduces it (5.6 %, 4.1 % off; the last shows the frame
+but far brighter).
 
 A texel is `int(a / W · tw)` (mode 0) or `int(a · pixels / world) mod tw` (mode 1, the
 product formed first where it fits), `a` the hit's plane coordinate: in the fixed

@@ -13,6 +13,7 @@
 //! the firmware and shortens the host timing (for CI, which checks the command runs).
 
 mod chip;
+mod entities;
 mod lighting;
 mod measure;
 mod plot;
@@ -196,6 +197,7 @@ pub fn main(args: &[String]) {
     let mut report = write_report(&accuracy, &host, &sweeps, &firmware, &firmware_log);
     report.push_str(&fast_section(&fast_rows, &firmware, &spans_fw));
     report.push_str(&lighting::lighting_section(&accuracy, &firmware));
+    report.push_str(&entities::entities_section(quick));
     std::fs::write(docs.join("accuracy.md"), report).expect("docs/ is writable");
     plot(&accuracy, &host, &firmware, &docs.join("accuracy.png"));
     println!("wrote docs/accuracy.md and docs/accuracy.png");
