@@ -5,7 +5,7 @@
 
 use super::*;
 
-/// The scenes: name and text. Their texture files are read beside `scenes/`.
+/// The scenes: name, what it is, text (their texture files are in `scenes/textures/`).
 const ENTITY_SCENES: [(&str, &str, &str); 4] = [
     (
         "translucent",
@@ -32,48 +32,26 @@ const ENTITY_SCENES: [(&str, &str, &str); 4] = [
 /// The firmware features with the course's entities.
 const FEATURES: &str = "lighting,spheres,reflection,textures";
 
-/// Reads a shipped scene with its texture files, in format `S`.
-fn read<S: Scalar>(text: &str) -> Scene<S> {
-    let beside = crate::root().join("scenes/x.scene");
-    let mut scene = Scene::<S>::empty();
-    scene
-        .read_with(text, None, &mut fixray::scene::files::beside(&beside))
-        .expect("shipped scenes read in every format");
-    scene
-}
-
-/// Error against f64 and host time of one format on one scene.
-struct Row {
-    differ: f64,
-    max_channel: u8,
-    ms: f64,
-}
-
-struct MeasureEntity<'a> {
+/// Host median time of one frame, in ms.
+struct FrameTime<'a> {
     text: &'a str,
     runs: usize,
 }
-impl PerFormat for MeasureEntity<'_> {
-    type Out = Row;
-    fn run<S: Scalar>(&mut self) -> Row {
+impl PerFormat for FrameTime<'_> {
+    type Out = f64;
+    fn run<S: Scalar>(&mut self) -> f64 {
         let scene = read::<S>(self.text);
-        let reference = read::<f64>(self.text);
-        let cmp = compare(&scene, &reference, |_, _, _, _| {});
         let (w, h) = (scene.camera.width, scene.camera.height);
-        let (ms, _) = median_ms(self.runs, || {
+        let mut line = vec![Rgb888::BLACK; usize::from(w)];
+        median_ms(self.runs, || {
             let mut out = Vec::with_capacity(usize::from(w) * usize::from(h));
-            let mut line = vec![Rgb888::BLACK; usize::from(w)];
             for row in 0..h {
                 render_line(std::hint::black_box(&scene), row, &mut line);
                 out.extend_from_slice(&line);
             }
             out
-        });
-        Row {
-            differ: f64::from(cmp.differing_pixels) / f64::from(cmp.pixels.max(1)),
-            max_channel: cmp.max_channel_error,
-            ms,
-        }
+        })
+        .0
     }
 }
 
@@ -94,19 +72,14 @@ pub(super) fn entities_section(quick: bool) -> String {
     for (scene, what, text) in ENTITY_SCENES {
         for (format, _) in FORMATS {
             eprintln!("entities: {scene} {format}");
-            let row = with_format(
-                format,
-                &mut MeasureEntity {
-                    text,
-                    runs: if quick { 1 } else { 5 },
-                },
-            );
+            let cmp = with_format(format, &mut MeasureAccuracy(text)).cmp;
+            let runs = if quick { 1 } else { 5 };
+            let ms = with_format(format, &mut FrameTime { text, runs });
             let _ = writeln!(
                 r,
-                "| {scene} | {what} | {format} | {:.3} % | {} | {:.2} |",
-                100.0 * row.differ,
-                row.max_channel,
-                row.ms
+                "| {scene} | {what} | {format} | {:.3} % | {} | {ms:.2} |",
+                100.0 * f64::from(cmp.differing_pixels) / f64::from(cmp.pixels.max(1)),
+                cmp.max_channel_error,
             );
         }
     }
@@ -131,7 +104,7 @@ pub(super) fn entities_section(quick: bool) -> String {
         "| core | format | {} | flash bytes |",
         ENTITY_SCENES.map(|s| s.0).join(" | ")
     );
-    let _ = writeln!(r, "|---|---|---|---|---|---|---|");
+    let _ = writeln!(r, "|---|---|{}---|", "---|".repeat(ENTITY_SCENES.len()));
     for (target, core) in qemu::CORES {
         for format in ["i16f16", "f32"] {
             eprintln!("entities firmware: {core} {format}");
@@ -150,7 +123,8 @@ pub(super) fn entities_section(quick: bool) -> String {
                     );
                 }
                 Err(e) => {
-                    let _ = writeln!(r, "| {core} | {format} | run failed: {e} | | | | |");
+                    let rest = " |".repeat(ENTITY_SCENES.len());
+                    let _ = writeln!(r, "| {core} | {format} | run failed: {e}{rest}");
                 }
             }
         }

@@ -24,12 +24,22 @@ pub(super) struct Accuracy {
     pub(super) delta: f64,
 }
 
+/// Reads a shipped scene in format `S`, with the texture files it names (from `scenes/`).
+pub(super) fn read<S: Scalar>(text: &str) -> Scene<S> {
+    let beside = crate::root().join("scenes/x.scene");
+    let mut scene = Scene::<S>::empty();
+    scene
+        .read_with(text, None, &mut fixray::scene::files::beside(&beside))
+        .expect("shipped scenes read in every format");
+    scene
+}
+
 pub(super) struct MeasureAccuracy<'a>(pub(super) &'a str);
 impl PerFormat for MeasureAccuracy<'_> {
     type Out = Accuracy;
     fn run<S: Scalar>(&mut self) -> Accuracy {
-        let scene = Scene::<S>::parse(self.0).expect("shipped scenes parse in every format");
-        let reference = Scene::<f64>::parse(self.0).expect("and in f64");
+        let scene = read::<S>(self.0);
+        let reference = read::<f64>(self.0);
         let cmp = compare(&scene, &reference, |_, _, _, _| {});
         let ssim = image_compare::rgb_similarity_structure(
             &image_compare::Algorithm::MSSIMSimple,
