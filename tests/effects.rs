@@ -275,3 +275,59 @@ fn effects_stay_within_their_budgets_against_f64() {
         assert!(f32 <= wide_budget, "{name} f32: {f32}");
     }
 }
+
+/// The course's shadow ray of a sphere's hit goes on past a translucent occluder and
+/// leaves the sphere's record of its hit at the line's crossing behind it
+/// (`COURSE-RULES.md` §11, fitted on texplane3): the transmitted ray then starts there.
+/// A translucent sphere `A` lit from straight above, through an opaque occluder `O` and
+/// a translucent one `B` stacked out of view; behind `A` an unlit checkerboard wall. With
+/// `O` nearest, the shadow ray stops at it and `A`'s transmitted rays start at their
+/// hits: the picture is the one without `B`. With `B` nearest, they start behind `A`'s
+/// lit side, and what `A` shows of the wall moves.
+fn moved_transmission<S: Scalar>() {
+    let scene = |stack: &str| {
+        format!(
+            "camera c {{ pixeldim 64 48 worlddim 8 6 viewpoint 4 3 10 }}
+             material glass {{ ambient 0.5 0.5 0.5 diffuse 4 4 4 transparency 0.6 }}
+             material dark {{ ambient 1 1 1 }}
+             material pale {{ ambient 6 6 6 }}
+             material black {{ diffuse 1 1 1 }}
+             light top {{ location 4 20 -3 emissivity 9 9 9 }}
+             sphere a {{ material glass center 4 3 -3 radius 1.5 }}
+             tiled_plane wall {{ material dark normal 0 0 1 point 0 0 -8 dimensions 0.25 0.25
+                 altmaterial pale xdir 1 0 0 }}
+             {stack}"
+        )
+    };
+    let opaque = |y: f64| format!("sphere o {{ material black center 4 {y} -3 radius 1 }}\n");
+    let translucent = |y: f64| format!("sphere b {{ material glass center 4 {y} -3 radius 1 }}\n");
+    let picture = |text: String| {
+        let scene = Scene::<S>::parse(&text).unwrap();
+        let mut pixels = vec![Rgb888::BLACK; 64 * 48];
+        for (row, line) in (0..48).zip(pixels.chunks_mut(64)) {
+            fixray::render_line(&scene, row, line);
+        }
+        pixels
+    };
+    let without_b = picture(scene(&opaque(10.0)));
+    let o_nearest = picture(scene(&(opaque(10.0) + &translucent(14.0))));
+    let b_nearest = picture(scene(&(translucent(10.0) + &opaque(14.0))));
+    let differ = |a: &[Rgb888], b: &[Rgb888]| a.iter().zip(b).filter(|(p, q)| p != q).count();
+    assert_eq!(
+        differ(&o_nearest, &without_b),
+        0,
+        "{}: pixels that moved behind an opaque occluder",
+        S::NAME
+    );
+    let moved = differ(&b_nearest, &without_b);
+    assert!(
+        moved >= 20,
+        "{}: {moved} pixels show the moved transmission",
+        S::NAME
+    );
+}
+
+#[test]
+fn a_course_shadow_ray_past_a_translucent_occluder_moves_the_transmission() {
+    fixray::for_each_format!(moved_transmission());
+}

@@ -276,3 +276,84 @@ fn epsilon_is_a_parameter<S: Scalar>() {
 fn the_epsilon_is_an_explicit_parameter() {
     every_format!(epsilon_is_a_parameter);
 }
+
+/// `crossing_along` from an unnormalised direction: the notes' example with the
+/// direction (0, 0, −4) lands exactly on (4, 3, −7); towards a course floor at grazing
+/// angles (the eye of texplane3, screen points of its 800×600 corner grid) its point
+/// stays within its rounding bound of the exact crossing, and in a coarse format it is
+/// far nearer the exact crossing than the unit ray's point (whose direction rounding
+/// is amplified by t/|N·d|).
+fn crossing_along<S: Scalar>() {
+    let plane = Plane::new(v::<S>(0.0, 0.0, 1.0), v(0.0, 0.0, -7.0)).unwrap();
+    let p = plane
+        .crossing_along(v(4.0, 3.0, 5.0), v(0.0, 0.0, -4.0))
+        .unwrap();
+    assert_eq!(p.to_f64(), [4.0, 3.0, -7.0], "{}", S::NAME);
+    assert!(
+        plane
+            .crossing_along(v(4.0, 3.0, 5.0), v(1.0, 0.0, 0.0))
+            .is_none(),
+        "{}: parallel",
+        S::NAME
+    );
+
+    let floor = Plane::new(v::<S>(0.0, 1.0, 0.0), v(0.0, 0.0, 0.0)).unwrap();
+    let eye = [6.0, 3.0, 10.0];
+    let delta = S::DELTA.to_f64();
+    let (mut along, mut unit, mut n) = (0.0, 0.0, 0.0);
+    for row in (400..600).step_by(7) {
+        for column in (0..800).step_by(13) {
+            let screen = [
+                12.0 * f64::from(column) / 799.0,
+                9.0 * f64::from(599 - row) / 599.0,
+            ];
+            let d: Vec3<S> = v(screen[0], screen[1], 0.0)
+                .diff(v(eye[0], eye[1], eye[2]))
+                .unwrap();
+            let df = d.to_f64();
+            // The exact crossing of the rounded direction (the screen point's rounding is
+            // the input, not the test's error).
+            let s = -eye[1] / df[1];
+            let exact = [eye[0] + s * df[0], 0.0, eye[2] + s * df[2]];
+            let err = |q: [f64; 3]| (q[0] - exact[0]).abs().max((q[2] - exact[2]).abs());
+            let q = floor
+                .crossing_along(v(eye[0], eye[1], eye[2]), d)
+                .unwrap()
+                .to_f64();
+            let norm = df.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+            let bound = (s * norm / (2.0 * df[1].abs()) + norm + 2.0) * delta;
+            assert!(
+                err(q) <= bound,
+                "{} row {row} column {column}: off by {:e}, bound {:e}",
+                S::NAME,
+                err(q),
+                bound
+            );
+            let r = Ray {
+                base: v(eye[0], eye[1], eye[2]),
+                dir: d.unit().unwrap(),
+                kind: RayKind::Secondary,
+            };
+            // (A ray within the epsilon of parallel misses the unit test.)
+            if let Ok(h) = floor.intersect(&r, S::DEFAULT_EPSILON) {
+                along += err(q);
+                unit += err(h.point.to_f64());
+                n += 1.0;
+            }
+        }
+    }
+    if delta >= 1e-6 {
+        assert!(
+            along * 4.0 < unit,
+            "{}: mean error {:e} along the screen direction, {:e} along the unit one",
+            S::NAME,
+            along / n,
+            unit / n
+        );
+    }
+}
+
+#[test]
+fn crossing_along_an_unnormalised_direction_keeps_its_precision() {
+    every_format!(crossing_along);
+}

@@ -158,3 +158,78 @@ fn a_segment_from_a_surface_does_not_meet_it_again_unless_it_goes_through() {
         "ends inside: no exit"
     );
 }
+
+/// `Sphere::near_crossing` from a point on the surface along a direction leaving it
+/// (`(P − c)·u > 0`): the line's other crossing, behind the point, `P + s·u` with
+/// `s = −b − √(b² − f₀)` (≈ −2b), within `64 (1 + r)(1 + (1 + r)/√disc)` DELTAs of the
+/// f64 value from the same rounded inputs, in every main format; a line past the
+/// sphere has none. (What the course rules use where a shadow ray of a sphere's hit
+/// goes on past a translucent occluder: `COURSE-RULES.md` §11.)
+fn near_crossing<S: Scalar>() {
+    let mut rng = Rng(0x5eed_0c1a);
+    let delta = S::DELTA.to_f64();
+    let mut checked = 0;
+    for _ in 0..20_000 {
+        let c = rng.vec(5.0);
+        let r = 0.5 + 1.75 * (rng.next() + 1.0);
+        let (Some(sphere), Some(center)) = (
+            S::from_f64(r).and_then(|r| Sphere::new(v::<S>(c), r).ok()),
+            Vec3::<S>::from_f64(c),
+        ) else {
+            continue;
+        };
+        let n = rng.vec(1.0);
+        let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let u = rng.vec(1.0);
+        let ulen = u.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if len < 0.1 || ulen < 0.1 {
+            continue;
+        }
+        let p: Vec3<S> = v([
+            c[0] + r * n[0] / len,
+            c[1] + r * n[1] / len,
+            c[2] + r * n[2] / len,
+        ]);
+        let Some(u) = v::<S>(u).unit() else { continue };
+        // f64 truth from the rounded inputs.
+        let (pf, uf, cf, rf) = (
+            p.to_f64(),
+            u.to_f64(),
+            center.to_f64(),
+            sphere.radius().to_f64(),
+        );
+        let oc = [pf[0] - cf[0], pf[1] - cf[1], pf[2] - cf[2]];
+        let b = oc[0] * uf[0] + oc[1] * uf[1] + oc[2] * uf[2];
+        let f0 = oc.iter().map(|x| x * x).sum::<f64>() - rf * rf;
+        let uu = uf.iter().map(|x| x * x).sum::<f64>();
+        let disc = b * b - uu * f0;
+        if b < 0.1 * rf || disc <= 0.0 {
+            continue;
+        }
+        let s = -(b + disc.sqrt()) / uu;
+        let want = [pf[0] + s * uf[0], pf[1] + s * uf[1], pf[2] + s * uf[2]];
+        let got = sphere
+            .near_crossing(p, u)
+            .expect("a line through the surface")
+            .to_f64();
+        let err = (0..3).map(|k| (got[k] - want[k]).abs()).fold(0.0, f64::max);
+        let bound = 64.0 * (1.0 + rf) * (1.0 + (1.0 + rf) / disc.sqrt()) * delta;
+        assert!(err <= bound, "{}: off by {err:e}, bound {bound:e}", S::NAME);
+        checked += 1;
+    }
+    assert!(checked > 5_000, "{}: only {checked} cases", S::NAME);
+    // A line that passes the sphere by has no crossing.
+    let sphere = Sphere::new(v::<S>([0.0, 0.0, 0.0]), S::ONE).unwrap();
+    assert!(
+        sphere
+            .near_crossing(v([0.0, 2.0, 0.0]), v([1.0, 0.0, 0.0]))
+            .is_none(),
+        "{}",
+        S::NAME
+    );
+}
+
+#[test]
+fn a_sphere_line_crossing_behind_a_surface_point_is_accurate_in_every_format() {
+    fixray::for_each_format!(near_crossing());
+}

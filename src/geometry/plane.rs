@@ -78,6 +78,18 @@ impl<S: Scalar> Plane<S> {
 }
 
 impl<S: Scalar> Plane<S> {
+    /// Where the line from `base` along `dir` of any length meets the plane,
+    /// `base + s·dir` with `s = (D' − N·base)/(N·dir)`. [`Plane::intersect`]'s point
+    /// carries the rounding of its unit direction, times `t/|N·d|` (at a grazing angle
+    /// far more than `t`); with the unnormalised direction of a pixel's primary ray
+    /// (exact to one rounding of the screen point) it keeps that precision. `None` when
+    /// `N·dir = 0` or a quantity does not fit.
+    pub fn crossing_along(&self, base: Vec3<S>, dir: Vec3<S>) -> Option<Vec3<S>> {
+        let s = S::sub_dot3(self.offset, self.normal.to_array(), base.to_array())?
+            .checked_div(self.normal.dot(dir)?)?;
+        base.sum(dir.scale(s)?)
+    }
+
     /// Whether the plane meets the ray at some `0 <= t < dist` (a shadow test, pbrt's
     /// `BasicIntersect`): the tests of [`Plane::intersect`] without its division.
     /// `t = num / (N·d)` with `num = D' − N·b`, so

@@ -159,6 +159,17 @@ impl<S: Scalar> Shape<S> {
         }
     }
 
+    /// How far along the course's shadow ray from `from` towards `from + l` it meets
+    /// this shape ([`Shape::intersect_course`] on the unit ray); `None` for a miss. What
+    /// orders a segment's occluders where that matters (a translucent one before an
+    /// opaque one).
+    pub fn distance_course(&self, from: Vec3<S>, l: Vec3<S>, epsilon: S, z_limit: S) -> Option<S> {
+        let (ray, _) = unit_ray(from, l)?;
+        self.intersect_course(&ray, epsilon, z_limit)
+            .ok()
+            .map(|h| h.t)
+    }
+
     /// The course's shadow test along the segment from `from` (a hit point: the caller
     /// skips the object it lies on) to the light at `from + l` (`ll = l·l`): what
     /// [`Shape::intersect_course`] with `t < dist` decides for the unit ray, from signs

@@ -233,6 +233,21 @@ impl<S: Scalar> Sphere<S> {
         f0.checked_div(root)
     }
 
+    /// Where the line through `from` along the unit direction `u` crosses the sphere at
+    /// its near root `s = −(b + √(b² − f₀))` (`b = (from − c)·u`, `f₀ = |from − c|² − r²`),
+    /// which may lie behind `from`: for a point on the surface and a direction leaving
+    /// it (`b > 0`), the line's other crossing. The two terms of the sum have one sign
+    /// (no cancellation). `None` when the line misses or a quantity does not fit.
+    pub fn near_crossing(&self, from: Vec3<S>, u: Vec3<S>) -> Option<Vec3<S>> {
+        let (b, f0) = self.segment_terms(from, u)?;
+        let disc = b.checked_mul(b)?.checked_sub(f0)?;
+        if disc < S::ZERO {
+            return None;
+        }
+        let s = b.checked_add(disc.checked_sqrt()?)?.checked_neg()?;
+        from.sum(u.scale(s)?)
+    }
+
     /// The outward unit normal at a point on the surface.
     pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
         point.diff(self.center)?.unit()

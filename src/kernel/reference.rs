@@ -8,7 +8,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 use super::fast::{self, Primary, Row};
 use crate::shade::color::to_pixel;
 use crate::shade::stages::Stages;
-use crate::shade::{Incoming, PlaneSides, shade_with, trace_with};
+use crate::shade::{Incoming, PlaneSides, shade_with, trace_pixel_ray};
 use crate::stats::{Counters, count};
 use crate::{Hit, Scalar, SceneView};
 
@@ -75,8 +75,8 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                 shade_with::<S, T>(scene, &incoming, h.index, &hit, 0, counters)
             }
             Some(None) => scene.background,
-            None => match y.and_then(|y| scene.camera.primary_ray_at(column, y)) {
-                Some(ray) => trace_with::<S, T>(scene, &ray, 0, counters).color,
+            None => match y.and_then(|y| scene.camera.pixel_ray_at(column, y)) {
+                Some(pixel) => trace_pixel_ray::<S, T>(scene, &pixel, counters).color,
                 None => scene.background,
             },
         };

@@ -71,14 +71,32 @@ impl<S: Scalar> Camera<S> {
 
     /// The primary ray through pixel `column` of the scanline whose screen y is `y`.
     pub fn primary_ray_at(&self, column: u16, y: S) -> Option<Ray<S>> {
+        self.pixel_ray_at(column, y).map(|p| p.ray)
+    }
+
+    /// [`Camera::primary_ray_at`] with the unnormalised direction it is made from.
+    pub(crate) fn pixel_ray_at(&self, column: u16, y: S) -> Option<PixelRay<S>> {
         let x = self.screen_x(column)?;
-        let dir = Vec3::new(x, y, S::ZERO).diff(self.viewpoint)?.unit()?;
-        Some(Ray {
-            base: self.viewpoint,
-            dir,
-            kind: RayKind::Primary,
+        let toward = Vec3::new(x, y, S::ZERO).diff(self.viewpoint)?;
+        Some(PixelRay {
+            ray: Ray {
+                base: self.viewpoint,
+                dir: toward.unit()?,
+                kind: RayKind::Primary,
+            },
+            toward,
         })
     }
+}
+
+/// A pixel's primary ray and the unnormalised direction it is made from, screen point −
+/// viewpoint: exact to one rounding of the screen point, where the unit direction carries
+/// the rounding of a normalisation (`course::trace_course` finds its textured planes'
+/// points from it).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PixelRay<S> {
+    pub(crate) ray: Ray<S>,
+    pub(crate) toward: Vec3<S>,
 }
 
 /// `size · k / n` on the corner grid; a single pixel (`n = 0`) looks through 0.

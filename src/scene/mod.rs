@@ -25,6 +25,7 @@ mod parse;
 mod plan;
 mod rules;
 
+pub(crate) use camera::PixelRay;
 pub use camera::{Camera, PixelGrid};
 pub use parse::{MAX_QUOTED, Quoted, SceneError, SceneErrorKind, TextureProblem};
 pub use plan::Plan;

@@ -61,6 +61,20 @@ pub(crate) fn nearest_course<S: Scalar>(
     best
 }
 
+/// Whether the format's unit directions are too coarse for texel lookups: a pixel's unit
+/// direction is off by up to `DELTA/2` per component, which moves a plane's hit by up to
+/// `t/|N·d|` times that, ≈ 500 `DELTA` on a course floor seen at a grazing angle (t ≈ 20,
+/// |N·d| ≈ 0.04), against texels ≈ 0.015 world units wide: below 1 % of a texel only
+/// when `DELTA < 2⁻²²`. Coarser formats (I16F16, I20F12) find a pixel's textured planes
+/// from its unnormalised direction, [`crate::Plane::crossing_along`] (texplane3's floor
+/// in I16F16: 2.7 % of its pixels on another texel than f64's with the unit direction,
+/// 0.08 % with this); the finer ones (I32F32, the floats) take the unit ray's point,
+/// which is what the course itself computes, and so break exact texel-edge ties as the
+/// course does.
+fn coarse_directions<S: Scalar>() -> bool {
+    S::DELTA.checked_mul_int(1 << 22).is_none_or(|d| d > S::ONE)
+}
+
 /// The most rays a course pixel keeps waiting: a hit both mirror and translucent
 /// continues along one and keeps the other here (no material of the course's files is
 /// both); a branch beyond this many is dropped (it would add black).
@@ -111,6 +125,7 @@ pub(crate) fn filter_of<S: Scalar>(m: &Material<S>) -> Option<[S; 3]> {
 pub(crate) fn trace_course<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     ray: &Ray<S>,
+    toward: Option<Vec3<S>>,
     counters: &mut Counters,
 ) -> Traced<S> {
     let max_path = S::from_i32(MAX_PATH).unwrap_or(S::MAX);
@@ -152,14 +167,31 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
         if was_primary {
             first = Some((index, hit));
         }
+        // In a coarse format a pixel's textured plane takes its point (and so its texel)
+        // from the pixel's unnormalised direction (see `coarse_directions`).
+        let refine = was_primary && coarse_directions::<S>();
+        let hit = match (refine, toward, scene.objects.get(index).map(|o| &o.shape)) {
+            (true, Some(d), Some(crate::Shape::Textured(slide))) => Hit {
+                point: slide
+                    .frame
+                    .plane()
+                    .crossing_along(ray.base, d)
+                    .unwrap_or(hit.point),
+                ..hit
+            },
+            _ => hit,
+        };
         let Some((object, material)) = surface(scene, index, hit.point, counters) else {
             continue;
         };
         let Some(travelled) = travelled.checked_add(hit.t) else {
             continue;
         };
-        let normal = object.shape.normal_at(hit.point);
+        let mut normal = object.shape.normal_at(hit.point);
         let mut own = material.ambient;
+        // Where the rays leaving the hit start: the hit, or where a shadow ray of its
+        // lights moved the course's record of it (`light::moved_hit`).
+        let mut from = hit.point;
         if T::LIGHTING
             && let Some(n) = normal
         {
@@ -167,7 +199,7 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
                 index,
                 z_limit: z_limit::<S>(),
             };
-            light_with(
+            let moved = light_with(
                 scene,
                 &Incoming::from(&ray),
                 object,
@@ -179,6 +211,10 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
                 &mut own,
                 counters,
             );
+            if let Some((point, n)) = moved {
+                from = point;
+                normal = Some(n);
+            }
         }
         // A translucent surface keeps (1 − T) of its own colour and of its mirror image.
         let filter = if T::TRANSPARENCY {
@@ -208,7 +244,7 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
             if w != [S::ZERO; 3] {
                 next = Some(Branch {
                     ray: Ray {
-                        base: hit.point,
+                        base: from,
                         dir: ray.dir,
                         kind: RayKind::Secondary,
                     },
@@ -248,7 +284,7 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
         }
         let mirror = Branch {
             ray: Ray {
-                base: hit.point,
+                base: from,
                 dir,
                 kind: RayKind::Secondary,
             },

@@ -18,6 +18,7 @@ mod light;
 pub(crate) mod stages;
 mod texture;
 
+use crate::scene::PixelRay;
 use crate::stats::{Counters, count};
 use crate::{
     AsView, Color, Hit, Material, Object, Ray, Rules, Scalar, SceneView, Shape, Tiling, Vec3,
@@ -253,7 +254,8 @@ fn own_color<S: Scalar, T: Stages>(
     };
     if lit {
         let stages = stages::LightStages::of::<T>();
-        light_with(
+        // The crate's rules never move a hit.
+        let _ = light_with(
             scene, ray, object, &material, hit, facing, None, stages, &mut color, counters,
         );
     }
@@ -280,7 +282,7 @@ pub(crate) fn trace_with<S: Scalar, T: Stages>(
     counters: &mut Counters,
 ) -> Traced<S> {
     if scene.rules() == Rules::Course {
-        return course::trace_course::<S, T>(scene, ray, counters);
+        return course::trace_course::<S, T>(scene, ray, None, counters);
     }
     let hit = nearest(scene, ray);
     let color = match &hit {
@@ -326,6 +328,20 @@ pub struct Traced<S> {
     pub color: Color<S>,
 }
 
+/// Traces a pixel's primary ray with the stages of `T`: [`trace_with`], and under the
+/// course rules with the pixel's unnormalised direction for its textured planes' points
+/// (see [`course::trace_course`]).
+pub(crate) fn trace_pixel_ray<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    pixel: &PixelRay<S>,
+    counters: &mut Counters,
+) -> Traced<S> {
+    if scene.rules() == Rules::Course {
+        return course::trace_course::<S, T>(scene, &pixel.ray, Some(pixel.toward), counters);
+    }
+    trace_with::<S, T>(scene, &pixel.ray, 0, counters)
+}
+
 /// Traces one ray: its nearest hit and colour, with the stages the scene's plan needs.
 pub fn trace<S: Scalar>(scene: &impl AsView<S>, ray: &Ray<S>) -> Traced<S> {
     let scene = &scene.view();
@@ -360,10 +376,14 @@ pub(crate) fn trace_pixel_with<S: Scalar>(
     column: u16,
     row: u16,
 ) -> Traced<S> {
-    match scene.camera.primary_ray(column, row) {
-        Some(ray) => with_stages!(
+    let pixel = scene
+        .camera
+        .screen_y(row)
+        .and_then(|y| scene.camera.pixel_ray_at(column, y));
+    match pixel {
+        Some(pixel) => with_stages!(
             shading,
-            trace_one::<S>(scene, &ray, &mut Counters::default())
+            trace_pixel_ray::<S>(scene, &pixel, &mut Counters::default())
         ),
         None => Traced {
             hit: None,
