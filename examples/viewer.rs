@@ -135,12 +135,18 @@ mod window {
         differ: f64,
     }
 
-    /// The scene drawn by `rules` if given, else by its file's rules.
+    /// The scene file's path, for its texture files (none for the built-in scene).
+    static SCENE_PATH: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
+
+    /// The scene drawn by `rules` if given, else by its file's rules, its textures read
+    /// from beside the scene file.
     fn read<S: Scalar>(text: &str, rules: Option<Rules>) -> Result<Scene<S>, fixray::SceneError> {
-        match rules {
-            Some(r) => Scene::<S>::parse_as(text, r),
-            None => Scene::<S>::parse(text),
+        let mut scene = Scene::<S>::empty();
+        match SCENE_PATH.get() {
+            Some(path) => scene.read_with(text, rules, &mut fixray::scene::files::beside(path))?,
+            None => scene.read_with(text, rules, &mut |_| None)?,
         }
+        Ok(scene)
     }
 
     fn scene_for<S: Scalar>(
@@ -237,7 +243,10 @@ mod window {
     pub fn run() -> Result<(), String> {
         let o = options()?;
         let text = match &o.scene {
-            Some(path) => std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?,
+            Some(path) => {
+                let _ = SCENE_PATH.set(path.into());
+                std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?
+            }
             None => DEFAULT_SCENE.to_string(),
         };
         let probe = read::<f64>(&text, o.rules).map_err(|e| {

@@ -10,11 +10,11 @@ use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::SimulatorDisplay;
 
-#[test]
-fn the_viewer_draws_the_scene_headless() {
+/// The viewer example, built in this test's profile (`cargo test --test viewer` does
+/// not build examples).
+fn viewer() -> std::path::PathBuf {
     let exe = std::env::current_exe().unwrap();
     let dir = exe.parent().and_then(Path::parent).unwrap();
-    // `cargo test --test viewer` does not build examples: build it, in this profile.
     let mut build = Command::new(env!("CARGO"));
     build.args([
         "build",
@@ -31,14 +31,38 @@ fn the_viewer_draws_the_scene_headless() {
         build.status().unwrap().success(),
         "building the viewer example"
     );
-    let viewer = dir.join("examples").join("viewer");
-    let out = std::env::temp_dir().join(format!("fixray-viewer-{}", std::process::id()));
+    dir.join("examples").join("viewer")
+}
+
+/// A fresh directory for one test's output.
+fn out_dir(name: &str) -> std::path::PathBuf {
+    let out = std::env::temp_dir().join(format!("fixray-viewer-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&out).unwrap();
+    out
+}
+
+/// How many colours a screenshot holds.
+fn colours(shot: &Path) -> usize {
+    let image = SimulatorDisplay::<Rgb888>::load_png(shot).unwrap();
+    let size = image.size();
+    let mut colours = std::collections::BTreeSet::new();
+    for y in 0..size.height as i32 {
+        for x in 0..size.width as i32 {
+            let c = image.get_pixel(Point::new(x, y));
+            colours.insert((c.r(), c.g(), c.b()));
+        }
+    }
+    colours.len()
+}
+
+#[test]
+fn the_viewer_draws_the_scene_headless() {
+    let out = out_dir("fly");
     let shot = out.join("shot.png");
     let record = out.join("frames");
     let run = Command::new("xvfb-run")
         .arg("-a")
-        .arg(&viewer)
+        .arg(viewer())
         .args(["--frames", "3", "--fly", "--screenshot"])
         .arg(&shot)
         .arg("--record")
@@ -55,18 +79,26 @@ fn the_viewer_draws_the_scene_headless() {
     );
     // Three recorded frames, and a screenshot that is a picture.
     assert_eq!(std::fs::read_dir(&record).unwrap().count(), 3);
-    let image = SimulatorDisplay::<Rgb888>::load_png(&shot).unwrap();
-    let size = image.size();
-    let mut colours = std::collections::BTreeSet::new();
-    for y in 0..size.height as i32 {
-        for x in 0..size.width as i32 {
-            let c = image.get_pixel(Point::new(x, y));
-            colours.insert((c.r(), c.g(), c.b()));
-        }
-    }
-    assert!(
-        colours.len() > 100,
-        "a blank or flat screenshot: {} colours",
-        colours.len()
-    );
+    let n = colours(&shot);
+    assert!(n > 100, "a blank or flat screenshot: {n} colours");
+}
+
+/// A scene with a texture: the viewer reads its PPM from beside the scene file (as the
+/// `render` example does) and shows the textured wall.
+#[test]
+fn the_viewer_reads_a_scenes_texture_files() {
+    let out = out_dir("texture");
+    let shot = out.join("shot.png");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/texplane.scene");
+    let run = Command::new("xvfb-run")
+        .arg("-a")
+        .arg(viewer())
+        .arg(&scene)
+        .args(["--frames", "1", "--screenshot"])
+        .arg(&shot)
+        .output()
+        .expect("xvfb-run and the viewer example (cargo test --features window builds it)");
+    assert!(run.status.success(), "{run:?}");
+    let n = colours(&shot);
+    assert!(n > 100, "a blank or flat screenshot: {n} colours");
 }
