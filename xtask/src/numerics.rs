@@ -299,23 +299,48 @@ with `dist' = (1 − s)|L|`, `s` the entry's share of the segment from the spher
 near root `f₀ / (√(b² − |L|² f₀) − b)`. `COURSE-RULES.md` §11 leaves this open; the
 pictures decide it: translucent (one sphere, lights at z = 3) is exact with it and 37.8 %
 off without; translucent3 (an fplane, lights at z = 3) is exact with the full distance;
-texplane3 (three spheres, lights at z ≤ 0) is 1.26 % off with the full distance and
-24.4 % off with the entry distance. What the course does for a sphere lit from behind the
-screen plane is the rule above's guess from one picture; texplane3's remaining 1.26 % is
-the region all three of its spheres cover. There the instructor's picture is darker and
-shows a farther surface than ours: the oak frame behind Mike's picture, and nearer the
-middle the brick wall behind both (5,103 of the 6,044 pixels beyond 2 levels are brighter
-in ours; 3,252 of them are rays that enter the top sphere first, the other two nested
-inside it). So it is which object the course's transmitted ray hits, not the falloff.
-Neither the far roots of spheres containing the ray's base, nor light filtered by them,
-nor leaving Mike's picture out reproduces it (5.6 %, 4.1 % off; the last shows the frame
-but far brighter).
+texplane3 (three spheres, lights at z ≤ 0) fits the full distance and is 24.4 % off with
+the entry distance. What the course does for a sphere lit from behind the screen plane
+is the rule above's guess from these pictures.
+
+**The moved hit.** A sphere's hit can move while its lights are summed, a rule no source
+states, found on texplane3, where three overlapping translucent spheres light each other
+through one another. When a shadow ray of a sphere's hit `P` goes on past a translucent
+occluder (the occluder nearest `P` is translucent), the course intersects the ray again
+from the occluder with every object but the occluder, the lit sphere among them. A
+sphere keeps the point of its near root before it rejects a negative one, and seen from
+beyond the sphere that root is the line's other crossing `X`, behind `P`. The lights
+after that one are summed at `X` with `X`'s normal (the light itself was summed at `P`),
+and the transmitted and the mirror ray leave from `X`. `X = P + s u`, `u` the unit
+direction to the light, `s = −(b + √(b² − f₀))`, `b = (P − c)·u > 0`, `f₀ = |P − c|² − r²`:
+the two terms have one sign, no cancellation (`Sphere::near_crossing`; tests/segments.rs
+holds it within `64 (1 + r)(1 + (1 + r)/√disc) δ` in every main format). How it was found:
+every pixel beyond 2 levels had a sphere hit whose shadow ray crossed another sphere
+(5,261 of 5,261 in the spheres; 737 such pixels were within 2 levels), and their
+difference was larger than that light's whole share: what changed was what the pixel
+showed behind the sphere, the straight-edged regions of the picture following the
+curves where two spheres intersect. texplane3: 1.259 % of pixels beyond 2 levels
+without the rule, 0.163 % with it (f64); with the light itself summed at `X` 0.655 %;
+with `X` for the lights but the transmitted ray still from `P` 1.248 %. Where an opaque
+occluder is nearest, the shadow ray stops and nothing moves (tests/effects.rs). Planes
+keep their hit: their test forms its point only for `t ≥ 0`, as the lecture's
+`plane_hits()` does.
 
 A texel is `int(a / W · tw)` (mode 0) or `int(a · pixels / world) mod tw` (mode 1, the
-product formed first where it fits), `a` the hit's plane coordinate: in the fixed
-formats the hit point is off by ~`t δ`, which moves `a` across a texel edge on the pixels
-whose `a` lies that close to one. With one texel per screen pixel (mode 1) that is a thin
-line along every texel edge where neighbouring texels differ (texplane3 in I16F16: 2.1 %
-of pixels beyond 2 levels against the instructor's picture, 1.26 % in f64)."#
+product formed first where it fits), `a` the hit's plane coordinate. A plane's hit on a
+unit ray is off by up to `t/|N·d|` times the unit direction's rounding (`δ/2` per
+component): at a grazing angle far more than `t δ`, and on texplane3's oak floor seen
+towards its far edge (t ≈ 20, |N·d| ≈ 0.15) about 13 % of a texel in I16F16. So in a
+format with `δ ≥ 2⁻²²` (I16F16, I20F12) a pixel's textured plane takes its point from
+the pixel's unnormalised direction, screen point − eye, exact to the screen point's one
+rounding (`Plane::crossing_along`; tests/plane.rs bounds it by
+`(s‖d‖/(2|N·d|) + ‖d‖ + 2) δ`). Measured on texplane3's floor in I16F16 (a seeded sweep of
+its pixels in Python): 2.7 % of them on another texel than the exact crossing with the
+unit ray, 0.08 % with this. texplane3 in I16F16: 1.008 % of pixels beyond 2 levels
+before, 0.625 % after; texplane1 0.230 → 0.105 %. The finer formats keep the unit ray's
+point: that is what the course computes, and exact texel-edge ties (texplane3's row 566
+lies on one) then break as in the course's picture (with the refined point I32F32's
+texplane3 would be 0.306 % instead of 0.204 %, f64's texplane1 0.064 % instead of
+0.025 %)."#
     );
 }
