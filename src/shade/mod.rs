@@ -254,7 +254,7 @@ fn own_color<S: Scalar, T: Stages>(
     };
     if lit {
         let stages = stages::LightStages::of::<T>();
-        // The crate's rules never move a hit.
+        // (Only the course rules move a hit.)
         let _ = light_with(
             scene, ray, object, &material, hit, facing, None, stages, &mut color, counters,
         );
