@@ -279,3 +279,35 @@ fn course_entities_on_the_chips() {
     .unwrap();
     assert!(mismatches.is_empty(), "{mismatches:?}");
 }
+
+/// The largest format's scene (I32F32, 6.5 KB) over every shipped scene of the crate's
+/// rules on the Cortex-M0's 16 KB of RAM: the mirror scene's four reflections make the
+/// deepest stack (16,268 bytes measured), with about a hundred bytes to spare. A frame
+/// that grows past that is a HardFault under QEMU (QEMU then exits with an error), or a
+/// report above 16 KB: either fails here.
+#[test]
+#[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
+fn i32f32_fits_the_cortex_m0_in_every_shipped_scene() {
+    assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
+    let names = [
+        "default",
+        "planes",
+        "horizon",
+        "spheres",
+        "tiles",
+        "specular",
+        "spotlight",
+        "mirror",
+        "triangles",
+        "course",
+    ];
+    let run = qemu::run("thumbv6m-none-eabi", "i32f32", &names.join(","))
+        .unwrap_or_else(|e| panic!("I32F32 on the Cortex-M0: {e}"));
+    assert_eq!(run.frames.len(), names.len(), "{:?}", run.frames);
+    for (f, name) in run.frames.iter().zip(names) {
+        assert_eq!(f.get("scene"), name);
+        let ram = run.static_ram + f.number("stack").expect("reported");
+        println!("i32f32 cortex-m0 {name}: {ram} bytes of RAM (static + deepest stack)");
+        assert!(ram <= 16 * 1024, "{name}: {ram} bytes of RAM");
+    }
+}

@@ -24,7 +24,7 @@ use super::{Incoming, Traced, surface};
 use crate::stats::{Counters, count};
 use heapless::Vec;
 
-use crate::{Hit, Material, Object, Ray, RayKind, Scalar, SceneView, Vec3};
+use crate::{Hit, Material, Ray, RayKind, Scalar, SceneView, Vec3};
 
 /// Paths from the eye longer than this many world units are black (the course's
 /// `MAX_DIST`).
@@ -73,29 +73,6 @@ pub(crate) fn nearest_course<S: Scalar>(
 /// course does.
 fn coarse_directions<S: Scalar>() -> bool {
     S::DELTA.checked_mul_int(1 << 22).is_none_or(|d| d > S::ONE)
-}
-
-/// Where the course's record of a sphere's hit is after a shadow ray of it went on past
-/// a translucent occluder (`COURSE-RULES.md` §11): the course intersects the shadow ray
-/// again from the occluder with every object but the occluder, the lit sphere among
-/// them, and a sphere stores the point of its near root before it rejects a negative
-/// one. Seen from beyond the sphere along the line to the light, that root is the
-/// line's crossing behind the hit. The lights after this one, the transmitted ray and
-/// the mirror ray then start from that point, with its normal; the light itself was
-/// summed at the hit. Fitted on texplane3, where three translucent spheres light each
-/// other (1.259 % of pixels beyond 2 levels without it, 0.163 % with it; `docs/numerics.md`).
-/// Other shapes keep their hit: a plane-type test forms its point only for `t ≥ 0`
-/// (the lecture's `plane_hits()`). `None`: the hit stays.
-fn moved_hit<S: Scalar>(
-    object: &Object<S>,
-    point: Vec3<S>,
-    light: Vec3<S>,
-) -> Option<(Vec3<S>, Vec3<S>)> {
-    let crate::Shape::Sphere(sphere) = &object.shape else {
-        return None;
-    };
-    let behind = sphere.near_crossing(point, light.diff(point)?.unit()?)?;
-    Some((behind, sphere.normal_at(behind)?))
 }
 
 /// The most rays a course pixel keeps waiting: a hit both mirror and translucent
@@ -213,62 +190,30 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
         let mut normal = object.shape.normal_at(hit.point);
         let mut own = material.ambient;
         // Where the rays leaving the hit start: the hit, or where a shadow ray of its
-        // lights moved the course's record of it (`moved_hit`).
+        // lights moved the course's record of it (`light::moved_hit`).
         let mut from = hit.point;
         if T::LIGHTING
-            && let Some(n0) = normal
+            && let Some(n) = normal
         {
             let course = CourseLight {
                 index,
                 z_limit: z_limit::<S>(),
             };
-            let incoming = Incoming::from(&ray);
-            let stages = LightStages::of::<T>();
-            if T::TRANSPARENCY {
-                // One light at a time: the lights after one whose shadow ray moved the
-                // hit are summed where it moved to.
-                let mut n = n0;
-                for light in scene.lights {
-                    let one = SceneView {
-                        lights: core::slice::from_ref(light),
-                        ..*scene
-                    };
-                    let at = Hit {
-                        t: hit.t,
-                        point: from,
-                    };
-                    let continued = light_with(
-                        &one,
-                        &incoming,
-                        object,
-                        &material,
-                        &at,
-                        n,
-                        Some(course),
-                        stages,
-                        &mut own,
-                        counters,
-                    );
-                    if continued && let Some((point, m)) = moved_hit(object, from, light.location) {
-                        from = point;
-                        n = m;
-                    }
-                }
-                normal = Some(n);
-            } else {
-                let _ = light_with(
-                    scene,
-                    &incoming,
-                    object,
-                    &material,
-                    &hit,
-                    n0,
-                    Some(course),
-                    stages,
-                    &mut own,
-                    counters,
-                );
-            }
+            let mut leaving = (hit.point, n);
+            light_with(
+                scene,
+                &Incoming::from(&ray),
+                object,
+                &material,
+                &hit,
+                n,
+                Some(course),
+                LightStages::of::<T>(),
+                &mut own,
+                counters,
+                Some(&mut leaving),
+            );
+            (from, normal) = (leaving.0, Some(leaving.1));
         }
         // A translucent surface keeps (1 − T) of its own colour and of its mirror image.
         let filter = if T::TRANSPARENCY {

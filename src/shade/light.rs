@@ -32,10 +32,11 @@ pub(super) struct CourseLight<S> {
 /// by comparisons), any other by [`ray_terms`] (the normalised direction to the light
 /// and a shadow ray along it), under either rule set.
 ///
-/// Under the course rules it returns whether a light's shadow ray went on past a
-/// translucent occluder of a sphere's hit (`course::trace_course` then moves the hit,
-/// `course::moved_hit`); by the crate's rules it returns `false`. A `bool`, not the
-/// moved point: the crate's recursive mirror frames keep no room for it.
+/// Under the course rules a sphere's hit can move while its lights are summed (see
+/// [`moved_hit`]): the lights after that one are lit from the new point, and `leaving`
+/// (the point and normal the rays leaving the hit start from, the hit's own when given)
+/// ends where it moved. The crate's rules pass `None`: their recursive mirror frames
+/// keep no room for it.
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn light_with<S: Scalar>(
@@ -49,14 +50,15 @@ pub(super) fn light_with<S: Scalar>(
     stages: LightStages,
     color: &mut Color<S>,
     counters: &mut Counters,
-) -> bool {
+    mut leaving: Option<&mut (Vec3<S>, Vec3<S>)>,
+) {
     let specular = stages.specular
         && match course {
             None => material.specular > S::ZERO,
             Some(_) => material.specular != S::ZERO && material.shininess > S::ZERO,
         };
     if material.diffuse == [S::ZERO; 3] && !specular {
-        return false;
+        return;
     }
     // How far the hit may lie off its surface: the segment tests' tolerance.
     let tol = if stages.shadows && course.is_none() {
@@ -65,19 +67,19 @@ pub(super) fn light_with<S: Scalar>(
     } else {
         None
     };
-    let at = Lit {
+    let mut at = Lit {
         scene,
         ray,
         object,
         material,
-        hit,
+        hit: *hit,
         normal,
         specular,
         stages,
         continues: Cell::new(false),
     };
     for (j, light) in scene.lights.iter().enumerate() {
-        let Some(to_light) = light.location.diff(hit.point) else {
+        let Some(to_light) = light.location.diff(at.hit.point) else {
             continue;
         };
         let terms = match to_light.dot(to_light) {
@@ -86,6 +88,15 @@ pub(super) fn light_with<S: Scalar>(
             }
             _ => ray_terms(&at, light, to_light, course, counters),
         };
+        if at.continues.replace(false)
+            && let Some((point, normal)) = moved_hit(object, at.hit.point, light.location)
+        {
+            at.hit.point = point;
+            at.normal = normal;
+            if let Some(l) = leaving.as_mut() {
+                **l = (point, normal);
+            }
+        }
         let Some((diffuse_falloff, glint, filter)) = terms else {
             continue;
         };
@@ -103,7 +114,6 @@ pub(super) fn light_with<S: Scalar>(
             }
         }
     }
-    at.continues.get()
 }
 
 /// What every light of a hit shares.
@@ -112,12 +122,36 @@ struct Lit<'a, 'b, S> {
     ray: &'a Incoming<'b, S>,
     object: &'a Object<S>,
     material: &'a Material<S>,
-    hit: &'a Hit<S>,
+    hit: Hit<S>,
     normal: Vec3<S>,
     specular: bool,
     stages: LightStages,
-    /// Set by [`passage`]: a course shadow ray went on past a translucent occluder.
+    /// Set by [`passage`]: a course shadow ray went on past a translucent occluder (see
+    /// [`moved_hit`]).
     continues: Cell<bool>,
+}
+
+/// Where the course's record of a sphere's hit is after a shadow ray of it went on past
+/// a translucent occluder (`COURSE-RULES.md` §11): the course intersects the shadow ray
+/// again from the occluder with every object but the occluder, the lit sphere among
+/// them, and a sphere stores the point of its near root before it rejects a negative
+/// one. Seen from beyond the sphere along the line to the light, that root is the
+/// line's crossing behind the hit. The lights after this one, the transmitted ray and
+/// the mirror ray then start from that point, with its normal; the light itself was
+/// summed at the hit. Fitted on texplane3, where three translucent spheres light each
+/// other (1.259 % of pixels beyond 2 levels without it, 0.163 % with it; `docs/numerics.md`).
+/// Other shapes keep their hit: a plane-type test forms its point only for `t ≥ 0`
+/// (the lecture's `plane_hits()`). `None`: the hit stays.
+fn moved_hit<S: Scalar>(
+    object: &Object<S>,
+    point: Vec3<S>,
+    light: Vec3<S>,
+) -> Option<(Vec3<S>, Vec3<S>)> {
+    let crate::Shape::Sphere(sphere) = &object.shape else {
+        return None;
+    };
+    let behind = sphere.near_crossing(point, light.diff(point)?.unit()?)?;
+    Some((behind, sphere.normal_at(behind)?))
 }
 
 /// 255 in the format (or its largest value).
@@ -330,7 +364,7 @@ fn combine<S: Scalar>(a: Option<[S; 3]>, b: Option<[S; 3]>) -> Option<[S; 3]> {
 ///
 /// For a sphere's hit with the `transparency` stage it also records in `at.continues`
 /// whether the course's shadow ray goes on past a translucent occluder, that is whether
-/// the occluder nearest the hit is translucent (`course::moved_hit`); `distance` orders
+/// the occluder nearest the hit is translucent (see [`moved_hit`]); `distance` orders
 /// the occluders where both kinds meet the segment.
 #[allow(clippy::option_option)]
 fn passage<S: Scalar>(
@@ -375,26 +409,45 @@ fn passage<S: Scalar>(
     }
     if translucent && track {
         // Which kind lies nearest the hit (only where both meet the segment).
-        let continues = !opaque || {
-            let nearest = |want: bool| {
-                scene
-                    .objects
-                    .iter()
-                    .enumerate()
-                    .filter(|&(i, o)| {
-                        i != course.index && filter_of(o).is_some() == want && blocks(o)
-                    })
-                    .filter_map(|(_, o)| distance(o))
-                    .reduce(S::min)
-            };
-            match (nearest(true), nearest(false)) {
-                (Some(t), Some(o)) => t < o,
-                (t, _) => t.is_some(),
-            }
-        };
+        let continues = !opaque || translucent_nearest(at, course.index, &blocks, &distance);
         at.continues.set(continues);
     }
     (!opaque).then_some((filter, last))
+}
+
+/// Whether the nearest of the objects but `skip` that `blocks` a course shadow segment
+/// is translucent, by `distance` ([`passage`], where both kinds meet it). Out of line,
+/// with the tests as trait objects: the common case's loop keeps them inlined.
+#[inline(never)]
+fn translucent_nearest<S: Scalar>(
+    at: &Lit<'_, '_, S>,
+    skip: usize,
+    blocks: &dyn Fn(&Object<S>) -> bool,
+    distance: &dyn Fn(&Object<S>) -> Option<S>,
+) -> bool {
+    let scene = at.scene;
+    let nearest = |want: bool| {
+        scene
+            .objects
+            .iter()
+            .enumerate()
+            .filter(|&(i, o)| {
+                i != skip
+                    && scene
+                        .materials
+                        .get(usize::from(o.material))
+                        .and_then(super::course::filter_of)
+                        .is_some()
+                        == want
+                    && blocks(o)
+            })
+            .filter_map(|(_, o)| distance(o))
+            .reduce(S::min)
+    };
+    match (nearest(true), nearest(false)) {
+        (Some(t), Some(o)) => t < o,
+        (t, _) => t.is_some(),
+    }
 }
 
 /// `(N·H)^shininess` for the unit direction `l` to the light (`H` the unit half vector
@@ -524,7 +577,7 @@ fn ray_terms<S: Scalar>(
                 let shadowed = at
                     .object
                     .shape
-                    .spawn_from(at.ray.base, at.hit, l)
+                    .spawn_from(at.ray.base, &at.hit, l)
                     .is_some_and(|r| occludes(at.scene, &r, dist, light.location, None, None));
                 if shadowed {
                     return None;

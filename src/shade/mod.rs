@@ -254,9 +254,8 @@ fn own_color<S: Scalar, T: Stages>(
     };
     if lit {
         let stages = stages::LightStages::of::<T>();
-        // (Only the course rules move a hit.)
-        let _ = light_with(
-            scene, ray, object, &material, hit, facing, None, stages, &mut color, counters,
+        light_with(
+            scene, ray, object, &material, hit, facing, None, stages, &mut color, counters, None,
         );
     }
     if !mirror {
