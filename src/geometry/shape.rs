@@ -163,7 +163,13 @@ impl<S: Scalar> Shape<S> {
     /// this shape ([`Shape::intersect_course`] on the unit ray); `None` for a miss. What
     /// orders a segment's occluders where that matters (a translucent one before an
     /// opaque one).
-    pub fn distance_course(&self, from: Vec3<S>, l: Vec3<S>, epsilon: S, z_limit: S) -> Option<S> {
+    pub(crate) fn distance_course(
+        &self,
+        from: Vec3<S>,
+        l: Vec3<S>,
+        epsilon: S,
+        z_limit: S,
+    ) -> Option<S> {
         let (ray, _) = unit_ray(from, l)?;
         self.intersect_course(&ray, epsilon, z_limit)
             .ok()

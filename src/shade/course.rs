@@ -199,7 +199,7 @@ pub(crate) fn trace_course<S: Scalar, T: Stages>(
                 index,
                 z_limit: z_limit::<S>(),
             };
-            let mut leaving = (hit.point, n);
+            let mut leaving = (from, n);
             light_with(
                 scene,
                 &Incoming::from(&ray),

@@ -375,16 +375,6 @@ fn passage<S: Scalar>(
     distance: impl Fn(&Object<S>) -> Option<S>,
 ) -> Option<(Option<[S; 3]>, Option<S>)> {
     let scene = at.scene;
-    let filter_of = |o: &Object<S>| {
-        if at.stages.transparency {
-            scene
-                .materials
-                .get(usize::from(o.material))
-                .and_then(super::course::filter_of)
-        } else {
-            None
-        }
-    };
     // Only a sphere's hit can move, and only past a translucent occluder.
     let track = at.stages.transparency && matches!(at.object.shape, crate::Shape::Sphere(_));
     let mut filter = None;
@@ -394,7 +384,7 @@ fn passage<S: Scalar>(
         if i == course.index || !blocks(o) {
             continue;
         }
-        let Some(f) = filter_of(o) else {
+        let Some(f) = occluder_filter(at, o) else {
             if !track {
                 return None;
             }
@@ -415,6 +405,18 @@ fn passage<S: Scalar>(
     (!opaque).then_some((filter, last))
 }
 
+/// The filter of an occluder of a course shadow segment: its material's, with the
+/// `transparency` stage (`None`: it stops the light).
+fn occluder_filter<S: Scalar>(at: &Lit<'_, '_, S>, o: &Object<S>) -> Option<[S; 3]> {
+    if !at.stages.transparency {
+        return None;
+    }
+    at.scene
+        .materials
+        .get(usize::from(o.material))
+        .and_then(super::course::filter_of)
+}
+
 /// Whether the nearest of the objects but `skip` that `blocks` a course shadow segment
 /// is translucent, by `distance` ([`passage`], where both kinds meet it). Out of line,
 /// with the tests as trait objects: the common case's loop keeps them inlined.
@@ -431,16 +433,7 @@ fn translucent_nearest<S: Scalar>(
             .objects
             .iter()
             .enumerate()
-            .filter(|&(i, o)| {
-                i != skip
-                    && scene
-                        .materials
-                        .get(usize::from(o.material))
-                        .and_then(super::course::filter_of)
-                        .is_some()
-                        == want
-                    && blocks(o)
-            })
+            .filter(|&(i, o)| i != skip && occluder_filter(at, o).is_some() == want && blocks(o))
             .filter_map(|(_, o)| distance(o))
             .reduce(S::min)
     };
