@@ -10,7 +10,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
-use fixray::internals::{AmbientOnly, render_line_stages};
+use fixray::internals::render_line_ambient;
 use fixray::{
     Counters, I16F16, I20F12, I32F32, Plane, Ray, RayKind, Scalar, Scene, Vec3, render_line,
 };
@@ -80,12 +80,7 @@ fn bench_plan(c: &mut Criterion) {
         b.iter(|| {
             let mut counters = Counters::default();
             for row in 0..scene.camera.height {
-                render_line_stages::<_, AmbientOnly, _>(
-                    black_box(&scene),
-                    row,
-                    &mut line,
-                    &mut counters,
-                );
+                render_line_ambient(black_box(&scene), row, &mut line, &mut counters);
             }
         });
     });

@@ -59,6 +59,7 @@ pub use geometry::{
     RevsurfError, Shape, Slide, Sphere, SphereError, TexMode, Tiling, Triangle, TriangleError,
     Vec3,
 };
+pub use kernel::KernelKind;
 pub use kernel::flat::PlaneMode;
 pub use num::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};
 pub use render::{Frame, render, render_counted, render_line, render_line_counted};
@@ -67,18 +68,20 @@ pub use scene::{
     Scene, SceneError, SceneErrorKind, SceneView,
 };
 pub use shade::color::{to_pixel, to_rgb888};
+pub use shade::rules::{Course, Fixray, RuleSet};
 pub use shade::{
     MAX_COURSE_BOUNCES, MAX_PATH, MAX_REFLECTION_DEPTH, Traced, pixel, shade, trace, trace_pixel,
 };
 pub use stats::Counters;
 
 /// Kernel internals for the crate's own tests and benchmarks: not part of the API, and
-/// they may change at any time.
+/// they may change at any time. The kernels' per-frame parts (what the tests of a kernel
+/// against the reference path and the accuracy report's kernel comparison step through),
+/// and a scanline drawn with the ambient-only stage set (the benchmark of compiled-out
+/// stages).
 #[doc(hidden)]
 pub mod internals {
     pub use crate::kernel::fast::Primary;
-    pub use crate::kernel::flat::{Flat, applies};
-    pub use crate::render::render_line_stages;
-    pub use crate::shade::nearest_hit;
-    pub use crate::shade::stages::{AmbientOnly, Diffuse, DiffuseShadows, Full, Stages};
+    pub use crate::kernel::flat::Flat;
+    pub use crate::render::render_line_ambient;
 }

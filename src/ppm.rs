@@ -310,7 +310,7 @@ mod tests {
     }
 
     #[test]
-    fn the_course_textures_read() {
+    fn course_textures_are_read() {
         for (name, w, h) in [
             ("mike", 256, 256),
             ("oak", 128, 128),

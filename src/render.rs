@@ -16,10 +16,10 @@ use embedded_graphics_core::prelude::{DrawTarget, Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
 
 use crate::kernel::flat::PlaneMode;
-use crate::kernel::{self, Drawing, Kernel, RowSink};
+use crate::kernel::{self, Drawing, KernelKind, RowSink};
 use crate::shade::stages::{Shading, Stages, shading_for, with_stages};
 use crate::stats::Counters;
-use crate::{AsView, Plan, Scalar, SceneView, Traced};
+use crate::{AsView, Scalar, SceneView, Traced};
 
 /// A frame of a scene: what is constant for the frame (the plan, the kernel, its
 /// per-plane terms and reciprocals) computed once in [`Frame::new`], then drawn line by
@@ -48,6 +48,7 @@ pub struct Frame<'a, S: Scalar> {
     scene: SceneView<'a, S>,
     shading: Shading,
     drawing: Drawing<S>,
+    mode: PlaneMode,
 }
 
 impl<'a, S: Scalar> Frame<'a, S> {
@@ -64,12 +65,38 @@ impl<'a, S: Scalar> Frame<'a, S> {
         let plan = scene.plan();
         scene.lights_on_surfaces = plan.lights_on_surfaces;
         let shading = shading_for(&plan);
-        let kernel = with_stages!(shading, select::<S>(&scene, &plan));
+        let drawing = with_stages!(shading, kernel::select::<S>(&scene, &plan));
         Self {
             scene,
             shading,
-            drawing: Drawing { kernel, mode },
+            drawing,
+            mode,
         }
+    }
+
+    /// Which primary-ray kernel draws this frame, chosen once in [`Frame::new`] (the
+    /// renderer's only choice of kernel): the flat kernel for pure geometry of infinite
+    /// planes, the fast kernel for other scenes under the crate's rules, the reference
+    /// path for the course's rules (and where a fast kernel's per-frame quantity does
+    /// not fit the format).
+    ///
+    /// ```
+    /// use fixray::{Frame, KernelKind, Scene, I16F16};
+    ///
+    /// let planes = Scene::<I16F16>::parse(include_str!("../scenes/planes.scene")).unwrap();
+    /// assert_eq!(Frame::new(&planes).kernel(), KernelKind::Flat);
+    /// let lit = Scene::<I16F16>::parse(include_str!("../scenes/default.scene")).unwrap();
+    /// assert_eq!(Frame::new(&lit).kernel(), KernelKind::Fast);
+    /// ```
+    pub fn kernel(&self) -> KernelKind {
+        self.drawing.kind()
+    }
+
+    /// Which kernel draws scanline `row`: [`Frame::kernel`], except for a scanline the
+    /// flat kernel hands back (a per-row quantity out of the format's range), which the
+    /// next kernel of the chain draws (fast, or the reference path).
+    pub fn row_kernel(&self, row: u16) -> KernelKind {
+        self.drawing.row_kind(&self.scene, row)
     }
 
     /// The primary ray of pixel (`column`, `row`) traced on the reference path (the
@@ -81,7 +108,7 @@ impl<'a, S: Scalar> Frame<'a, S> {
 
     /// How pure-geometry plane scenes are drawn in this frame.
     pub fn mode(&self) -> PlaneMode {
-        self.drawing.mode
+        self.mode
     }
 
     /// Renders scanline `row` into `line`: pixel `i` of `line` is column `i`. Columns
@@ -104,7 +131,7 @@ impl<'a, S: Scalar> Frame<'a, S> {
         }
         with_stages!(
             self.shading,
-            kernel::line::<S, C>(&self.scene, &self.drawing, row, line, counters)
+            kernel::line::<S, C>(&self.scene, &self.drawing, self.mode, row, line, counters)
         );
     }
 
@@ -164,15 +191,12 @@ fn columns_with<S: Scalar, T: Stages>(
     let _ = kernel::stream::<S, T, Rgb888, _>(
         &frame.scene,
         &frame.drawing,
+        frame.mode,
         row,
         columns,
         &mut Counters::default(),
         &mut Slice(out),
     );
-}
-
-fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan) -> Kernel<S> {
-    kernel::select::<S, T>(scene, plan)
 }
 
 fn draw_with<S, T, D>(
@@ -206,6 +230,7 @@ where
         kernel::stream::<S, T, D::Color, _>(
             &frame.scene,
             &frame.drawing,
+            frame.mode,
             row,
             x0..x1 + 1,
             counters,
@@ -307,23 +332,27 @@ where
     Frame::new(scene).draw(target, counters)
 }
 
-/// Renders scanline `row` with an explicit stage set `T` instead of the one the scene's
-/// plan picks (for benchmarks: what a stage costs). Stages the scene needs but `T` lacks
-/// are simply not drawn.
+/// Renders scanline `row` with the ambient-only stage set instead of the one the scene's
+/// plan picks (for the benchmark of what compiled-out stages save): stages the scene
+/// needs are simply not drawn.
 #[doc(hidden)]
-pub fn render_line_stages<S: Scalar, T: Stages, C: From<Rgb888>>(
+pub fn render_line_ambient<S: Scalar, C: From<Rgb888>>(
     scene: &impl AsView<S>,
     row: u16,
     line: &mut [C],
     counters: &mut Counters,
 ) {
+    use crate::shade::stages::AmbientOnly;
     let scene = &scene.view();
     if row < scene.camera.height {
-        let plan = scene.plan();
-        let drawing = Drawing {
-            kernel: kernel::select::<S, T>(scene, &plan),
-            mode: PlaneMode::PerPixel,
-        };
-        kernel::line::<S, T, C>(scene, &drawing, row, line, counters);
+        let drawing = kernel::select::<S, AmbientOnly>(scene, &scene.plan());
+        kernel::line::<S, AmbientOnly, C>(
+            scene,
+            &drawing,
+            PlaneMode::PerPixel,
+            row,
+            line,
+            counters,
+        );
     }
 }

@@ -280,14 +280,20 @@ fn course_entities_on_the_chips() {
     assert!(mismatches.is_empty(), "{mismatches:?}");
 }
 
-/// The largest format's scene (I32F32, 6.5 KB) over every shipped scene of the crate's
-/// rules on the Cortex-M0's 16 KB of RAM: the mirror scene's four reflections make the
-/// deepest stack (16,268 bytes measured), with about a hundred bytes to spare. A frame
-/// that grows past that is a HardFault under QEMU (QEMU then exits with an error), or a
-/// report above 16 KB: either fails here.
+/// The largest format's scene (I32F32, 6.5 KB) on the Cortex-M0's 16 KB of RAM: the
+/// firmware (default features) over every shipped scene it draws, with 2 KB to spare
+/// (static RAM plus the deepest stack, painted, at most `M0_RAM_BUDGET`). The mirror
+/// scene's four reflections are a loop (`shade/fixray.rs`), not a recursion, so its stack
+/// no longer grows with the depth. The firmware with the `textures` feature (the course
+/// entities' scenes: a larger scene, texture and projector blocks in the parser) must fit
+/// 16 KB; its headroom is reported, not held to 2 KB (`README.md`, "Cost and size"). A
+/// frame that outgrows 16 KB is a HardFault under QEMU (QEMU then exits with an error),
+/// one that eats the headroom a report above the budget: either fails here.
 #[test]
 #[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
 fn i32f32_fits_the_cortex_m0_in_every_shipped_scene() {
+    /// 16 KB of RAM on the micro:bit's Cortex-M0, less 2 KB of headroom.
+    const M0_RAM_BUDGET: u64 = 14 * 1024;
     assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
     let names = [
         "default",
@@ -301,13 +307,30 @@ fn i32f32_fits_the_cortex_m0_in_every_shipped_scene() {
         "triangles",
         "course",
     ];
-    let run = qemu::run("thumbv6m-none-eabi", "i32f32", &names.join(","))
-        .unwrap_or_else(|e| panic!("I32F32 on the Cortex-M0: {e}"));
-    assert_eq!(run.frames.len(), names.len(), "{:?}", run.frames);
-    for (f, name) in run.frames.iter().zip(names) {
-        assert_eq!(f.get("scene"), name);
-        let ram = run.static_ram + f.number("stack").expect("reported");
-        println!("i32f32 cortex-m0 {name}: {ram} bytes of RAM (static + deepest stack)");
-        assert!(ram <= 16 * 1024, "{name}: {ram} bytes of RAM");
+    // The scenes of the course's entities need the `textures` feature (room for
+    // textures in the scene, the texel lookups).
+    let textured = ["translucent", "texplane", "projector", "revsurf"];
+    let runs = [
+        (names.as_slice(), None, M0_RAM_BUDGET),
+        (
+            textured.as_slice(),
+            Some("lighting,spheres,reflection,textures"),
+            16 * 1024,
+        ),
+    ];
+    for (names, features, budget) in runs {
+        let run =
+            qemu::run_with_features("thumbv6m-none-eabi", "i32f32", &names.join(","), features)
+                .unwrap_or_else(|e| panic!("I32F32 on the Cortex-M0 ({features:?}): {e}"));
+        assert_eq!(run.frames.len(), names.len(), "{:?}", run.frames);
+        for (f, name) in run.frames.iter().zip(names) {
+            assert_eq!(f.get("scene"), *name);
+            let ram = run.static_ram + f.number("stack").expect("reported");
+            println!("i32f32 cortex-m0 {name}: {ram} bytes of RAM (static + deepest stack)");
+            assert!(
+                ram <= budget,
+                "{name} ({features:?}): {ram} bytes of RAM, above {budget}"
+            );
+        }
     }
 }

@@ -1,7 +1,8 @@
 //! The pure-geometry kernel (`fixray::flat`): per-pixel mode against the general fast
 //! path (`fixray::fast`, exact cross-products), span mode against per-pixel mode, and both
 //! through `render` (the `fill_contiguous` path, also clipped) against `render_line`.
-//! On the shipped plane scenes and on seeded random plane scenes, in every format.
+//! On the shipped plane scenes and on seeded random plane scenes, in every format of the
+//! one list (`fixray::num::formats::FORMATS`).
 
 mod common;
 use common::sampling;
@@ -9,12 +10,11 @@ use common::sampling;
 use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
+use fixray::internals::Flat;
 use fixray::internals::Primary;
-use fixray::internals::{Flat, applies};
 use fixray::to_rgb888;
 use fixray::{
-    Counters, Frame, I16F16, I20F12, I32F32, PlaneMode, Rules, Scalar, Scene, pixel, render,
-    render_line,
+    Counters, Frame, I16F16, PlaneMode, Rules, Scalar, Scene, pixel, render, render_line,
 };
 use sampling::SplitMix;
 
@@ -78,7 +78,12 @@ fn differ(a: &Image, b: &Image) -> usize {
 /// returns (pixels, per-pixel vs fast path differences, spans vs per-pixel differences).
 fn compare<S: Scalar>(name: &str, text: &str) -> (usize, usize, usize) {
     let scene = Scene::<S>::parse_as(text, Rules::Fixray).unwrap();
-    assert!(applies(&scene.view()), "{name}: pure geometry");
+    assert_eq!(
+        fixray::Frame::new(&scene).kernel(),
+        fixray::KernelKind::Flat,
+        "{name} {}: the flat kernel draws it",
+        S::NAME
+    );
     assert!(Flat::new(&scene.view()).is_some(), "{name} {}", S::NAME);
     for row in 0..scene.camera.height {
         assert!(
@@ -97,7 +102,16 @@ fn compare<S: Scalar>(name: &str, text: &str) -> (usize, usize, usize) {
     (n, differ(&per_pixel, &fast), differ(&spans, &per_pixel))
 }
 
-fn shipped<S: Scalar>(exact_spans: bool) {
+/// Whether span mode must draw exactly the per-pixel mode's image in format `S`: in the
+/// fixed formats `w̃(k)` is exact integer arithmetic along a scanline (`fixray::flat`'s
+/// module documentation), floats round its steps. A format is fixed when it has integer
+/// bits (`Scalar::INT_BITS` is 0 for the floats, whose resolution is relative).
+fn exact_spans<S: Scalar>() -> bool {
+    S::INT_BITS > 0
+}
+
+fn shipped<S: Scalar>() {
+    let exact_spans = exact_spans::<S>();
     for (name, text) in [
         ("planes", include_str!("../scenes/planes.scene")),
         ("horizon", include_str!("../scenes/horizon.scene")),
@@ -119,11 +133,7 @@ fn shipped<S: Scalar>(exact_spans: bool) {
 
 #[test]
 fn shipped_scenes_in_every_format() {
-    shipped::<I16F16>(true);
-    shipped::<I20F12>(true);
-    shipped::<I32F32>(true);
-    shipped::<f32>(false);
-    shipped::<f64>(false);
+    fixray::for_each_format!(all: shipped());
 }
 
 /// A seeded random room: 3–6 planes, an eye anywhere in front of the screen, and in one
@@ -164,7 +174,8 @@ fn random_scene(rng: &mut SplitMix) -> String {
     text
 }
 
-fn random<S: Scalar>(exact_spans: bool) {
+fn random<S: Scalar>() {
+    let exact_spans = exact_spans::<S>();
     let mut rng = SplitMix(0xF1A7_2026);
     let (mut total, mut vs_fast, mut vs_spans, mut seen) = (0, 0, 0, 0);
     for case in 0..60 {
@@ -199,11 +210,7 @@ fn random<S: Scalar>(exact_spans: bool) {
 
 #[test]
 fn random_plane_scenes_in_every_format() {
-    random::<I16F16>(true);
-    random::<I20F12>(true);
-    random::<I32F32>(true);
-    random::<f32>(false);
-    random::<f64>(false);
+    fixray::for_each_format!(all: random());
 }
 
 #[test]

@@ -11,7 +11,7 @@ use common::sampling::SplitMix;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use fixray::internals::Flat;
-use fixray::{Counters, Frame, PlaneMode, Scalar, Scene, render, render_line};
+use fixray::{Counters, Frame, KernelKind, PlaneMode, Scalar, Scene, render, render_line};
 
 /// A target that records every pixel and how often it was written.
 struct Capture {
@@ -120,12 +120,38 @@ fn agree<S: Scalar>(name: &str, text: &str, mode: PlaneMode) -> (Vec<Rgb888>, us
         "{name} {} {mode:?}: draw against render_line",
         S::NAME
     );
-    let handed_back = match Flat::new(&scene.view()) {
-        Some(flat) if fixray::internals::applies(&scene.view()) => (0..h)
-            .filter(|&r| flat.row(&scene.view(), r).is_none())
-            .count(),
-        _ => 0,
+    // The chooser the renderer uses: the frame's kernel, and the kernel of each row.
+    let frame = Frame::with_mode(&scene, mode);
+    let kernel = frame.kernel();
+    let handed_back = (0..h)
+        .filter(|&r| {
+            let row = frame.row_kernel(r);
+            if row != kernel {
+                assert_eq!(
+                    kernel,
+                    KernelKind::Flat,
+                    "{name}: only flat rows are handed back"
+                );
+                assert_ne!(row, KernelKind::Flat);
+            }
+            row != kernel
+        })
+        .count();
+    // What each kind of scene is drawn with.
+    let plan = scene.plan();
+    let expected = if scene.rules() == fixray::Rules::Course {
+        KernelKind::Reference
+    } else if !(plan.lighting || plan.reflection)
+        && plan.planes_only
+        && Flat::new(&scene.view()).is_some()
+    {
+        KernelKind::Flat
+    } else if fixray::internals::Primary::new(&scene.view()).is_some() {
+        KernelKind::Fast
+    } else {
+        KernelKind::Reference
     };
+    assert_eq!(kernel, expected, "{name} {}", S::NAME);
     (drawn, handed_back)
 }
 
@@ -169,8 +195,11 @@ fn random_scene(rng: &mut SplitMix) -> String {
     } else {
         (rng.uniform(1.0, 5.0), rng.uniform(-3.0, 0.0))
     };
+    // The crate's rules: a file without `rules` is a course file, which only the
+    // reference path draws (regression: so were these scenes, and the count of rows the
+    // flat kernel hands back counted rows no frame drew with it).
     let mut text = format!(
-        "camera c {{ pixeldim {w} {h} worlddim 8 6 viewpoint {eye_x:.4} {eye_y:.5} {eye_z:.4} }}\n"
+        "rules fixray\ncamera c {{ pixeldim {w} {h} worlddim 8 6 viewpoint {eye_x:.4} {eye_y:.5} {eye_z:.4} }}\n"
     );
     text.push_str("material a { ambient 0.7 0.2 0.1 diffuse 0.5 0.5 0.5 }\n");
     text.push_str("material b { ambient 0.1 0.3 0.6 diffuse 0.2 0.6 0.3 }\n");

@@ -1,12 +1,15 @@
-//! The segment shadow tests (`Shape::meets_segment`, `Shape::meets_segment_course`)
-//! against the ray tests they replace (`Shape::intersect` / `intersect_course` along the
-//! unit direction, `t` compared with the segment's length), on seeded random segments
-//! and shapes, in f64 and in I16F16: they agree on every segment whose crossing lies
-//! clear of its ends (the only place the two formulations may round differently), and
+//! The segment shadow tests of both rule sets (`RuleSet::meets_segment`) against the ray
+//! tests they replace (`RuleSet::intersect` along the unit direction, `t` compared with
+//! the segment's length), on seeded random segments and shapes, in every format of the
+//! one list (`fixray::num::formats::FORMATS`): they agree on every segment whose crossing
+//! lies clear of its ends (the only place the two formulations may round differently), and
 //! the fixed-point answer equals the f64 one wherever the f64 crossing is clear of the
 //! ends by the format's error bound.
 
-use fixray::{I16F16, Plane, Ray, RayKind, Scalar, Shape, Sphere, Triangle, Vec3};
+use fixray::num::formats::FORMATS;
+use fixray::{
+    Course, Fixray, I16F16, Plane, Ray, RayKind, RuleSet, Scalar, Shape, Sphere, Triangle, Vec3,
+};
 
 /// xorshift64: a seeded, reproducible sequence in [−1, 1).
 struct Rng(u64);
@@ -45,19 +48,16 @@ fn shape<S: Scalar>(rng: &mut Rng, kind: u32) -> Option<Shape<S>> {
 
 /// The ray test along the unit direction from `from` to `to`, with the crossing's
 /// parameter (for the margin check): `Some(t)` of the accepted hit.
-fn ray_hit<S: Scalar>(shape: &Shape<S>, from: Vec3<S>, to: Vec3<S>, course: bool) -> Option<S> {
+fn ray_hit<S: Scalar, R: RuleSet>(shape: &Shape<S>, from: Vec3<S>, to: Vec3<S>) -> Option<S> {
     let l = to.diff(from)?;
     let ray = Ray {
         base: from,
         dir: l.unit()?,
         kind: RayKind::Secondary,
     };
-    let hit = if course {
-        shape.intersect_course(&ray, S::DEFAULT_EPSILON, S::from_f64(0.01)?)
-    } else {
-        shape.intersect(&ray, S::DEFAULT_EPSILON)
-    };
-    hit.ok().map(|h| h.t)
+    R::intersect(shape, &ray, S::DEFAULT_EPSILON)
+        .ok()
+        .map(|h| h.t)
 }
 
 /// Whether a ray test's answer for a segment of length `dist` is clear of the ends by
@@ -69,7 +69,7 @@ fn clear<S: Scalar>(t: Option<S>, dist: f64, margin: f64) -> bool {
     })
 }
 
-fn agree_with_rays<S: Scalar>(course: bool, margin: f64) -> (u32, u32) {
+fn agree_with_rays<S: Scalar, R: RuleSet>(margin: f64) -> (u32, u32) {
     let mut rng = Rng(0x5E65_2026_1202_0014);
     let (mut checked, mut blocked) = (0, 0);
     for case in 0..40_000u32 {
@@ -83,24 +83,20 @@ fn agree_with_rays<S: Scalar>(course: bool, margin: f64) -> (u32, u32) {
             continue;
         }
         let dist = l.length().unwrap().to_f64();
-        let t = ray_hit(&shape, from, to, course);
+        let t = ray_hit::<S, R>(&shape, from, to);
         // Segments whose ends lie on the shape (within the margin) are the tolerance's
         // business, not this test's.
         if !clear(t, dist, margin) || shape.holds(from, S::from_f64(margin).unwrap()) {
             continue;
         }
         let by_ray = t.is_some_and(|t| t.to_f64() < dist);
-        let by_segment = if course {
-            shape.meets_segment_course(from, l, ll, S::DEFAULT_EPSILON, S::from_f64(0.01).unwrap())
-        } else {
-            shape.meets_segment(from, l, ll, S::ZERO, S::DEFAULT_EPSILON)
-        };
+        let by_segment = R::meets_segment(&shape, from, l, ll, S::ZERO, S::DEFAULT_EPSILON);
         assert_eq!(
             by_segment,
             by_ray,
             "{} case {case} ({}): {shape:?} from {:?} to {:?}, ray t {:?} of {dist}",
             S::NAME,
-            if course { "course" } else { "fixray" },
+            R::RULES,
             from.to_f64(),
             to.to_f64(),
             t.map(Scalar::to_f64),
@@ -111,24 +107,37 @@ fn agree_with_rays<S: Scalar>(course: bool, margin: f64) -> (u32, u32) {
     (checked, blocked)
 }
 
+/// How far clear of the segment's ends the crossing must lie in format `S` for the two
+/// formulations to agree: the ray test's rounding (a unit direction, a division) is a
+/// few `DELTA`s per unit of t; 0.01 in I16F16 (655 `DELTA`s) clears it for segments of
+/// up to ~20 units, and the margin scales with the format's `DELTA`:
+/// `0.01 · DELTA / 2⁻¹⁶`.
+fn margin<S: Scalar>() -> f64 {
+    0.01 * S::DELTA.to_f64() * 65536.0
+}
+
+fn agree_in<S: Scalar, R: RuleSet>() {
+    let rules = R::RULES;
+    let (n, hits) = agree_with_rays::<S, R>(margin::<S>());
+    println!("{} {rules}: {n} segments compared, {hits} blocked", S::NAME);
+    assert!(
+        n > 20_000 && hits > 2_000,
+        "{} {rules}: {n} segments, {hits} blocked",
+        S::NAME
+    );
+}
+
+/// In every format of the one list (`fixray::num::formats::FORMATS`).
+fn segment_tests_agree_with_ray_tests<R: RuleSet>() {
+    for name in FORMATS {
+        fixray::with_format!(name, agree_in::<_, R>()).unwrap();
+    }
+}
+
 #[test]
 fn segment_tests_agree_with_ray_tests_clear_of_the_ends() {
-    for course in [false, true] {
-        let (n, hits) = agree_with_rays::<f64>(course, 1e-9);
-        println!("f64 course={course}: {n} segments compared, {hits} blocked");
-        assert!(
-            n > 20_000 && hits > 2_000,
-            "f64 {course}: {n} segments, {hits} blocked"
-        );
-        // I16F16: the ray test's rounding (a unit direction, a division) is a few DELTAs
-        // per unit of t; 0.01 clears it for segments of up to ~20 units.
-        let (n, hits) = agree_with_rays::<I16F16>(course, 0.01);
-        println!("i16f16 course={course}: {n} segments compared, {hits} blocked");
-        assert!(
-            n > 20_000 && hits > 2_000,
-            "i16f16 {course}: {n} segments, {hits} blocked"
-        );
-    }
+    segment_tests_agree_with_ray_tests::<Fixray>();
+    segment_tests_agree_with_ray_tests::<Course>();
 }
 
 #[test]
@@ -162,7 +171,7 @@ fn a_segment_from_a_surface_does_not_meet_it_again_unless_it_goes_through() {
 /// `Sphere::near_crossing` from a point on the surface along a direction leaving it
 /// (`(P − c)·u > 0`): the line's other crossing, behind the point, `P + s·u` with
 /// `s = −b − √(b² − f₀)` (≈ −2b), within `64 (1 + r)(1 + (1 + r)/√disc)` DELTAs of the
-/// f64 value from the same rounded inputs, in every main format; a line past the
+/// f64 value from the same rounded inputs, in every format; a line past the
 /// sphere has none. (What the course rules use where a shadow ray of a sphere's hit
 /// goes on past a translucent occluder: `COURSE-RULES.md` §11.)
 fn near_crossing<S: Scalar>() {
@@ -231,5 +240,5 @@ fn near_crossing<S: Scalar>() {
 
 #[test]
 fn a_sphere_line_crossing_behind_a_surface_point_is_accurate_in_every_format() {
-    fixray::for_each_format!(near_crossing());
+    fixray::for_each_format!(all: near_crossing());
 }

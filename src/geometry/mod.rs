@@ -45,6 +45,7 @@ pub use frame::{FrameError, PlaneFrame, Slide, TexMode, Tiling};
 pub use plane::{Plane, PlaneError};
 pub use revsurf::{CONE_BASE_RADIUS, Revsurf, RevsurfError};
 pub use shape::Shape;
+pub(crate) use shape::{SPHERES, unit_ray};
 pub(crate) use spawn::surface_tolerance;
 pub use spawn::{RESIDUAL_ULPS, SPAWN_MARGIN_ULPS};
 pub use sphere::{Sphere, SphereError};

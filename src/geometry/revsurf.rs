@@ -31,7 +31,7 @@
 //! by nothing).
 
 use super::spawn::spawn_along;
-use super::{Hit, Miss, Ray, RayKind, Vec3};
+use super::{Hit, Miss, Ray, Vec3};
 use crate::Scalar;
 
 /// Why a surface of revolution cannot be built.
@@ -173,23 +173,10 @@ impl<S: Scalar> Revsurf<S> {
         ray.hit_at(t)
     }
 
-    /// The course's test: [`Revsurf::intersect`] for every ray alike (no screen rule,
-    /// as for spheres).
-    ///
-    /// # Errors
-    /// As [`Revsurf::intersect`].
-    pub fn intersect_course(&self, ray: &Ray<S>) -> Result<Hit<S>, Miss> {
-        self.intersect(&Ray {
-            kind: RayKind::Secondary,
-            ..*ray
-        })
-    }
-
     /// The outward unit normal the course lights a point with, `unit(q + 2 r(s) taper a)`:
     /// tilted along the axis twice as far as the surface's own normal
-    /// `unit(q + r(s) taper a)` (the gradient of `|q|² − r(s)²`). Fitted on revsurfa's
-    /// shading: with the surface's own normal 29.6 % of its pixels are beyond 2 levels,
-    /// with this one 0.15 % (and with tilt factors 0, 3: 30.5 %, 28.0 %). `None` at the
+    /// `unit(q + r(s) taper a)` (the gradient of `|q|² − r(s)²`): the tilt that draws
+    /// revsurfa's shading (the fit and its figures: `docs/numerics.md`, "Surfaces of revolution"). `None` at the
     /// apex or off the format's range.
     pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
         let w = point.diff(self.base)?;
@@ -235,7 +222,7 @@ mod tests {
         Ray {
             base: Vec3::from_f64(base).unwrap(),
             dir: Vec3::from_f64(dir).unwrap().unit().unwrap(),
-            kind: RayKind::Secondary,
+            kind: crate::RayKind::Secondary,
         }
     }
 

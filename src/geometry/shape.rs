@@ -36,7 +36,7 @@ pub enum Shape<S> {
 }
 
 /// Whether the sphere code is built in (cargo feature `spheres`).
-const SPHERES: bool = cfg!(feature = "spheres");
+pub(crate) const SPHERES: bool = cfg!(feature = "spheres");
 
 impl<S: Scalar> Shape<S> {
     /// The plane of a plane-like shape (infinite, tiled, finite or a triangle); `None`
@@ -159,106 +159,6 @@ impl<S: Scalar> Shape<S> {
         }
     }
 
-    /// How far along the course's shadow ray from `from` towards `from + l` it meets
-    /// this shape ([`Shape::intersect_course`] on the unit ray); `None` for a miss. What
-    /// orders a segment's occluders where that matters (a translucent one before an
-    /// opaque one).
-    pub(crate) fn distance_course(
-        &self,
-        from: Vec3<S>,
-        l: Vec3<S>,
-        epsilon: S,
-        z_limit: S,
-    ) -> Option<S> {
-        let (ray, _) = unit_ray(from, l)?;
-        self.intersect_course(&ray, epsilon, z_limit)
-            .ok()
-            .map(|h| h.t)
-    }
-
-    /// The course's shadow test along the segment from `from` (a hit point: the caller
-    /// skips the object it lies on) to the light at `from + l` (`ll = l·l`): what
-    /// [`Shape::intersect_course`] with `t < dist` decides for the unit ray, from signs
-    /// and comparisons. A plane-type shape blocks when the segment crosses its plane
-    /// strictly between the ends ([`Plane::crossing`] with no tolerance: `0 < t < dist`)
-    /// and the crossing point keeps the screen rule (`z ≤ z_limit`, `z ≤ 0` for
-    /// triangles) and the bounds; a sphere when its near root lies in `[0, dist)`
-    /// ([`Sphere::meets_segment_near`]).
-    pub fn meets_segment_course(
-        &self,
-        from: Vec3<S>,
-        l: Vec3<S>,
-        ll: S,
-        epsilon: S,
-        z_limit: S,
-    ) -> bool {
-        if let Shape::Revsurf(_) = self {
-            return unit_ray(from, l).is_some_and(|(r, dist)| {
-                self.intersect_course(&r, epsilon, z_limit)
-                    .is_ok_and(|h| h.t < dist)
-            });
-        }
-        if let Shape::Sphere(s) = self {
-            return SPHERES
-                && s.meets_segment_near(from, l, ll).unwrap_or_else(|| {
-                    // A quantity out of range: the unit ray's own test.
-                    unit_ray(from, l).is_some_and(|(r, dist)| {
-                        self.intersect_course(&r, epsilon, z_limit)
-                            .is_ok_and(|h| h.t < dist)
-                    })
-                });
-        }
-        let z_limit = if matches!(self, Shape::Triangle(_)) {
-            S::ZERO
-        } else {
-            z_limit
-        };
-        self.plane()
-            .and_then(|p| p.crossing(from, l, ll, S::ZERO, epsilon))
-            .and_then(|(a0, nl)| from.sum(l.scale(a0.checked_div(nl)?)?))
-            .is_some_and(|x| x.z <= z_limit && self.bounds_contain(x))
-    }
-
-    /// The course's intersection (`COURSE-RULES.md` §5), for every ray alike: planes
-    /// miss at `t <= 0` and reject a plane-type hit with `z > z_limit` (the screen rule,
-    /// 0.01 in the course; `z > 0` for triangles) whatever the ray; spheres take only the near root, with no
-    /// screen rule. `epsilon` is the plane tests' precision epsilon, as in
-    /// [`Shape::intersect`] (the course compares `N·d` with zero exactly: an epsilon keeps
-    /// a grazing ray's `t` within the format).
-    ///
-    /// # Errors
-    /// The [`Miss`] reason when the ray does not hit.
-    pub fn intersect_course(&self, ray: &Ray<S>, epsilon: S, z_limit: S) -> Result<Hit<S>, Miss> {
-        let ray = Ray {
-            kind: super::RayKind::Secondary,
-            ..*ray
-        };
-        if let Shape::Sphere(s) = self {
-            return if SPHERES {
-                s.intersect_near(&ray)
-            } else {
-                Err(Miss::NotBuiltIn)
-            };
-        }
-        if let Shape::Revsurf(r) = self {
-            return r.intersect_course(&ray);
-        }
-        let hit = self.intersect(&ray, epsilon)?;
-        // The course's triangles reject `z > 0` (§14), its planes `z > 0.01`.
-        let z_limit = if matches!(self, Shape::Triangle(_)) {
-            S::ZERO
-        } else {
-            z_limit
-        };
-        if hit.t <= S::ZERO {
-            Err(Miss::Behind)
-        } else if hit.point.z > z_limit {
-            Err(Miss::InFrontOfScreen)
-        } else {
-            Ok(hit)
-        }
-    }
-
     /// Whether a point lies on the surface within `tol` (world units): on the plane of a
     /// plane-like shape (its bounds aside), or on a sphere's surface.
     pub fn holds(&self, point: Vec3<S>, tol: S) -> bool {
@@ -279,43 +179,23 @@ impl<S: Scalar> Shape<S> {
             // Not resolved for surfaces of revolution: a light on one is not treated
             // as the tie (`docs/numerics.md`, "Lights on surfaces").
             Shape::Revsurf(_) => false,
-            _ => self.plane().is_some_and(|p| {
+            Shape::Plane(_)
+            | Shape::Tiled { .. }
+            | Shape::Finite(_)
+            | Shape::Textured(_)
+            | Shape::Triangle(_) => self.plane().is_some_and(|p| {
                 S::sub_dot3(p.offset(), p.normal().to_array(), point.to_array())
                     .is_some_and(|d| d.abs() <= tol)
             }),
         }
     }
 
-    /// Whether the shape shadows a light at `light` from the shadow ray `ray` (unit
-    /// direction towards the light, which is `dist` away): [`Shape::occludes`] under the
-    /// `fixray` rules, the course's intersection with `t < dist` under the `course` rules
-    /// (`course_z`: its screen rule's limit). A light lying on the surface within `tol`
-    /// is the hard case where `t` and `dist` tie and the rounding would decide, pixel by
-    /// pixel: there a plane never shadows it (the segment to a point on a plane meets the
-    /// plane only at that point), and a sphere only when the ray leaves the sphere at the
-    /// light (it went through the sphere first). So every format draws the same clean
-    /// shadow as f64 (`docs/numerics.md`, "Lights on surfaces").
-    pub fn shadows(
-        &self,
-        ray: &Ray<S>,
-        epsilon: S,
-        dist: S,
-        light: Vec3<S>,
-        tol: S,
-        course_z: Option<S>,
-    ) -> bool {
-        let blocks = match course_z {
-            None => self.occludes(ray, epsilon, dist),
-            Some(z) => self
-                .intersect_course(ray, epsilon, z)
-                .is_ok_and(|hit| hit.t < dist),
-        };
-        blocks && !self.spares_light(ray, light, tol)
-    }
-
     /// For a shape that blocks the shadow ray `ray`: whether that is only the tie of a
     /// light lying on it (within `tol`), which it then does not shadow
-    /// ([`Shape::shadows`]). Asked only of blocking shapes: it costs a dot product.
+    /// ([`crate::RuleSet::shadows`]): a plane never shadows it (the segment to a point
+    /// on a plane meets the plane only at that point), a sphere only when the ray
+    /// leaves the sphere at the light (it went through the sphere first). Asked only of
+    /// blocking shapes: it costs a dot product.
     #[inline]
     pub fn spares_light(&self, ray: &Ray<S>, light: Vec3<S>, tol: S) -> bool {
         if !self.holds(light, tol) {
@@ -327,7 +207,13 @@ impl<S: Scalar> Shape<S> {
                 .diff(s.center())
                 .and_then(|out| out.dot(ray.dir))
                 .is_some_and(|d| d > S::ZERO),
-            _ => true,
+            Shape::Sphere(_)
+            | Shape::Plane(_)
+            | Shape::Tiled { .. }
+            | Shape::Finite(_)
+            | Shape::Textured(_)
+            | Shape::Triangle(_)
+            | Shape::Revsurf(_) => true,
         }
     }
 
@@ -338,7 +224,11 @@ impl<S: Scalar> Shape<S> {
             Shape::Sphere(s) if SPHERES => s.normal_at(point),
             Shape::Sphere(_) => None,
             Shape::Revsurf(r) => r.normal_at(point),
-            _ => self.plane().map(Plane::normal),
+            Shape::Plane(_)
+            | Shape::Tiled { .. }
+            | Shape::Finite(_)
+            | Shape::Textured(_)
+            | Shape::Triangle(_) => self.plane().map(Plane::normal),
         }
     }
 
@@ -350,7 +240,11 @@ impl<S: Scalar> Shape<S> {
             Shape::Sphere(s) if SPHERES => s.spawn(ray, hit, dir),
             Shape::Sphere(_) => None,
             Shape::Revsurf(r) => r.spawn(ray, hit, dir),
-            _ => self.plane()?.spawn(ray, hit, dir),
+            Shape::Plane(_)
+            | Shape::Tiled { .. }
+            | Shape::Finite(_)
+            | Shape::Textured(_)
+            | Shape::Triangle(_) => self.plane()?.spawn(ray, hit, dir),
         }
     }
 }
@@ -371,7 +265,7 @@ impl<S: Scalar> Shape<S> {
 
 /// The secondary ray from `from` along `l` with a unit direction, and the segment's
 /// length (what the segment tests fall back to when a quantity does not fit the format).
-fn unit_ray<S: Scalar>(from: Vec3<S>, l: Vec3<S>) -> Option<(Ray<S>, S)> {
+pub(crate) fn unit_ray<S: Scalar>(from: Vec3<S>, l: Vec3<S>) -> Option<(Ray<S>, S)> {
     let n = l.normalize()?;
     let ray = Ray {
         base: from,

@@ -1,7 +1,7 @@
 //! The sphere, with the numerically careful intersection.
 
 use super::spawn::spawn_along;
-use super::{Hit, Miss, Ray, RayKind, Vec3};
+use super::{Hit, Miss, Ray, Vec3};
 use crate::Scalar;
 
 /// Why a sphere cannot be built.
@@ -89,27 +89,14 @@ impl<S: Scalar> Sphere<S> {
         ray.hit_at(t)
     }
 
-    /// The course's sphere test (`COURSE-RULES.md` §5): only the near root counts, and
-    /// only when the discriminant is positive; a negative near root (the base inside) is
-    /// [`Miss::Behind`]. No screen rule.
+    /// The two roots `(near, far)` of a ray (unit direction), either of which may be
+    /// negative: the near one by `q = −(b ± √Δ)`, the other as `c/q` (no cancellation);
+    /// a tangent ray (zero discriminant) gives one double root, no real root is
+    /// [`Miss::NoRoot`].
     ///
     /// # Errors
-    /// The [`Miss`] reason when the ray does not hit.
-    pub fn intersect_near(&self, ray: &Ray<S>) -> Result<Hit<S>, Miss> {
-        let (near, _) = self.roots(ray)?;
-        if near < S::ZERO {
-            return Err(Miss::Behind);
-        }
-        let secondary = Ray {
-            kind: RayKind::Secondary,
-            ..*ray
-        };
-        secondary.hit_at(near)
-    }
-
-    /// The two roots `(near, far)` of a ray (unit direction); a tangent ray (zero
-    /// discriminant) gives one double root, no real root is [`Miss::NoRoot`].
-    fn roots(&self, ray: &Ray<S>) -> Result<(S, S), Miss> {
+    /// [`Miss::NoRoot`], or [`Miss::OutOfRange`] when a quantity does not fit the format.
+    pub fn roots(&self, ray: &Ray<S>) -> Result<(S, S), Miss> {
         let oc = ray.base.diff(self.center).ok_or(Miss::OutOfRange)?;
         let b = oc.dot(ray.dir).ok_or(Miss::OutOfRange)?;
         let perp = ray
@@ -196,9 +183,9 @@ impl<S: Scalar> Sphere<S> {
         Some((b, f0))
     }
 
-    /// The course's shadow test along a segment (`COURSE-RULES.md` §5, §7): whether the
-    /// near root of the ray from `from` towards `from + l` lies in `[0, 1)` with a
-    /// positive discriminant ([`Sphere::intersect_near`] with `t < dist`), from signs and
+    /// Whether the near root of the ray from `from` towards `from + l` lies in `[0, 1)`
+    /// with a positive discriminant (the course's shadow test, `COURSE-RULES.md` §5, §7:
+    /// the near root of [`Sphere::roots`] ahead and before the light), from signs and
     /// exact product comparisons: with `b`, `f₀`, `f₁` as in [`Sphere::meets_segment`],
     /// the near root is not negative when `b ≤ 0` and `f₀ ≥ 0` (`from` not inside), and
     /// it lies before the light when `−b < ll` or the light is inside (`f₁ < 0`). `None`

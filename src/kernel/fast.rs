@@ -49,7 +49,12 @@ struct Term<S> {
 fn axis_of<S: Scalar>(scene: &SceneView<'_, S>, index: u8) -> Option<Vec3<S>> {
     match &scene.objects.get(usize::from(index))?.shape {
         Shape::Sphere(s) => scene.camera.viewpoint.diff(s.center()),
-        shape => Some(shape.plane()?.normal()),
+        shape @ (Shape::Plane(_)
+        | Shape::Tiled { .. }
+        | Shape::Finite(_)
+        | Shape::Textured(_)
+        | Shape::Triangle(_)
+        | Shape::Revsurf(_)) => Some(shape.plane()?.normal()),
     }
 }
 
@@ -213,7 +218,13 @@ impl<S: Scalar> Primary<S> {
                     spheres = true;
                     (c, oc, true)
                 }
-                shape => {
+                // The kernel has no term for a surface of revolution: the reference path.
+                Shape::Revsurf(_) => return None,
+                shape @ (Shape::Plane(_)
+                | Shape::Tiled { .. }
+                | Shape::Finite(_)
+                | Shape::Textured(_)
+                | Shape::Triangle(_)) => {
                     let plane = shape.plane()?;
                     let num =
                         S::sub_dot3(plane.offset(), plane.normal().to_array(), eye.to_array())?;

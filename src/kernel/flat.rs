@@ -126,17 +126,10 @@ pub struct FlatRow<S> {
     background: Rgb888,
 }
 
-/// Whether a scene is pure geometry made of infinite planes: what [`Flat`] draws exactly.
-/// (The renderer also uses it for stage sets without lighting or mirrors, which draw
-/// ambient colours only.)
-pub fn applies<S: Scalar>(scene: &SceneView<'_, S>) -> bool {
-    let plan = scene.plan();
-    !(plan.lighting || plan.reflection) && plan.planes_only()
-}
-
 impl<S: Scalar> Flat<S> {
     /// Prepares a frame of a scene of infinite planes, each drawn in its ambient colour
-    /// (the whole image of a pure-geometry scene, [`applies`]); `None` when an object is
+    /// (the whole image of a pure-geometry scene: `kernel::select` decides where it
+    /// applies); `None` when an object is
     /// not an infinite plane, there are more than [`MAX_PLANES`], or a per-frame quantity does not fit the format (an eye
     /// within `2^RATIO_SHIFT / MAX` of a plane, for instance).
     pub fn new(scene: &SceneView<'_, S>) -> Option<Self> {

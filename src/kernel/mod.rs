@@ -1,6 +1,7 @@
 //! Primary-ray kernels: how the pixels of a scanline are found. [`select`] is the only
-//! eligibility rule; the renderer (`render.rs`) asks it once per frame and draws every
-//! scanline with what it chose.
+//! eligibility rule and the chain after the flat kernel is written once
+//! ([`Drawing::handed_back`]); the renderer (`render.rs`) asks [`select`] once per frame
+//! and draws every scanline with what it chose ([`crate::Frame::kernel`] says which).
 //!
 //! - **flat** (`flat.rs`): pure geometry (infinite planes, no lighting, no mirrors), a
 //!   scanline at a time, no division per pixel; per-pixel or span mode.
@@ -40,66 +41,111 @@ pub(crate) enum Kernel<S: Scalar> {
     Reference,
 }
 
-/// What a frame draws with: the kernel [`select`] chose for it (from the scene's plan), and the
-/// mode of the pure-geometry kernel.
+/// Which primary-ray kernel draws a frame or a scanline ([`crate::Frame::kernel`],
+/// [`crate::Frame::row_kernel`]): the renderer picks the cheapest that draws the scene's
+/// definition, once per frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum KernelKind {
+    /// Pure geometry (infinite planes, ambient colours only): no division per pixel
+    /// (`kernel/flat.rs`).
+    Flat,
+    /// Planes and spheres under the crate's rules with unnormalised directions stepped
+    /// along the scanline (`kernel/fast.rs`).
+    Fast,
+    /// The definition: a normalised ray per pixel (`kernel/reference.rs`).
+    Reference,
+}
+
+/// What a frame draws with: the kernel [`select`] chose for it (from the scene's plan),
+/// and whether the fast kernel may draw what the flat kernel hands back. (The flat
+/// kernel's mode is the frame's drawing option, passed beside it: a constant mode stays
+/// visible to the compiler where the frame is made.)
 #[derive(Debug, Clone)]
 pub(crate) struct Drawing<S: Scalar> {
     pub(crate) kernel: Kernel<S>,
-    pub(crate) mode: PlaneMode,
+    /// The fast kernel draws the scene's definition (decided by [`select`]).
+    fast: bool,
 }
 
-/// The kernel for a frame of `scene` drawn with stage set `T`: the cheapest that draws
-/// the scene's definition. The only place that decides which kernel applies.
-pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan) -> Kernel<S> {
+impl<S: Scalar> Drawing<S> {
+    /// Which kernel draws the frame.
+    pub(crate) fn kind(&self) -> KernelKind {
+        match self.kernel {
+            Kernel::Flat(_) => KernelKind::Flat,
+            Kernel::Fast(_) => KernelKind::Fast,
+            Kernel::Reference => KernelKind::Reference,
+        }
+    }
+
+    /// The chain after the flat kernel, written once: the fast kernel's per-frame part
+    /// where it draws the scene ([`select`] decided) and can be formed, otherwise `None`
+    /// (the reference path). What a frame falls to when the flat kernel does not apply,
+    /// and what a scanline the flat kernel hands back is drawn with.
+    pub(crate) fn handed_back(&self, scene: &SceneView<'_, S>) -> Option<Primary<S>> {
+        if self.fast { Primary::new(scene) } else { None }
+    }
+
+    /// Which kernel draws scanline `row`: the frame's, or for a scanline the flat kernel
+    /// hands back (a quantity out of the format's range) the next of the chain.
+    pub(crate) fn row_kind(&self, scene: &SceneView<'_, S>, row: u16) -> KernelKind {
+        match &self.kernel {
+            Kernel::Flat(flat) if flat.row(scene, row).is_none() => match self.handed_back(scene) {
+                Some(_) => KernelKind::Fast,
+                None => KernelKind::Reference,
+            },
+            _ => self.kind(),
+        }
+    }
+}
+
+/// What a frame of `scene` drawn with stage set `T` draws with: the cheapest kernel that
+/// draws the scene's definition. The only place that decides which kernel applies (the
+/// kernels' constructors refuse only what they cannot form: a quantity out of the
+/// format's range, too many objects, an eye inside a sphere). Not inlined: the kernels'
+/// per-frame parts it builds and moves are temporaries of its own frame, not of the
+/// caller's, which stays under the parser and the scanlines (on a 16 KB chip in I32F32
+/// that is a kilobyte).
+#[inline(never)]
+pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan) -> Drawing<S> {
     // The course rules divide every colour by the distance travelled and look through
-    // the window's corners: only the reference path draws them.
-    if scene.rules() == Rules::Course {
-        return Kernel::Reference;
-    }
+    // the window's corners: only the reference path draws them. The fast kernel draws
+    // every scene under the crate's rules (shading takes its unnormalised direction:
+    // `shade::Incoming`).
+    let fast = scene.rules() == Rules::Fixray;
     // Pure geometry: only infinite planes, and stages that show ambient colours only.
-    if !T::LIGHTING
-        && !T::REFLECTION
-        && plan.planes_only()
-        && let Some(flat) = Flat::new(scene)
-    {
-        return Kernel::Flat(flat);
-    }
-    match fast::<S>(scene) {
-        Some(primary) => Kernel::Fast(primary),
-        None => Kernel::Reference,
-    }
-}
-
-/// The fast kernel, where it applies: planes of every kind and spheres the eye is
-/// outside of ([`Primary::new`] decides), under the crate's rules (shading takes its
-/// unnormalised direction: `shade::Incoming`). Also what a scanline the flat kernel hands back is drawn with.
-fn fast<S: Scalar>(scene: &SceneView<'_, S>) -> Option<Primary<S>> {
-    if scene.rules() == Rules::Course {
-        return None;
-    }
-    Primary::new(scene)
+    let flat = fast && !T::LIGHTING && !T::REFLECTION && plan.planes_only;
+    let mut drawing = Drawing {
+        kernel: Kernel::Reference,
+        fast,
+    };
+    drawing.kernel = match flat.then(|| Flat::new(scene)).flatten() {
+        Some(f) => Kernel::Flat(f),
+        None => drawing
+            .handed_back(scene)
+            .map_or(Kernel::Reference, Kernel::Fast),
+    };
+    drawing
 }
 
 /// Fills `line` (at most the camera's width) with scanline `row` drawn by `kernel`.
 pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
     scene: &SceneView<'_, S>,
     drawing: &Drawing<S>,
+    mode: PlaneMode,
     row: u16,
     line: &mut [C],
     counters: &mut Counters,
 ) {
-    let Drawing { kernel, mode, .. } = drawing;
-    let mode = *mode;
     let width = line.len().min(usize::from(scene.camera.width));
     let line = &mut line[..width];
-    let primary = match kernel {
+    let primary = match &drawing.kernel {
         Kernel::Flat(flat) => {
             if flat_line(scene, flat, mode, row, line) {
                 count_primary(counters, u16::try_from(width).unwrap_or(0));
                 return;
             }
             // Handed back: this scanline takes the next kernel of the chain.
-            return fallback_line::<S, T, C>(scene, row, line, counters);
+            return fallback_line::<S, T, C>(scene, drawing, row, line, counters);
         }
         Kernel::Fast(p) => Some(p),
         Kernel::Reference => None,
@@ -107,15 +153,17 @@ pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
     primary_line::<S, T, C>(scene, primary, row, line, counters);
 }
 
-/// A scanline the flat kernel handed back, on the fast kernel if it applies.
+/// A scanline the flat kernel handed back, on the next kernel of the chain
+/// ([`Drawing::handed_back`]).
 #[inline(never)]
 fn fallback_line<S: Scalar, T: Stages, C: From<Rgb888>>(
     scene: &SceneView<'_, S>,
+    drawing: &Drawing<S>,
     row: u16,
     line: &mut [C],
     counters: &mut Counters,
 ) {
-    let primary = fast::<S>(scene);
+    let primary = drawing.handed_back(scene);
     primary_line::<S, T, C>(scene, primary.as_ref(), row, line, counters);
 }
 
@@ -134,6 +182,7 @@ pub(crate) trait RowSink<C> {
 pub(crate) fn stream<S, T, C, K>(
     scene: &SceneView<'_, S>,
     drawing: &Drawing<S>,
+    mode: PlaneMode,
     row: u16,
     columns: core::ops::Range<u16>,
     counters: &mut Counters,
@@ -145,9 +194,8 @@ where
     C: From<Rgb888> + Clone,
     K: RowSink<C>,
 {
-    let Drawing { kernel, mode, .. } = drawing;
     let fallback;
-    let primary = match kernel {
+    let primary = match &drawing.kernel {
         Kernel::Flat(flat) => match flat.row(scene, row) {
             Some(r) => {
                 count_primary(counters, columns.end.saturating_sub(columns.start));
@@ -160,7 +208,7 @@ where
                 };
             }
             None => {
-                fallback = fast::<S>(scene);
+                fallback = drawing.handed_back(scene);
                 fallback.as_ref()
             }
         },

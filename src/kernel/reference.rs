@@ -72,7 +72,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                     t: h.t_bound,
                     point: h.point,
                 };
-                shade_with::<S, T>(scene, &incoming, h.index, &hit, 0, counters)
+                shade_with::<S, T>(scene, &incoming, h.index, &hit, counters)
             }
             Some(None) => scene.background,
             None => match y.and_then(|y| scene.camera.pixel_ray_at(column, y)) {

@@ -34,20 +34,17 @@ pub struct Plan {
     pub triangles: bool,
     /// Some object is a textured plane.
     pub textures: bool,
+    /// Some object is a surface of revolution.
+    pub revsurfs: bool,
+    /// Every object is an infinite plane (or there is none): what the pure-geometry
+    /// kernel draws.
+    pub planes_only: bool,
     /// Some light is a projector.
     pub projectors: bool,
     /// Some light lies on some surface (within its tolerance): the ties of shadow rays
     /// and of a surface's own plane are resolved for it (`docs/numerics.md`, "Lights on
     /// surfaces"); without such a light those checks are not run.
     pub lights_on_surfaces: bool,
-}
-
-impl Plan {
-    /// Whether every object is an infinite plane (no sphere, tile or finite plane): what
-    /// the pure-geometry kernel draws.
-    pub(crate) fn planes_only(&self) -> bool {
-        !(self.spheres || self.tiles || self.finite_planes || self.triangles || self.textures)
-    }
 }
 
 impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L> {
@@ -63,15 +60,32 @@ impl<S: Scalar> SceneView<'_, S> {
     pub fn plan(&self) -> Plan {
         let material = |i: u8| self.materials.get(usize::from(i));
         let lighting = !self.lights.is_empty();
-        let spheres = self
-            .objects
-            .iter()
-            .any(|o| matches!(o.shape, Shape::Sphere(_)));
+        // Each shape's kind sets its flag: the one exhaustive match of the plan (a new
+        // shape is a compile error here until it says what it needs).
+        let mut plan = Plan {
+            lighting,
+            planes_only: true,
+            ..Plan::default()
+        };
+        for object in self.objects {
+            let flag = match object.shape {
+                Shape::Plane(_) => continue,
+                Shape::Sphere(_) => &mut plan.spheres,
+                Shape::Tiled { .. } => &mut plan.tiles,
+                Shape::Finite(_) => &mut plan.finite_planes,
+                Shape::Textured(_) => &mut plan.textures,
+                Shape::Triangle(_) => &mut plan.triangles,
+                Shape::Revsurf(_) => &mut plan.revsurfs,
+            };
+            *flag = true;
+            plan.planes_only = false;
+        }
         let used = |f: &dyn Fn(&Material<S>) -> bool| {
             self.objects.iter().any(|o| {
-                let alt = match o.shape {
-                    Shape::Tiled { alt, .. } => material(alt).is_some_and(f),
-                    _ => false,
+                let alt = if let Shape::Tiled { alt, .. } = o.shape {
+                    material(alt).is_some_and(f)
+                } else {
+                    false
                 };
                 material(o.material).is_some_and(f) || alt
             })
@@ -91,29 +105,11 @@ impl<S: Scalar> SceneView<'_, S> {
             )
         };
         Plan {
-            lighting,
-            shadows: lighting && (self.objects.len() > 1 || spheres),
+            shadows: lighting && (self.objects.len() > 1 || plan.spheres),
             specular,
             spotlights: self.lights.iter().any(|l| l.cone().is_some()),
             reflection,
             transparency: used(&|m| m.transparency > S::ZERO),
-            tiles: self
-                .objects
-                .iter()
-                .any(|o| matches!(o.shape, Shape::Tiled { .. })),
-            finite_planes: self
-                .objects
-                .iter()
-                .any(|o| matches!(o.shape, Shape::Finite(_))),
-            spheres,
-            triangles: self
-                .objects
-                .iter()
-                .any(|o| matches!(o.shape, Shape::Triangle(_))),
-            textures: self
-                .objects
-                .iter()
-                .any(|o| matches!(o.shape, Shape::Textured(_))),
             projectors: self
                 .lights
                 .iter()
@@ -122,6 +118,7 @@ impl<S: Scalar> SceneView<'_, S> {
                 let tol = super::light_tolerance(self.epsilon, l.location, self.camera.viewpoint);
                 self.objects.iter().any(|o| o.shape.holds(l.location, tol))
             }),
+            ..plan
         }
     }
 }

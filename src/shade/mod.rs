@@ -14,7 +14,9 @@ pub(crate) mod color;
 pub(crate) use crate::scene::light_tolerance;
 mod course;
 pub use course::{MAX_COURSE_BOUNCES, MAX_PATH};
+mod fixray;
 mod light;
+pub(crate) mod rules;
 pub(crate) mod stages;
 mod texture;
 
@@ -23,9 +25,11 @@ use crate::stats::{Counters, count};
 use crate::{
     AsView, Color, Hit, Material, Object, Ray, Rules, Scalar, SceneView, Shape, Tiling, Vec3,
 };
-use color::{add_sat, to_pixel};
-use light::light_with;
+use color::to_pixel;
+use rules::{Tracer, with_rules};
 use stages::{Stages, shading_for, with_stages};
+
+pub(crate) use fixray::shade as shade_with;
 
 /// How deep mirror reflections go: a ray reflected this many times sees no further
 /// reflection (its own colour only).
@@ -73,65 +77,29 @@ pub(crate) struct PlaneSides<'a, S> {
     pub(crate) at_lights: &'a [S],
 }
 
-/// The nearest accepted hit of a ray among the scene's objects, with the object's index.
-pub fn nearest_hit<S: Scalar>(scene: &impl AsView<S>, ray: &Ray<S>) -> Option<(usize, Hit<S>)> {
-    nearest(&scene.view(), ray)
-}
-
-/// Not inlined: the intersections' locals stay out of the recursive frames of mirror
-/// reflections (see `own_color`).
-#[inline(never)]
-fn nearest<S: Scalar>(scene: &SceneView<'_, S>, ray: &Ray<S>) -> Option<(usize, Hit<S>)> {
+/// The nearest hit of a ray by the rule set `R` ([`rules::RuleSet::intersect`]), with the
+/// object's index; on equal `t` the first object in file order. A rule set whose
+/// secondary rays skip the object they leave (`Tracer::SKIPS_OWN`, the course's) skips
+/// `skip`. Inlined into the course's tracer (its one caller there); the crate's tracer
+/// calls it out of line (`fixray::nearest`).
+#[inline]
+pub(crate) fn nearest<S: Scalar, R: Tracer>(
+    scene: &SceneView<'_, S>,
+    ray: &Ray<S>,
+    skip: Option<usize>,
+) -> Option<(usize, Hit<S>)> {
     let mut best: Option<(usize, Hit<S>)> = None;
     for (i, object) in scene.objects.iter().enumerate() {
-        if let Ok(hit) = object.shape.intersect(ray, scene.epsilon)
+        if R::SKIPS_OWN && Some(i) == skip {
+            continue;
+        }
+        if let Ok(hit) = R::intersect(&object.shape, ray, scene.epsilon)
             && best.is_none_or(|(_, b)| hit.t < b.t)
         {
             best = Some((i, hit));
         }
     }
     best
-}
-
-/// Whether any object lies on the segment from `ray.base` to the light at `light`,
-/// `dist` along `ray.dir` (a shadow test: the first hit is enough, and planes need no
-/// division: [`Shape::occludes`]; a light on a surface: [`Shape::shadows`]). Under the
-/// `fixray` rules shadow rays start off the surface they leave by its computed error
-/// bound ([`Shape::spawn`]), so that surface cannot shadow itself; under the `course`
-/// rules they start on it and skip it (`skip`), and `course_z` is the screen rule's
-/// limit.
-#[inline(never)] // its locals stay out of the recursive shading frames (stack: see below)
-pub(crate) fn occludes<S: Scalar>(
-    scene: &SceneView<'_, S>,
-    ray: &Ray<S>,
-    dist: S,
-    light: Vec3<S>,
-    skip: Option<usize>,
-    course_z: Option<S>,
-) -> bool {
-    let eps = scene.epsilon;
-    // Only where the plan found a light on a surface, and only for a shape that blocks.
-    let spared = |shape: &Shape<S>| {
-        scene.lights_on_surfaces
-            && shape.spares_light(
-                ray,
-                light,
-                light_tolerance(eps, light, scene.camera.viewpoint),
-            )
-    };
-    match course_z {
-        None => scene
-            .objects
-            .iter()
-            .any(|o| o.shape.occludes(ray, eps, dist) && !spared(&o.shape)),
-        Some(z) => scene.objects.iter().enumerate().any(|(i, o)| {
-            Some(i) != skip
-                && o.shape
-                    .intersect_course(ray, eps, z)
-                    .is_ok_and(|hit| hit.t < dist)
-                && !spared(&o.shape)
-        }),
-    }
 }
 
 /// Whether a light lies in the plane of a plane-like surface (within
@@ -144,7 +112,7 @@ pub(crate) fn in_own_plane<S: Scalar>(shape: &Shape<S>, light: Vec3<S>, tol: S) 
 
 /// The material index an object shows at a point: a tiled plane shows its alternate
 /// material on its odd squares, under the course rules on the even squares of the
-/// checkerboard anchored at the world origin (`COURSE-RULES.md` §10).
+/// checkerboard anchored at the world origin (`COURSE-RULES.md` §10; `Tracer::shows_alt`).
 pub(crate) fn material_at<S: Scalar>(
     object: &Object<S>,
     point: Vec3<S>,
@@ -154,15 +122,23 @@ pub(crate) fn material_at<S: Scalar>(
     match object.shape {
         Shape::Tiled { frame, alt, tiling } => {
             count(&mut counters.tile_lookups);
-            let show_alt = match (tiling, rules) {
-                (Tiling::WorldXz, _) => frame.odd_tile_world_xz(point) == Some(true),
-                (Tiling::Frame, Rules::Fixray) => frame.odd_tile(point) == Some(true),
-                (Tiling::Frame, Rules::Course) => frame.odd_tile_from_origin(point) == Some(false),
+            let show_alt = match tiling {
+                Tiling::WorldXz => frame.odd_tile_world_xz(point) == Some(true),
+                Tiling::Frame => with_rules!(rules, shows_alt::<S>(&frame, point)),
             };
             if show_alt { alt } else { object.material }
         }
-        _ => object.material,
+        Shape::Plane(_)
+        | Shape::Sphere(_)
+        | Shape::Finite(_)
+        | Shape::Textured(_)
+        | Shape::Triangle(_)
+        | Shape::Revsurf(_) => object.material,
     }
+}
+
+fn shows_alt<S: Scalar, R: Tracer>(frame: &crate::PlaneFrame<S>, point: Vec3<S>) -> bool {
+    R::shows_alt(frame, point)
 }
 
 /// The object `objects[index]` and the material it shows at `point` (both rule sets): a
@@ -177,122 +153,19 @@ pub(crate) fn surface<'a, S: Scalar>(
     let object = scene.objects.get(index)?;
     let material = material_at(object, point, scene.rules(), counters);
     let material = scene.materials.get(usize::from(material))?;
-    Some(match &object.shape {
-        Shape::Textured(slide) => (
+    Some(if let Shape::Textured(slide) = &object.shape {
+        (
             object,
             texture::textured(material, texture::texel(scene, slide, point)),
-        ),
-        _ => (object, *material),
+        )
+    } else {
+        (object, *material)
     })
 }
 
-/// The colour of a hit on `objects[index]` in channel units, with the stages of `T`.
-///
-/// Per light: `255 × (diffuse × emissivity × cos + specular × emissivity × (N·H)^shininess)
-/// / dist`, evaluated in overflow-free steps (the distance divides in its two parts,
-/// [`crate::Normalized::divide`]); a light exactly at the hit point gives no direction and
-/// lights nothing there. A reflective material mixes `(1 − K)` of that with `K` of what
-/// the mirrored ray sees, to [`MAX_REFLECTION_DEPTH`].
-pub(crate) fn shade_with<S: Scalar, T: Stages>(
-    scene: &SceneView<'_, S>,
-    ray: &Incoming<'_, S>,
-    index: usize,
-    hit: &Hit<S>,
-    depth: u8,
-    counters: &mut Counters,
-) -> Color<S> {
-    let (mut color, mirror) = own_color::<S, T>(scene, ray, index, hit, depth, counters);
-    if let Some((reflected, k)) = mirror {
-        let seen = match reflected {
-            Some(r) => trace_with::<S, T>(scene, &r, depth + 1, counters).color,
-            None => scene.background,
-        };
-        let own = S::ONE.checked_sub(k).unwrap_or(S::ZERO);
-        for (c, s) in color.iter_mut().zip(seen) {
-            *c = add_sat(
-                c.checked_mul(own).unwrap_or(S::MAX),
-                s.checked_mul(k).unwrap_or(S::MAX),
-            );
-        }
-    }
-    color
-}
-
-/// A hit's own colour (ambient and lights) and, for a mirror, the reflected ray (`None`
-/// when it does not fit the format: the mirror then shows the background) and its
-/// weight `K`. Not inlined: its locals (the normal, the lights' terms) stay out of the
-/// recursive frames of mirror reflections, which hold only a colour and a ray (on a
-/// 16 KB chip in I32F32 that is what lets four reflections fit the stack).
-#[inline(never)]
-#[allow(clippy::type_complexity)]
-fn own_color<S: Scalar, T: Stages>(
-    scene: &SceneView<'_, S>,
-    ray: &Incoming<'_, S>,
-    index: usize,
-    hit: &Hit<S>,
-    depth: u8,
-    counters: &mut Counters,
-) -> (Color<S>, Option<(Option<Ray<S>>, S)>) {
-    // An index comes from a hit; a material index out of the scene shows black.
-    let Some((object, material)) = surface(scene, index, hit.point, counters) else {
-        return ([S::ZERO; 3], None);
-    };
-    let mut color = material.ambient;
-    let lit = T::LIGHTING && !scene.lights.is_empty();
-    let mirror = T::REFLECTION && material.reflective > S::ZERO && depth < MAX_REFLECTION_DEPTH;
-    if !lit && !mirror {
-        return (color, None);
-    }
-    let Some(surface_normal) = object.shape.normal_at(hit.point) else {
-        return (color, None);
-    };
-    // The normal facing the incoming ray.
-    let facing = if surface_normal.dot(ray.dir).is_some_and(|d| d > S::ZERO) {
-        surface_normal.checked_neg().unwrap_or(surface_normal)
-    } else {
-        surface_normal
-    };
-    if lit {
-        let stages = stages::LightStages::of::<T>();
-        light_with(
-            scene, ray, object, &material, hit, facing, None, stages, &mut color, counters, None,
-        );
-    }
-    if !mirror {
-        return (color, None);
-    }
-    count(&mut counters.reflection_rays);
-    // r = d − 2 (N·d) N
-    let reflected = surface_normal
-        .dot(ray.dir)
-        .and_then(|nd| nd.checked_add(nd))
-        .and_then(|two_nd| surface_normal.scale(two_nd))
-        .and_then(|n2| ray.dir.diff(n2))
-        .and_then(Vec3::unit)
-        .and_then(|r| object.shape.spawn_from(ray.base, hit, r));
-    (color, Some((reflected, material.reflective)))
-}
-
-/// Traces a ray with the stages of `T`, by the scene's rules.
-pub(crate) fn trace_with<S: Scalar, T: Stages>(
-    scene: &SceneView<'_, S>,
-    ray: &Ray<S>,
-    depth: u8,
-    counters: &mut Counters,
-) -> Traced<S> {
-    if scene.rules() == Rules::Course {
-        return course::trace_course::<S, T>(scene, ray, None, counters);
-    }
-    let hit = nearest(scene, ray);
-    let color = match &hit {
-        Some((i, h)) => shade_with::<S, T>(scene, &Incoming::from(ray), *i, h, depth, counters),
-        None => scene.background,
-    };
-    Traced { hit, color }
-}
-
 /// The colour of a hit on `objects[index]`, lit by the scene's lights, in channel units
-/// (the stages the scene's plan needs).
+/// (the stages the scene's plan needs), by the crate's rules (its mirrors included; the
+/// course's rules divide a colour by the whole path, which only [`trace`] knows).
 pub fn shade<S: Scalar>(
     scene: &impl AsView<S>,
     ray: &Ray<S>,
@@ -315,7 +188,7 @@ fn shade_one<S: Scalar, T: Stages>(
     hit: &Hit<S>,
     counters: &mut Counters,
 ) -> Color<S> {
-    shade_with::<S, T>(scene, ray, index, hit, 0, counters)
+    fixray::shade::<S, T>(scene, ray, index, hit, counters)
 }
 
 /// What a primary ray found: the nearest hit (object index and hit) and the colour.
@@ -327,18 +200,25 @@ pub struct Traced<S> {
     pub color: Color<S>,
 }
 
-/// Traces a pixel's primary ray with the stages of `T`: [`trace_with`], and under the
-/// course rules with the pixel's unnormalised direction for its textured planes' points
-/// (see [`course::trace_course`]).
+/// Traces a pixel's primary ray with the stages of `T` by the scene's rule set (the
+/// course's takes the pixel's unnormalised direction for its textured planes' points).
 pub(crate) fn trace_pixel_ray<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     pixel: &PixelRay<S>,
     counters: &mut Counters,
 ) -> Traced<S> {
-    if scene.rules() == Rules::Course {
-        return course::trace_course::<S, T>(scene, &pixel.ray, Some(pixel.toward), counters);
-    }
-    trace_with::<S, T>(scene, &pixel.ray, 0, counters)
+    with_rules!(
+        scene.rules(),
+        trace_pixel_by::<S, T>(scene, pixel, counters)
+    )
+}
+
+fn trace_pixel_by<S: Scalar, R: Tracer, T: Stages>(
+    scene: &SceneView<'_, S>,
+    pixel: &PixelRay<S>,
+    counters: &mut Counters,
+) -> Traced<S> {
+    R::trace_pixel::<S, T>(scene, pixel, counters)
 }
 
 /// Traces one ray: its nearest hit and colour, with the stages the scene's plan needs.
@@ -356,7 +236,15 @@ fn trace_one<S: Scalar, T: Stages>(
     ray: &Ray<S>,
     counters: &mut Counters,
 ) -> Traced<S> {
-    trace_with::<S, T>(scene, ray, 0, counters)
+    with_rules!(scene.rules(), trace_by::<S, T>(scene, ray, counters))
+}
+
+fn trace_by<S: Scalar, R: Tracer, T: Stages>(
+    scene: &SceneView<'_, S>,
+    ray: &Ray<S>,
+    counters: &mut Counters,
+) -> Traced<S> {
+    R::trace::<S, T>(scene, ray, counters)
 }
 
 /// Traces the primary ray of pixel (`column`, `row`), row 0 at the top, on the reference

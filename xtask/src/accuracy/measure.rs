@@ -217,7 +217,7 @@ impl PerFormat for MeasurePaths<'_> {
             })
         };
         push("reference (per pixel, normalised rays)", ref_ms, &reference);
-        if fixray::internals::applies(&scene.view()) {
+        if fixray::Frame::new(&scene).kernel() == fixray::KernelKind::Flat {
             // The general fast path, as the renderer used it for these scenes before
             // the pure-geometry kernel: the plane `fast::Primary` picks, its ambient colour.
             let primary = fixray::internals::Primary::new(&scene.view()).expect("a plane scene");

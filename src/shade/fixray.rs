@@ -1,0 +1,327 @@
+//! Tracing under the crate's own rules (`scene-format.md`): the nearest root of every
+//! shape, secondary rays spawned off the surface by its computed error bound, the normal
+//! facing the ray, glints divided by the light distance, and mirrors that show
+//! `(1 − K) own + K reflected` to [`MAX_REFLECTION_DEPTH`].
+//!
+//! A chain of mirrors is followed by a loop, not a recursion: each mirror's own colour
+//! and weight wait in a list of [`MAX_REFLECTION_DEPTH`] entries and are blended from
+//! the deepest back, in the order (and with the rounding) of the nested definition
+//! `c₀ = (1 − K₀) own₀ + K₀ ((1 − K₁) own₁ + K₁ (…))`. A chain costs that list, not a
+//! stack frame per bounce.
+
+use heapless::Vec;
+
+use super::color::{add_sat, to_rgb888};
+use super::light::{Lit, Passage, light_with, spared};
+use super::rules::{Fixray, RuleSet, Tracer};
+use super::stages::{LightStages, Stages};
+use super::{Incoming, MAX_REFLECTION_DEPTH, PlaneSides, Traced, surface};
+use crate::geometry::surface_tolerance;
+use crate::scene::PixelRay;
+use crate::stats::{Counters, count};
+use crate::{
+    Color, Hit, Light, Material, Miss, PlaneFrame, Ray, Rules, Scalar, SceneView, Shape, Vec3,
+};
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+/// A mirror's reflected ray (`None` when it does not fit the format: the mirror then
+/// shows the background) and its weight `K`.
+type Mirror<S> = (Option<Ray<S>>, S);
+
+/// The colour of a hit on `objects[index]` with the stages of `T`, its mirror chain
+/// included (see the module documentation). `ray` is the ray that arrived: on the fast
+/// kernel an unnormalised direction with the planes' sides (`Incoming`); the reflected
+/// rays are the reference path's.
+pub(crate) fn shade<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    ray: &Incoming<'_, S>,
+    index: usize,
+    hit: &Hit<S>,
+    counters: &mut Counters,
+) -> Color<S> {
+    let (mut own, mirror) = own_color::<S, T>(scene, ray, index, hit, 0, counters);
+    let Some(mut mirror) = mirror else {
+        return own;
+    };
+    // Every mirror's own colour and weight, the nearest first: at most
+    // MAX_REFLECTION_DEPTH of them reflect (`own_color`), so the list holds them all.
+    let mut chain: Vec<(Color<S>, S), { MAX_REFLECTION_DEPTH as usize }> = Vec::new();
+    let mut depth = 0;
+    let mut seen = loop {
+        let _ = chain.push((own, mirror.1));
+        depth += 1;
+        let Some(reflected) = mirror.0 else {
+            break scene.background;
+        };
+        let Some((i, h)) = nearest(scene, &reflected) else {
+            break scene.background;
+        };
+        let (c, m) = own_color::<S, T>(scene, &Incoming::from(&reflected), i, &h, depth, counters);
+        match m {
+            Some(m) => (own, mirror) = (c, m),
+            None => break c,
+        }
+    };
+    for &(own, k) in chain.iter().rev() {
+        seen = blend(own, k, seen);
+    }
+    seen
+}
+
+/// `(1 − K) own + K seen` per channel, each product saturating (a mirror's share).
+fn blend<S: Scalar>(mut own: Color<S>, k: S, seen: Color<S>) -> Color<S> {
+    let keep = S::ONE.checked_sub(k).unwrap_or(S::ZERO);
+    for (c, s) in own.iter_mut().zip(seen) {
+        *c = add_sat(
+            c.checked_mul(keep).unwrap_or(S::MAX),
+            s.checked_mul(k).unwrap_or(S::MAX),
+        );
+    }
+    own
+}
+
+/// A hit's own colour (ambient and lights) and, for a mirror below
+/// [`MAX_REFLECTION_DEPTH`], the reflected ray and its weight. Not inlined: its locals
+/// (the normal, the lights' terms) stay out of the mirror loop's frame.
+#[inline(never)]
+fn own_color<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    ray: &Incoming<'_, S>,
+    index: usize,
+    hit: &Hit<S>,
+    depth: u8,
+    counters: &mut Counters,
+) -> (Color<S>, Option<Mirror<S>>) {
+    // An index comes from a hit; a material index out of the scene shows black.
+    let Some((object, material)) = surface(scene, index, hit.point, counters) else {
+        return ([S::ZERO; 3], None);
+    };
+    let mut color = material.ambient;
+    let lit = T::LIGHTING && !scene.lights.is_empty();
+    let mirror = T::REFLECTION && material.reflective > S::ZERO && depth < MAX_REFLECTION_DEPTH;
+    if !lit && !mirror {
+        return (color, None);
+    }
+    let Some(surface_normal) = object.shape.normal_at(hit.point) else {
+        return (color, None);
+    };
+    // The normal facing the incoming ray.
+    let facing = if surface_normal.dot(ray.dir).is_some_and(|d| d > S::ZERO) {
+        surface_normal.checked_neg().unwrap_or(surface_normal)
+    } else {
+        surface_normal
+    };
+    if lit {
+        let at = Lit {
+            scene,
+            ray,
+            object,
+            index,
+            material: &material,
+            hit: *hit,
+            normal: facing,
+            specular: false,
+            stages: LightStages::of::<T>(),
+        };
+        // The crate's hits never move.
+        let _ = light_with::<S, Fixray>(at, &mut color, counters);
+    }
+    if !mirror {
+        return (color, None);
+    }
+    count(&mut counters.reflection_rays);
+    // r = d − 2 (N·d) N
+    let reflected = surface_normal
+        .dot(ray.dir)
+        .and_then(|nd| nd.checked_add(nd))
+        .and_then(|two_nd| surface_normal.scale(two_nd))
+        .and_then(|n2| ray.dir.diff(n2))
+        .and_then(Vec3::unit)
+        .and_then(|r| object.shape.spawn_from(ray.base, hit, r));
+    (color, Some((reflected, material.reflective)))
+}
+
+/// The nearest hit of a ray by the crate's rules. Not inlined: the intersections' locals
+/// stay out of the tracer's and the mirror loop's frames.
+#[inline(never)]
+fn nearest<S: Scalar>(scene: &SceneView<'_, S>, ray: &Ray<S>) -> Option<(usize, Hit<S>)> {
+    super::nearest::<S, Fixray>(scene, ray, None)
+}
+
+/// Traces a ray with the stages of `T`: its nearest hit and colour.
+fn trace<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    ray: &Ray<S>,
+    counters: &mut Counters,
+) -> Traced<S> {
+    let hit = nearest(scene, ray);
+    let color = match &hit {
+        Some((i, h)) => shade::<S, T>(scene, &Incoming::from(ray), *i, h, counters),
+        None => scene.background,
+    };
+    Traced { hit, color }
+}
+
+/// Whether any object shadows the light at `light` from the shadow ray `ray` (unit
+/// direction, the light `dist` along it): [`Shape::occludes`] (the first hit is enough,
+/// and planes need no division), and for a light on a surface [`RuleSet::shadows`].
+/// The ray starts off the surface it leaves by its computed error bound
+/// ([`Shape::spawn`]), so that surface cannot shadow itself.
+#[inline(never)] // its locals stay out of the light loop's frame
+fn occludes<S: Scalar>(scene: &SceneView<'_, S>, ray: &Ray<S>, dist: S, light: Vec3<S>) -> bool {
+    let eps = scene.epsilon;
+    scene.objects.iter().any(|o| {
+        o.shape.occludes(ray, eps, dist) && !spared(scene, ray.base, ray.dir, light, &o.shape)
+    })
+}
+
+/// Whether any object meets the segment from `from` to the light at `from + l` (the
+/// crate's shadow test, [`Shape::meets_segment`]; a light on a surface: as in
+/// [`occludes`]). `sides`: the planes' sides the fast kernel knows, and the light's index.
+#[inline(never)]
+fn occludes_segment<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    sides: Option<(PlaneSides<'_, S>, usize)>,
+    from: Vec3<S>,
+    l: Vec3<S>,
+    ll: S,
+    tol: S,
+    light: Vec3<S>,
+) -> bool {
+    let eps = scene.epsilon;
+    let spared = |shape: &Shape<S>| spared(scene, from, l, light, shape);
+    // The kernel's sides of every object at the hit and at this light, if it has them.
+    let known = sides.and_then(|(s, j)| {
+        let n = s.at_hit.len();
+        // j < lights and n ≤ MAX_OBJECTS: the product is small (a checked one would call
+        // the 64-bit multiply helper on a Cortex-M0).
+        let at_light = s.at_lights.get(j * n..)?.get(..n)?;
+        (n == scene.objects.len()).then_some((s.at_hit, at_light))
+    });
+    match known {
+        Some((at_hit, at_light)) => {
+            scene
+                .objects
+                .iter()
+                .zip(at_hit.iter().zip(at_light))
+                .any(|(o, (&a0, &a1))| {
+                    o.shape
+                        .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
+                        && !spared(&o.shape)
+                })
+        }
+        None => scene
+            .objects
+            .iter()
+            .any(|o| o.shape.meets_segment_with(None, from, l, ll, tol, eps) && !spared(&o.shape)),
+    }
+}
+
+impl RuleSet for Fixray {
+    const RULES: Rules = Rules::Fixray;
+
+    #[inline]
+    fn intersect<S: Scalar>(shape: &Shape<S>, ray: &Ray<S>, epsilon: S) -> Result<Hit<S>, Miss> {
+        shape.intersect(ray, epsilon)
+    }
+
+    fn meets_segment<S: Scalar>(
+        shape: &Shape<S>,
+        from: Vec3<S>,
+        l: Vec3<S>,
+        ll: S,
+        tol: S,
+        epsilon: S,
+    ) -> bool {
+        shape.meets_segment(from, l, ll, tol, epsilon)
+    }
+
+    fn blocks<S: Scalar>(shape: &Shape<S>, ray: &Ray<S>, epsilon: S, dist: S) -> bool {
+        shape.occludes(ray, epsilon, dist)
+    }
+}
+
+impl Tracer for Fixray {
+    const SKIPS_OWN: bool = false;
+    const STRICT_CONE: bool = false;
+    const GLINT_FALLOFF: bool = true;
+
+    fn trace_pixel<S: Scalar, T: Stages>(
+        scene: &SceneView<'_, S>,
+        pixel: &PixelRay<S>,
+        counters: &mut Counters,
+    ) -> Traced<S> {
+        trace::<S, T>(scene, &pixel.ray, counters)
+    }
+
+    fn trace<S: Scalar, T: Stages>(
+        scene: &SceneView<'_, S>,
+        ray: &Ray<S>,
+        counters: &mut Counters,
+    ) -> Traced<S> {
+        trace::<S, T>(scene, ray, counters)
+    }
+
+    /// Rounding, ties away from zero ([`crate::to_rgb888`]).
+    fn to_pixel<S: Scalar>(c: Color<S>) -> Rgb888 {
+        to_rgb888(c)
+    }
+
+    /// The checkerboard anchored at the plane's `point`, odd tiles alternate.
+    fn shows_alt<S: Scalar>(frame: &PlaneFrame<S>, point: Vec3<S>) -> bool {
+        frame.odd_tile(point) == Some(true)
+    }
+
+    fn glints<S: Scalar>(material: &Material<S>) -> bool {
+        material.specular > S::ZERO
+    }
+
+    /// How far the hit may lie off its surface (its computed error bound); with shadows
+    /// and no such bound in the format, the ray path for every light.
+    fn segment_tolerance<S: Scalar>(
+        stages: LightStages,
+        ray: &Incoming<'_, S>,
+        hit: &Hit<S>,
+    ) -> Option<S> {
+        if stages.shadows {
+            let m = ray.base.max_abs().max(hit.point.max_abs());
+            surface_tolerance(hit.t, m)
+        } else {
+            Some(S::ZERO)
+        }
+    }
+
+    fn segment_shadow<S: Scalar>(
+        at: &Lit<'_, '_, S>,
+        (index, light): (usize, &Light<S>),
+        to_light: Vec3<S>,
+        ll: S,
+        tol: S,
+    ) -> Passage<S> {
+        let sides = at.ray.sides.map(|s| (s, index));
+        let from = at.hit.point;
+        if occludes_segment(at.scene, sides, from, to_light, ll, tol, light.location) {
+            Passage::SHADOWED
+        } else {
+            Passage::CLEAR
+        }
+    }
+
+    fn ray_shadow<S: Scalar>(
+        at: &Lit<'_, '_, S>,
+        light: &Light<S>,
+        l: Vec3<S>,
+        dist: S,
+    ) -> Passage<S> {
+        let shadowed = at
+            .object
+            .shape
+            .spawn_from(at.ray.base, &at.hit, l)
+            .is_some_and(|r| occludes(at.scene, &r, dist, light.location));
+        if shadowed {
+            Passage::SHADOWED
+        } else {
+            Passage::CLEAR
+        }
+    }
+}
