@@ -141,7 +141,7 @@ below). The tolerance is `tol = ε · max(1, ‖light‖∞, ‖eye‖∞)` (ε 
 I16F16 16 δ, so 0.0024 world units for coordinates up to 10), one value per light and
 frame; it covers the rounding of the light's and the plane's positions (≤ 2 δ per unit of
 magnitude each) and of a hit point near the eye's magnitude. Within it a light counts as
-on the surface, and then (`Shape::shadows`, `Shape::spares_light`):
+on the surface, and then (`RuleSet::shadows`, `Shape::spares_light`):
 
 - a plane through the light never shadows it: the segment to a point of a plane meets
   the plane only at that point;
@@ -175,7 +175,7 @@ signs and exact product comparisons, no division and no square root:
   inside, the light outside; from outside, the light inside, or `b < 0`, `−b < |L|²` and
   `b² > |L|²·f₀`; from the surface (`|f₀| ≤ tol·(2r + tol)`) the other root `−2b/|L|²` in
   (0, 1);
-- the course's rules (`Shape::meets_segment_course`): the hit's own object skipped, no
+- the course's rules (`Course::meets_segment`): the hit's own object skipped, no
   tolerance (`0 < t < dist`), the screen rule at the crossing point, a sphere's near root
   in [0, dist).
 
