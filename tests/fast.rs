@@ -4,35 +4,14 @@
 //! an object's area (3×3 neighbourhood of the reference seeing one object). In every
 //! format of the one list (`fixray::num::formats::FORMATS`).
 
+mod common;
+
+use common::probes::sqrt_is_rounded;
+
 use embedded_graphics::pixelcolor::Rgb888;
 use fixray::num::formats::FORMATS;
 use fixray::to_rgb888;
 use fixray::{Scalar, Scene, render_line, trace_pixel};
-
-/// The largest relative error of `S`'s square root against f64's (correctly rounded) on
-/// 64 values over [1, 4): below one DELTA when the root is rounded (fixed formats: the
-/// roots lie in [1, 2), where one DELTA of rounding is at most one DELTA relative;
-/// floats: ½ ε), 6 % for micromath's approximation (`f32m`).
-fn sqrt_error<S: Scalar>() -> f64 {
-    (0..64)
-        .filter_map(|i| S::from_f64(1.0 + f64::from(i) * 3.0 / 64.0))
-        .map(|x| {
-            let want = x.to_f64().sqrt();
-            let got = x.checked_sqrt().map_or(f64::INFINITY, Scalar::to_f64);
-            ((got - want) / want).abs()
-        })
-        .fold(0.0, f64::max)
-}
-
-/// Whether `S`'s square root is rounded ([`sqrt_error`] within one DELTA). The reference
-/// path normalises every ray; an approximate root (`f32m`, micromath's, up to 6 % off)
-/// leaves its directions that far from unit length, and the sphere test, which assumes
-/// unit directions, then finds other roots than the fast path (5 % of `spheres`
-/// measured): such a format is measured against the reference path (printed), not
-/// bounded, and compared with f64 below.
-fn sqrt_is_rounded<S: Scalar>() -> bool {
-    sqrt_error::<S>() <= S::DELTA.to_f64()
-}
 
 /// The fast path against the reference path in format `S` on one scene, within the
 /// scene's budget at I16F16's resolution scaled by [`budget`].
@@ -179,9 +158,10 @@ fn the_fast_path_is_as_close_to_f64_as_the_reference_path() {
     ] {
         for format in FORMATS {
             let (fast, reference) = fixray::with_format!(format, against_f64(name, text)).unwrap();
-            if fast > 2.0 * reference + 0.005 {
-                println!("MEASURE FAIL {name} {format}");
-            }
+            assert!(
+                fast <= 2.0 * reference + 0.005,
+                "{name} {format}: fast {fast}, reference {reference}"
+            );
         }
     }
 }

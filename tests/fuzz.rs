@@ -2,13 +2,17 @@
 //! needs a nightly toolchain these machines do not have): any input must end in a value
 //! or a typed error, never a panic or a wrap (the test profile has overflow checks on).
 //!
+//! Every format means every format of the one list (`fixray::num::formats::FORMATS`,
+//! through `fixray::for_each_format!(all: …)`): a format added there is fuzzed here.
+//!
 //! - The scene parser, in every format, on 200 000 inputs: random bytes, soups of the
 //!   format's own tokens and numbers at the edges of every range, and valid scenes with
 //!   one token replaced.
 //! - The PPM reader on 1 000 000 byte strings (random bytes, valid images with flipped,
 //!   cut or lying headers), and the course's texture, projector and translucency scenes
 //!   on 200 000 mutated files whose textures are such byte strings (parsed in every
-//!   format, 20 000 of them drawn at 3×2 pixels).
+//!   format, the files shared out among the formats in turn, 20 000 of them drawn at 3×2
+//!   pixels).
 //! - The plane test, in every format, on 1 000 000 planes and rays made of arbitrary bit
 //!   patterns (any normal, point, base, direction and epsilon the format can hold), and
 //!   the renderer on 2 000 one-pixel scenes made of random numbers.
@@ -17,8 +21,8 @@ mod common;
 use common::sampling;
 
 use embedded_graphics::pixelcolor::Rgb888;
-use fixray::num::variants::{F32Micro, I16F16Narrow};
-use fixray::{I16F16, I20F12, I32F32, Plane, Ray, RayKind, Scalar, Scene, Vec3, render_line};
+use fixray::num::formats::FORMATS;
+use fixray::{Plane, Ray, RayKind, Scalar, Scene, Vec3, render_line};
 use sampling::SplitMix;
 
 const TOKENS: [&str; 47] = [
@@ -89,14 +93,12 @@ const NUMBERS: [&str; 16] = [
     "0.000000000000000000001",
 ];
 
+fn parse_in<S: Scalar>(text: &str) {
+    let _ = Scene::<S>::parse(text);
+}
+
 fn parse_everywhere(text: &str) {
-    let _ = Scene::<I16F16>::parse(text);
-    let _ = Scene::<I16F16Narrow>::parse(text);
-    let _ = Scene::<I20F12>::parse(text);
-    let _ = Scene::<I32F32>::parse(text);
-    let _ = Scene::<f32>::parse(text);
-    let _ = Scene::<F32Micro>::parse(text);
-    let _ = Scene::<f64>::parse(text);
+    fixray::for_each_format!(all: parse_in(text));
 }
 
 #[test]
@@ -196,13 +198,7 @@ fn fuzz_intersection<S: Scalar>(cases: u32) {
 
 #[test]
 fn the_plane_test_survives_arbitrary_bit_patterns() {
-    fuzz_intersection::<I16F16>(1_000_000);
-    fuzz_intersection::<I16F16Narrow>(1_000_000);
-    fuzz_intersection::<I20F12>(1_000_000);
-    fuzz_intersection::<I32F32>(1_000_000);
-    fuzz_intersection::<f32>(1_000_000);
-    fuzz_intersection::<F32Micro>(1_000_000);
-    fuzz_intersection::<f64>(1_000_000);
+    fixray::for_each_format!(all: fuzz_intersection(1_000_000));
 }
 
 fn fuzz_render<S: Scalar>(scenes: u32) {
@@ -239,11 +235,7 @@ fn fuzz_render<S: Scalar>(scenes: u32) {
 
 #[test]
 fn the_renderer_survives_random_scenes() {
-    fuzz_render::<I16F16>(2_000);
-    fuzz_render::<I20F12>(2_000);
-    fuzz_render::<I32F32>(2_000);
-    fuzz_render::<f32>(2_000);
-    fuzz_render::<f64>(2_000);
+    fixray::for_each_format!(all: fuzz_render(2_000));
 }
 
 /// A PPM-like byte string: random bytes, or a valid image (up to 5×4, maxval 255 or
@@ -371,14 +363,12 @@ fn the_course_entities_survive_200_000_mutated_files() {
             }
             (true, false)
         }
-        let draw = i % 10 == 0;
-        let (p, d) = match i % 5 {
-            0 => one::<I16F16>(&text, &mut files, draw),
-            1 => one::<I20F12>(&text, &mut files, draw),
-            2 => one::<I32F32>(&text, &mut files, draw),
-            3 => one::<f32>(&text, &mut files, draw),
-            _ => one::<f64>(&text, &mut files, draw),
-        };
+        // The formats take the files in turn (the same total whatever their number), and
+        // each draws one round in ten of its share.
+        let round = i as usize / FORMATS.len();
+        let format = FORMATS[i as usize % FORMATS.len()];
+        let draw = round.is_multiple_of(10);
+        let (p, d) = fixray::with_format!(format, one(&text, &mut files, draw)).unwrap();
         parsed += u32::from(p);
         drawn += u32::from(d);
     }

@@ -1,5 +1,6 @@
 //! Image-level numerical checks on the grazing scene `scenes/horizon.scene` (an infinite
-//! floor, a slightly tilted ridge, sky), in every format:
+//! floor, a slightly tilted ridge, sky), in every format of the one list
+//! (`fixray::num::formats::FORMATS`):
 //! - the horizon is clean: every pixel is sky, ridge or floor (nothing wrapped), and down
 //!   each column the picture never goes back to sky below the floor (no shimmer: rays
 //!   beyond the format's range are a clean miss, not garbage);
@@ -7,8 +8,7 @@
 //!   render has the three equal.
 
 use embedded_graphics::pixelcolor::Rgb888;
-use fixray::num::variants::{F32Micro, I16F16Narrow};
-use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render_line, to_rgb888};
+use fixray::{Scalar, Scene, render_line, to_rgb888};
 
 const HORIZON: &str = include_str!("../scenes/horizon.scene");
 
@@ -71,11 +71,5 @@ fn check<S: Scalar>() {
 
 #[test]
 fn the_horizon_is_clean_and_free_of_speckle_in_every_format() {
-    check::<I16F16>();
-    check::<I16F16Narrow>();
-    check::<I20F12>();
-    check::<I32F32>();
-    check::<f32>();
-    check::<F32Micro>();
-    check::<f64>();
+    fixray::for_each_format!(all: check());
 }

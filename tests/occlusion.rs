@@ -7,7 +7,8 @@
 mod common;
 use common::sampling;
 
-use fixray::{I16F16, I20F12, I32F32, Miss, Plane, Ray, RayKind, Scalar, Shape, Vec3};
+use fixray::num::formats::FORMATS;
+use fixray::{I16F16, Miss, Plane, Ray, RayKind, Scalar, Shape, Vec3};
 use sampling::SplitMix;
 
 const CASES: u32 = 200_000;
@@ -86,29 +87,15 @@ fn check_format<S: Scalar>() {
     assert!(occluded < exercised - exercised / 10, "{}", S::NAME);
 }
 
+/// Every format of the one list (`fixray::num::formats::FORMATS`), each on its own
+/// thread (as many cases as one test per format, run side by side).
 #[test]
-fn i16f16_agrees_with_the_full_test() {
-    check_format::<I16F16>();
-}
-
-#[test]
-fn i20f12_agrees_with_the_full_test() {
-    check_format::<I20F12>();
-}
-
-#[test]
-fn i32f32_agrees_with_the_full_test() {
-    check_format::<I32F32>();
-}
-
-#[test]
-fn f32_agrees_with_the_full_test() {
-    check_format::<f32>();
-}
-
-#[test]
-fn f64_agrees_with_the_full_test() {
-    check_format::<f64>();
+fn every_format_agrees_with_the_full_test() {
+    std::thread::scope(|threads| {
+        for name in FORMATS {
+            threads.spawn(move || fixray::with_format!(name, check_format()).unwrap());
+        }
+    });
 }
 
 #[test]

@@ -5,6 +5,8 @@
 //! Run with `cargo test --release --test precision -- --nocapture` to see the figures.
 
 mod common;
+
+use common::probes::{dot_rounds_once, sqrt_error, sqrt_is_rounded};
 use common::sampling;
 use sampling::SplitMix;
 
@@ -43,21 +45,6 @@ fn dt_bound(t: f64, n_dot_d: f64, base_l1: f64, d_offset: f64, delta: f64, unit_
     (d_offset + 2.0 * base_l1 * unit_error + 0.5 * delta + (7.0 * unit_error + 0.5 * delta) * t)
         / n_dot_d.abs()
         + delta
-}
-
-/// The largest relative error of `S`'s square root against f64's (correctly rounded) on
-/// 64 values over [1, 4): below one DELTA when the root is rounded (fixed formats: the
-/// roots lie in [1, 2), where one DELTA of rounding is at most one DELTA relative;
-/// floats: ½ ε), 6 % for micromath's approximation (`f32m`).
-fn sqrt_error<S: Scalar>() -> f64 {
-    (0..64)
-        .filter_map(|i| S::from_f64(1.0 + f64::from(i) * 3.0 / 64.0))
-        .map(|x| {
-            let want = x.to_f64().sqrt();
-            let got = x.checked_sqrt().map_or(f64::INFINITY, Scalar::to_f64);
-            ((got - want) / want).abs()
-        })
-        .fold(0.0, f64::max)
 }
 
 /// Checks every pixel where both formats see the same plane; returns the largest
@@ -164,12 +151,6 @@ fn comparison<S: Scalar>(text: &str) -> (Comparison, u8) {
     (c, worst)
 }
 
-/// Whether `S`'s square root is rounded: its relative error ([`sqrt_error`]) within one
-/// DELTA, as in every format but one with an approximate root (`f32m`).
-fn sqrt_is_rounded<S: Scalar>() -> bool {
-    sqrt_error::<S>() <= S::DELTA.to_f64()
-}
-
 /// The pixel-mismatch budget of format `S` (share of pixels with any channel different
 /// from the f64 render) on a lit scene or an ambient-only one, from its DELTA δ:
 /// `0.1 % + k·δ`. The 0.1 % are the edge pixels any format may resolve differently from
@@ -256,7 +237,7 @@ fn narrow_t<S: Scalar>(plane: &Plane<S>, ray: &Ray<S>) -> Option<S> {
 
 /// Narrow against wide dot products in the plane test, on the same quantised inputs,
 /// against f64 evaluated on those inputs: (mean, max) |Δt| in DELTAs for each.
-fn narrow_vs_wide<S: Scalar>(samples: usize) -> ((f64, f64), (f64, f64)) {
+fn narrow_vs_wide<S: Scalar>(samples: usize) -> NarrowWide {
     let mut rng = SplitMix(0xD07);
     let (mut sum_n, mut max_n, mut sum_w, mut max_w, mut n) = (0.0, 0.0f64, 0.0, 0.0f64, 0);
     while n < samples {
@@ -309,21 +290,13 @@ fn narrow_vs_wide<S: Scalar>(samples: usize) -> ((f64, f64), (f64, f64)) {
     ((sum_n / count, max_n), (sum_w / count, max_w))
 }
 
-/// Whether `S::dot3` rounds a dot product once (the wide accumulation): its dot product
-/// of (⅓, ⅓, ⅓) with itself (quantised) lands within ½ DELTA of the exact sum of the
-/// quantised products. Three products each rounded towards −∞ (`i16f16n`'s narrow dot
-/// products) lose 1⅔ DELTAs there.
-fn dot_rounds_once<S: Scalar>() -> bool {
-    let third = S::from_f64(1.0 / 3.0).unwrap();
-    let exact = 3.0 * third.to_f64() * third.to_f64();
-    let got = S::dot3([third; 3], [third; 3]).unwrap().to_f64();
-    (got - exact).abs() <= 0.5 * S::DELTA.to_f64()
-}
+/// (mean, max) |Δt| in DELTAs, narrow and wide.
+type NarrowWide = ((f64, f64), (f64, f64));
 
 /// Narrow against wide in format `S` if it is fixed (it has integer bits:
 /// `Scalar::INT_BITS` is 0 for the floats, which have no wider accumulator): whether its
 /// `dot3` rounds once, and the measurement.
-fn fixed_narrow_vs_wide<S: Scalar>() -> Option<(bool, ((f64, f64), (f64, f64)))> {
+fn fixed_narrow_vs_wide<S: Scalar>() -> Option<(bool, NarrowWide)> {
     (S::INT_BITS > 0).then(|| (dot_rounds_once::<S>(), narrow_vs_wide::<S>(20_000)))
 }
 

@@ -11,7 +11,7 @@ use embedded_graphics::pixelcolor::raw::{LittleEndian, RawU16};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use fixray::{I16F16, Rules, Scene, render, render_line};
+use fixray::{I16F16, Rules, Scalar, Scene, render, render_line};
 
 /// Camera for the 4×4 pattern scenes: screen [0,4]², eye at (2, 2, 5). Screen rows are at
 /// y = 3.5, 2.5, 1.5, 0.5 from the top.
@@ -236,6 +236,14 @@ fn a_strong_far_light_is_not_saturated_by_overflow() {
     assert_eq!(top_left_pixel(text), [Rgb888::new(51, 51, 51); 5]);
 }
 
+/// The one pixel of a 1×1 scene in format `S`.
+fn only_pixel<S: Scalar>(text: &str) -> Rgb888 {
+    let scene = Scene::<S>::parse_as(text, Rules::Fixray).unwrap();
+    let mut line = [Rgb888::BLACK];
+    render_line(&scene, 0, &mut line);
+    line[0]
+}
+
 #[test]
 fn a_light_beyond_the_format_range_still_lights() {
     // Regression: the distance to this light (≈ 42000) does not fit I16F16; the light was
@@ -246,11 +254,21 @@ fn a_light_beyond_the_format_range_still_lights() {
         material m { diffuse 1 1 1 }
         light l { location 0.5 29999 29997 emissivity 30000 30000 30000 }
         plane p { material m normal 0 1 0 point 0 -1 0 }";
-    // I20F12 keeps only a few bits of 255·cos/dist ≈ 0.0043 (17 DELTAs): lit, but up to
-    // 10 % off; the other formats are within a level of the tie.
-    for (i, c) in top_left_pixel(text).iter().enumerate() {
-        let range = if i == 1 { 115..=140 } else { 127..=128 };
-        assert!(range.contains(&c.r()), "format {i}: {c:?}");
+    // The pixel is emissivity × 255·cos/dist, and 255·cos/dist ≈ 0.0043 is formed with
+    // two roundings (a product, a division) of up to one DELTA each: within
+    // ½ + 30000 · 2 DELTA levels of the tie, in every format of the one list. I16F16
+    // (1.4 levels) and the finer formats: 127 or 128. I20F12, which keeps only 17 DELTAs
+    // of the quotient: 127.5 ± 15.
+    fn tolerance<S: Scalar>() -> f64 {
+        0.5 + 30000.0 * 2.0 * S::DELTA.to_f64()
+    }
+    for format in fixray::num::formats::FORMATS {
+        let c = fixray::with_format!(format, only_pixel(text)).unwrap();
+        let tolerance = fixray::with_format!(format, tolerance()).unwrap();
+        assert!(
+            (f64::from(c.r()) - 127.5).abs() <= tolerance,
+            "{format}: {c:?}, tolerance {tolerance}"
+        );
     }
 }
 

@@ -6,7 +6,11 @@
 //! the fixed-point answer equals the f64 one wherever the f64 crossing is clear of the
 //! ends by the format's error bound.
 
-use fixray::num::formats::FORMATS;
+mod common;
+
+use common::probes::sqrt_error;
+
+use fixray::num::formats::{FORMATS, REFERENCE};
 use fixray::{
     Course, Fixray, I16F16, Plane, Ray, RayKind, RuleSet, Scalar, Shape, Sphere, Triangle, Vec3,
 };
@@ -116,8 +120,26 @@ fn margin<S: Scalar>() -> f64 {
     0.01 * S::DELTA.to_f64() * 65536.0
 }
 
-fn agree_in<S: Scalar, R: RuleSet>() {
+/// Whether the two formulations must agree in format `S` wherever the crossing is clear
+/// of the ends ([`margin`]): they also decide a triangle's edges and the screen rule
+/// with different rounding, in bands a few DELTAs × t wide that the margin does not
+/// exclude. At I16F16's resolution or finer (DELTA ≤ 2⁻¹⁶) the seeded segments meet
+/// none; in a coarser format they do (I20F12, 16 × coarser: a crossing 0.008 outside a
+/// triangle's edge, and under the course rules one 0.011 in front of the screen, decided
+/// differently). And the ray test normalises its direction: a square root that is not
+/// rounded ([`sqrt_error`] above one DELTA: `f32m`, up to 6 % off) leaves it that far
+/// from unit length, and the sphere test, which assumes a unit direction, then misses
+/// where the segment test meets.
+fn formulations_agree<S: Scalar>() -> bool {
+    S::DELTA.to_f64() <= (-16f64).exp2() && sqrt_error::<S>() <= S::DELTA.to_f64()
+}
+
+/// The comparison in format `S`, if [`formulations_agree`] there; whether it ran.
+fn agree_in<S: Scalar, R: RuleSet>() -> bool {
     let rules = R::RULES;
+    if !formulations_agree::<S>() {
+        return false;
+    }
     let (n, hits) = agree_with_rays::<S, R>(margin::<S>());
     println!("{} {rules}: {n} segments compared, {hits} blocked", S::NAME);
     assert!(
@@ -125,13 +147,21 @@ fn agree_in<S: Scalar, R: RuleSet>() {
         "{} {rules}: {n} segments, {hits} blocked",
         S::NAME
     );
+    true
 }
 
-/// In every format of the one list (`fixray::num::formats::FORMATS`).
+/// In every format of the one list (`fixray::num::formats::FORMATS`) where
+/// [`formulations_agree`].
 fn segment_tests_agree_with_ray_tests<R: RuleSet>() {
+    let mut compared = Vec::new();
     for name in FORMATS {
-        fixray::with_format!(name, agree_in::<_, R>()).unwrap();
+        if fixray::with_format!(name, agree_in::<_, R>()).unwrap() {
+            compared.push(name);
+        }
     }
+    // Not vacuous: the reference and I16F16's resolution are compared.
+    assert!(compared.contains(&REFERENCE), "{compared:?}");
+    assert!(compared.len() >= 2, "{compared:?}");
 }
 
 #[test]
@@ -171,12 +201,18 @@ fn a_segment_from_a_surface_does_not_meet_it_again_unless_it_goes_through() {
 /// `Sphere::near_crossing` from a point on the surface along a direction leaving it
 /// (`(P − c)·u > 0`): the line's other crossing, behind the point, `P + s·u` with
 /// `s = −b − √(b² − f₀)` (≈ −2b), within `64 (1 + r)(1 + (1 + r)/√disc)` DELTAs of the
-/// f64 value from the same rounded inputs, in every format; a line past the
+/// f64 value from the same rounded inputs, in every format (whose square root is
+/// rounded); a line past the
 /// sphere has none. (What the course rules use where a shadow ray of a sphere's hit
 /// goes on past a translucent occluder: `COURSE-RULES.md` §11.)
 fn near_crossing<S: Scalar>() {
     let mut rng = Rng(0x5eed_0c1a);
     let delta = S::DELTA.to_f64();
+    // The bound is the rounding's: a square root that is not rounded ([`sqrt_error`]
+    // above one DELTA: `f32m`, up to 6 % off) puts the crossing as far off as its root
+    // (0.57 measured), so there the crossing is only found, not bounded.
+    let rounded_root = sqrt_error::<S>() <= delta;
+    let mut worst = 0.0f64;
     let mut checked = 0;
     for _ in 0..20_000 {
         let c = rng.vec(5.0);
@@ -223,10 +259,16 @@ fn near_crossing<S: Scalar>() {
             .to_f64();
         let err = (0..3).map(|k| (got[k] - want[k]).abs()).fold(0.0, f64::max);
         let bound = 64.0 * (1.0 + rf) * (1.0 + (1.0 + rf) / disc.sqrt()) * delta;
-        assert!(err <= bound, "{}: off by {err:e}, bound {bound:e}", S::NAME);
+        worst = worst.max(err);
+        assert!(
+            err <= bound || !rounded_root,
+            "{}: off by {err:e}, bound {bound:e}",
+            S::NAME
+        );
         checked += 1;
     }
     assert!(checked > 5_000, "{}: only {checked} cases", S::NAME);
+    println!("{}: crossing off by at most {worst:e}", S::NAME);
     // A line that passes the sphere by has no crossing.
     let sphere = Sphere::new(v::<S>([0.0, 0.0, 0.0]), S::ONE).unwrap();
     assert!(

@@ -4,9 +4,11 @@
 //!
 //! - `sampling.rs`: the seeded generator and the random ray/plane cases behind the
 //!   property tests, the fuzzers and `docs/numerics.md`;
-//! - `qemu.rs`: building the firmware and running it under QEMU.
+//! - `qemu.rs`: building the firmware and running it under QEMU;
+//! - `probes.rs`: what a format is (rounded square root, dot products, division), measured.
 #![allow(dead_code, unused_macros, unused_imports)]
 
+pub mod probes;
 pub mod qemu;
 pub mod sampling;
 
