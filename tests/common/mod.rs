@@ -21,11 +21,11 @@ pub fn v<S: Scalar>(x: f64, y: f64, z: f64) -> Vec3<S> {
     Vec3::from_f64([x, y, z]).unwrap()
 }
 
-/// Runs a generic check `$check::<S>()` in every main format (the one list's
-/// `fixray::num::formats::MAIN`).
+/// Runs a generic check `$check::<S>()` in every format of the one list
+/// (`fixray::num::formats::FORMATS`).
 macro_rules! every_format {
     ($check:ident) => {
-        fixray::for_each_format!($check())
+        fixray::for_each_format!(all: $check())
     };
 }
 #[allow(unused_imports)]
@@ -40,26 +40,34 @@ pub fn pattern<S: Scalar>(text: &str) -> MockDisplay<Rgb888> {
     display
 }
 
-/// Checks an ASCII pattern in every main format.
+/// Checks an ASCII pattern in every format of the one list whose square root is rounded
+/// ([`probes::sqrt_is_rounded`]: an exact picture assumes unit directions; `f32m`'s
+/// approximate root misses a spotlight's cone edge by a pixel).
 pub fn assert_pattern_everywhere(text: &str, expected: &[&str]) {
     fn one<S: Scalar>(text: &str, expected: &[&str]) {
-        pattern::<S>(text).assert_pattern(expected);
+        if probes::sqrt_is_rounded::<S>() {
+            pattern::<S>(text).assert_pattern(expected);
+        }
     }
-    fixray::for_each_format!(one(text, expected));
+    fixray::for_each_format!(all: one(text, expected));
 }
 
-/// The top-left pixel of a scene (the only one of a 1×1 scene) in every main format, in
-/// the order of `fixray::num::formats::MAIN`: I16F16, I20F12, I32F32, f32, f64.
-pub fn top_left_pixel(text: &str) -> [Rgb888; 5] {
-    fn one<S: Scalar>(text: &str) -> Rgb888 {
+/// The top-left pixel of a scene (the only one of a 1×1 scene) with the format's name, in
+/// every format of `fixray::num::formats::FORMATS` whose square root is rounded (the
+/// exact values these pixels are checked against assume unit directions: `f32m`'s glint
+/// is 47 where the formula gives 51.8).
+pub fn top_left_pixel(text: &str) -> Vec<(&'static str, Rgb888)> {
+    fn one<S: Scalar>(text: &str) -> Option<Rgb888> {
+        if !probes::sqrt_is_rounded::<S>() {
+            return None;
+        }
         let scene = Scene::<S>::parse_as(text, Rules::Fixray).unwrap();
         let mut line = vec![Rgb888::new(0, 0, 0); usize::from(scene.camera.width)];
         fixray::render_line(&scene, 0, &mut line);
-        line[0]
+        Some(line[0])
     }
-    let mut out = [Rgb888::new(0, 0, 0); 5];
-    for (slot, name) in out.iter_mut().zip(fixray::num::formats::MAIN) {
-        *slot = fixray::with_format!(name, one(text)).unwrap();
-    }
-    out
+    fixray::num::formats::FORMATS
+        .into_iter()
+        .filter_map(|name| Some((name, fixray::with_format!(name, one(text)).unwrap()?)))
+        .collect()
 }
