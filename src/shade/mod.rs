@@ -177,18 +177,8 @@ pub fn shade<S: Scalar>(
     let ray = &Incoming::from(ray);
     with_stages!(
         shading_for(&scene.plan()),
-        shade_one::<S>(scene, ray, index, hit, counters)
+        fixray::shade::<S>(scene, ray, index, hit, counters)
     )
-}
-
-fn shade_one<S: Scalar, T: Stages>(
-    scene: &SceneView<'_, S>,
-    ray: &Incoming<'_, S>,
-    index: usize,
-    hit: &Hit<S>,
-    counters: &mut Counters,
-) -> Color<S> {
-    fixray::shade::<S, T>(scene, ray, index, hit, counters)
 }
 
 /// What a primary ray found: the nearest hit (object index and hit) and the colour.
