@@ -42,6 +42,7 @@ mod triangle;
 mod vec3;
 
 pub use frame::{FrameError, PlaneFrame, Slide, TexMode, Tiling};
+pub(crate) use plane::crossing_point;
 pub use plane::{Plane, PlaneError};
 pub use revsurf::{CONE_BASE_RADIUS, Revsurf, RevsurfError};
 pub use shape::Shape;

@@ -155,6 +155,17 @@ impl<S: Scalar> Plane<S> {
 /// (what a kernel that knows them per frame and per pixel passes: no products), with
 /// `N·l = a₀ − a₁`.
 #[inline]
+/// The point where the segment from `from` along `l` crosses a plane, from what
+/// [`Plane::crossing`] returned: `from + l·a₀/(N·l)` (one division, for a shape whose
+/// bounds need the point). `None` when it does not fit the format.
+pub(crate) fn crossing_point<S: Scalar>(
+    from: Vec3<S>,
+    l: Vec3<S>,
+    (a0, nl): (S, S),
+) -> Option<Vec3<S>> {
+    from.sum(l.scale(a0.checked_div(nl)?)?)
+}
+
 pub(crate) fn crossing_of_sides<S: Scalar>(
     a0: S,
     a1: S,

@@ -1,6 +1,6 @@
 //! [`Shape`]: the shapes of a scene, dispatched through an enum (no `dyn`).
 
-use super::plane::crossing_of_sides;
+use super::plane::{crossing_of_sides, crossing_point};
 use super::{Hit, Miss, Plane, PlaneFrame, Ray, Revsurf, Slide, Sphere, Triangle, Vec3};
 use crate::Scalar;
 
@@ -145,7 +145,7 @@ impl<S: Scalar> Shape<S> {
             Shape::Finite(_) | Shape::Textured(_) | Shape::Triangle(_) => self
                 .plane()
                 .and_then(crossing)
-                .and_then(|(a0, nl)| from.sum(l.scale(a0.checked_div(nl)?)?))
+                .and_then(|c| crossing_point(from, l, c))
                 .is_some_and(|x| self.bounds_contain(x)),
             Shape::Sphere(s) if SPHERES => s.meets_segment(from, l, ll, tol).unwrap_or_else(|| {
                 // Far from `from` (a quantity out of range): the ray's own test.

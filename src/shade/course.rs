@@ -23,13 +23,13 @@ use super::light::{Lit, Passage, combine, light_with, spared};
 use super::rules::{Course, RuleSet, Tracer};
 use super::stages::{LightStages, Stages};
 use super::{Incoming, Traced, nearest, surface};
-use crate::geometry::{SPHERES, unit_ray};
+use crate::geometry::{SPHERES, crossing_point, unit_ray};
 use crate::scene::PixelRay;
 use crate::stats::{Counters, count};
 use heapless::Vec;
 
 use crate::{Color, Hit, Light, Material, Miss, Object, Ray, RayKind, Rules, Scalar, SceneView};
-use crate::{PlaneFrame, Shape, Vec3, geometry::Plane};
+use crate::{PlaneFrame, Shape, Vec3};
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// Paths from the eye longer than this many world units are black (the course's
@@ -432,19 +432,6 @@ fn ray_meets<S: Scalar>(shape: &Shape<S>, from: Vec3<S>, l: Vec3<S>, epsilon: S)
     unit_ray(from, l).is_some_and(|(r, dist)| Course::blocks(shape, &r, epsilon, dist))
 }
 
-/// Where the course's plane-type shadow segment crosses the shape's plane strictly
-/// between its ends ([`Plane::crossing`] with no tolerance: `0 < t < dist`).
-fn plane_crossing<S: Scalar>(
-    plane: &Plane<S>,
-    from: Vec3<S>,
-    l: Vec3<S>,
-    ll: S,
-    epsilon: S,
-) -> Option<Vec3<S>> {
-    let (a0, nl) = plane.crossing(from, l, ll, S::ZERO, epsilon)?;
-    from.sum(l.scale(a0.checked_div(nl)?)?)
-}
-
 impl RuleSet for Course {
     const RULES: Rules = Rules::Course;
 
@@ -497,15 +484,18 @@ impl RuleSet for Course {
                     && s.meets_segment_near(from, l, ll)
                         .unwrap_or_else(|| ray_meets(shape, from, l, epsilon))
             }
-            Shape::Plane(p) => {
-                plane_crossing(p, from, l, ll, epsilon).is_some_and(|x| x.z <= screen_limit(shape))
-            }
-            Shape::Tiled { .. } | Shape::Finite(_) | Shape::Textured(_) | Shape::Triangle(_) => {
-                shape
-                    .plane()
-                    .and_then(|p| plane_crossing(p, from, l, ll, epsilon))
-                    .is_some_and(|x| x.z <= screen_limit(shape) && shape.bounds_contain(x))
-            }
+            // Crossing the plane strictly between the ends (`Plane::crossing` with no
+            // tolerance: `0 < t < dist`), at a point that keeps the screen rule and the
+            // bounds.
+            Shape::Plane(_)
+            | Shape::Tiled { .. }
+            | Shape::Finite(_)
+            | Shape::Textured(_)
+            | Shape::Triangle(_) => shape
+                .plane()
+                .and_then(|p| p.crossing(from, l, ll, S::ZERO, epsilon))
+                .and_then(|c| crossing_point(from, l, c))
+                .is_some_and(|x| x.z <= screen_limit(shape) && shape.bounds_contain(x)),
         }
     }
 

@@ -24,6 +24,10 @@ use crate::{
 };
 use embedded_graphics_core::pixelcolor::Rgb888;
 
+/// The mirrors a chain holds: [`MAX_REFLECTION_DEPTH`] (a `u8` widened at compile time;
+/// `usize::from` is not `const`).
+const CHAIN: usize = MAX_REFLECTION_DEPTH as usize;
+
 /// A mirror's reflected ray (`None` when it does not fit the format: the mirror then
 /// shows the background) and its weight `K`.
 type Mirror<S> = (Option<Ray<S>>, S);
@@ -45,7 +49,7 @@ pub(crate) fn shade<S: Scalar, T: Stages>(
     };
     // Every mirror's own colour and weight, the nearest first: at most
     // MAX_REFLECTION_DEPTH of them reflect (`own_color`), so the list holds them all.
-    let mut chain: Vec<(Color<S>, S), { MAX_REFLECTION_DEPTH as usize }> = Vec::new();
+    let mut chain: Vec<(Color<S>, S), CHAIN> = Vec::new();
     let mut depth = 0;
     let mut seen = loop {
         let _ = chain.push((own, mirror.1));
