@@ -144,6 +144,7 @@ course_scenes!(
     shiny,
     spec0,
     spec2,
+    spec4,
     spotlight,
     tplane4,
     blob,
@@ -196,7 +197,7 @@ fn every_corpus_file_is_read_or_refused_where_it_says_what_is_missing() {
         .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names.len(), 25, "{names:?}");
+    assert_eq!(names.len(), 27, "{names:?}");
     for name in &names {
         let result = scene::<f64>(name, &text(name));
         match refused.iter().find(|r| r.0 == name) {

@@ -286,6 +286,36 @@ surface's own (`unit(q + 2 r(s) (R₀/height) a)`, fitted on the instructor's pi
 0.15 % of revsurfa's pixels beyond 2 levels, 29.6 % with the true normal); at the apex
 it is the axis, or none where `r` rounds to 0 (lit by nothing).
 
+## Mirror chains (course rules)
+
+A course pixel sums `W_k own_k / D_k` along its chain of mirror bounces, `D_k` the path
+length from the eye to the k-th hit and `W_k` the product of the mirrors' `specular`
+weights (no `(1 − K)`). The chain ends where a ray **starts** with a path already longer
+than 20 units: `COURSE-RULES.md` §4 gives the student tracer's `MAX_DIST` of 32, and
+the instructor's pictures say 20. How it was found: in spec4 (a mirror floor and ceiling,
+two mirror walls in a V and a mirror sphere between them) a model of these rules in
+Python summed each pixel's chain and asked which prefix of it gives the instructor's
+value (within 1 level, 19,200 sampled pixels): 94 % of them take the whole chain, and
+every one that stops early stops at the first ray whose starting path exceeds 20.0
+units, whatever the number of bounces before it (3 to 6), the length of the hit it
+skips (0.009 to 4 units), or the path at that hit (20.2 to 32). Neither a cap on the
+number of bounces (2, 3, 4, 5: 32.9, 8.9, 3.4, 5.3 % beyond 2 levels in the model, every 4th pixel), a clamp of each
+bounce to 1, the glint's `base` at the eye nor a cap on the path at the hit explains it.
+`MAX_PATH` in the renderer, f64, share of pixels beyond 2 levels:
+
+| `MAX_PATH` | spec4 | texplane3 | spec2 |
+|---|---|---|---|
+| 19 | 3.268 % | 0.403 % | 0.017 % |
+| **20** | **0.047 %** | **0.039 %** | 0.017 % |
+| 21 | 3.307 % | 0.161 % | 0.017 % |
+| 24 | 6.390 % | 0.163 % | 0.017 % |
+| 32 (before) | 6.761 % | 0.163 % | 0.017 % |
+
+texplane3 (mirror textured walls) confirms it independently: its residual falls from
+0.163 to 0.039 %. Every other public course picture is unchanged (no other has a path
+that reaches 20 units with any weight left). The bounce limit `MAX_COURSE_BOUNCES` (16)
+is a bound on work only: spec4 is the same with 7 or 15.
+
 ## Translucency and textures (course rules)
 
 A translucent surface (`transparency T`) adds `(1 − T)` of its own colour and continues
@@ -320,7 +350,7 @@ every pixel beyond 2 levels had a sphere hit whose shadow ray crossed another sp
 difference was larger than that light's whole share: what changed was what the pixel
 showed behind the sphere, the straight-edged regions of the picture following the
 curves where two spheres intersect. texplane3: 1.259 % of pixels beyond 2 levels
-without the rule, 0.163 % with it (f64); with the light itself summed at `X` 0.655 %;
+without the rule, 0.163 % with it (f64, measured with a path limit of 32; 0.039 % with 20, see "Mirror chains"); with the light itself summed at `X` 0.655 %;
 with `X` for the lights but the transmitted ray still from `P` 1.248 %. Where an opaque
 occluder is nearest, the shadow ray stops and nothing moves (tests/effects.rs). Planes
 keep their hit: their test forms its point only for `t ≥ 0`, as the lecture's
