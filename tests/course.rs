@@ -154,6 +154,8 @@ course_scenes!(
     texplane3,
     proj1,
     proj3,
+    revsurfa,
+    revsurfe,
 );
 
 /// Scenes without a reference picture (triangles, the old tiled plane, lights on planes):

@@ -172,16 +172,16 @@ fn course_names_and_both_dimension_spellings_are_read() {
 #[test]
 fn course_entities_not_supported_yet_are_refused_where_they_are() {
     let cam = "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n";
-    // revsurf: only the cone's profile is known.
+    // revsurf: the course's profiles are 1, 2 and 3.
     check(
         &format!(
-            "{cam}material m {{ }} revsurf r {{ material m surfer 2 base 0 0 0 \
+            "{cam}material m {{ }} revsurf r {{ material m surfer 4 base 0 0 0 \
              direction 0 1 0 height 6.28 }}"
         ),
         2,
         46,
-        "`surfer` must be 1 (the cone; the profiles of 2 and 3 are not known: no public \
-         picture shows them)",
+        "`surfer` must be 1, 2 or 3 (the cone, the hourglass and the vase: the course's \
+         profiles)",
     );
     check(
         &format!(

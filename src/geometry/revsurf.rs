@@ -10,11 +10,16 @@
 //!   with `R₀ = 4` every row's left and right edge matches the instructor's picture to
 //!   the pixel (3, 3.5 and 4.5 are tens of pixels off); with one picture it cannot tell
 //!   `R₀ = 4` from a slope of `2/3` (`r = (height − s)·2/3`), which agree at height 6.
-//! - **`surfer 2` (an hourglass) and `surfer 3` (a vase)** have no public picture: their
-//!   profiles are not guessed, and a scene naming them is refused
-//!   ([`RevsurfError::UnknownProfile`]).
+//! - **`surfer 2`: an hourglass**, `r(s) = 1 + cos(s)/2`, and **`surfer 3`: a vase**,
+//!   `r(s) = 1 + sin(s)/2`, `s` in world units (the course's files give them
+//!   `height 6.28`, one period). Fitted on revsurfe's silhouettes: every row's edges of
+//!   both shapes match the instructor's picture to the pixel but one (of 30 rows
+//!   checked); lit with their true normal `unit(q − r(s) r'(s) a)` (0.19 % of revsurfe's
+//!   sampled pixels beyond 2 levels; 32 % with the cone's doubled tilt). Other numbers
+//!   are refused ([`RevsurfError::UnknownProfile`]).
 //!
 //! # Intersection
+//! ## The cone
 //! With `w₀ = b − base`, `s₀ = w₀·a`, `s_d = d·a`, `q₀ = w₀ − s₀ a`, `q_d = d − s_d a`
 //! (the parts across the axis) and the profile's slope `m = −R₀/height`, `r₀ = r(s₀)`,
 //! a point `b + t d` lies on the (double) cone when `A t² + 2 B t + C = 0` with
@@ -29,15 +34,27 @@
 //! tangent ray (zero discriminant) meets it once; a ray along the axis meets the apex
 //! only; at the apex the normal is the axis (or none, where `r` rounds to 0 exactly: lit
 //! by nothing).
+//!
+//! ## The hourglass and the vase
+//! Not quadrics: the hit is the first sign change of `F(t) = |q₀ + q_d t|² − r(s₀ + s_d t)²`
+//! on the part of the ray inside the bounding cylinder (radius 3/2, the profiles' largest
+//! radius) and between the end planes (`0 ≤ s ≤ height`), found by stepping and then
+//! bisecting. On that part `|F'(t)| ≤ 3|q_d| + (3/2)|s_d| < 4`, so a step of `|F(t)|/4`
+//! cannot pass a root; a step is at least [`MIN_STEP`] (a ray that grazes the surface for
+//! less than that may pass it: the silhouette's last sliver), at most [`MAX_STEPS`] steps
+//! (a longer search is a documented miss, [`Miss::Behind`]). The bisection halves the
+//! bracket until its midpoint rounds to an end, and the hit is the end past the surface.
+//! The profile's cosine and sine are the format's own (`crate::num::series::cos`).
 
 use super::spawn::spawn_along;
 use super::{Hit, Miss, Ray, Vec3};
 use crate::Scalar;
+use crate::num::series::cos::{cos_any, sin_any};
 
 /// Why a surface of revolution cannot be built.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RevsurfError {
-    /// A `surfer` whose profile is not known (only `1`, the cone, is).
+    /// A `surfer` whose profile is not known (`1`, `2` and `3` are).
     UnknownProfile,
     /// The direction is zero.
     ZeroDirection,
@@ -50,16 +67,57 @@ pub enum RevsurfError {
 /// The cone's base radius (fitted on revsurfa, see the module documentation).
 pub const CONE_BASE_RADIUS: i32 = 4;
 
+/// The shortest step of the hourglass's and the vase's root search, in world units along
+/// the (unit) ray: 1/64.
+pub const MIN_STEP: (i32, i32) = (1, 64);
+
+/// The most steps of one root search (at [`MIN_STEP`], 8 world units of grazing path).
+pub const MAX_STEPS: u32 = 512;
+
+/// A radius profile `r(s)` (see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Profile<S> {
+    /// `surfer 1`: `r(s) = radius − taper · s`.
+    Cone {
+        /// `r(0)`.
+        radius: S,
+        /// `−r'(s)`: `R₀ / height`.
+        taper: S,
+    },
+    /// `surfer 2`: `r(s) = 1 + cos(s)/2`.
+    Hourglass,
+    /// `surfer 3`: `r(s) = 1 + sin(s)/2`.
+    Vase,
+}
+
+/// A ray in the axis' terms: `s(t) = s0 + sd t` along the axis, `q(t) = q0 + qd t`
+/// across it.
+struct Axial<S> {
+    s0: S,
+    sd: S,
+    q0: Vec3<S>,
+    qd: Vec3<S>,
+}
+
 /// A surface of revolution (see the module documentation).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Revsurf<S> {
     base: Vec3<S>,
     axis: Vec3<S>,
     height: S,
-    /// `r(0)`.
-    radius: S,
-    /// `−r'(s)`: `R₀ / height`.
-    taper: S,
+    profile: Profile<S>,
+}
+
+/// `n / d`, or the format's largest magnitude of the quotient's sign where it does not
+/// fit (a bound of the search interval that lies beyond the format's range).
+fn div_or_far<S: Scalar>(n: S, d: S) -> S {
+    n.checked_div(d).unwrap_or_else(|| {
+        if (n < S::ZERO) == (d < S::ZERO) {
+            S::MAX
+        } else {
+            S::MAX.checked_neg().unwrap_or(S::ZERO)
+        }
+    })
 }
 
 impl<S: Scalar> Revsurf<S> {
@@ -74,21 +132,27 @@ impl<S: Scalar> Revsurf<S> {
         direction: Vec3<S>,
         height: S,
     ) -> Result<Self, RevsurfError> {
-        if surfer != 1 {
+        if !(1..=3).contains(&surfer) {
             return Err(RevsurfError::UnknownProfile);
         }
         let axis = direction.unit().ok_or(RevsurfError::ZeroDirection)?;
         if height <= S::ZERO {
             return Err(RevsurfError::NonPositiveHeight);
         }
-        let radius = S::from_i32(CONE_BASE_RADIUS).ok_or(RevsurfError::OutOfRange)?;
-        let taper = radius.checked_div(height).ok_or(RevsurfError::OutOfRange)?;
+        let profile = match surfer {
+            1 => {
+                let radius = S::from_i32(CONE_BASE_RADIUS).ok_or(RevsurfError::OutOfRange)?;
+                let taper = radius.checked_div(height).ok_or(RevsurfError::OutOfRange)?;
+                Profile::Cone { radius, taper }
+            }
+            2 => Profile::Hourglass,
+            _ => Profile::Vase,
+        };
         Ok(Self {
             base,
             axis,
             height,
-            radius,
-            taper,
+            profile,
         })
     }
 
@@ -107,28 +171,69 @@ impl<S: Scalar> Revsurf<S> {
         self.height
     }
 
+    /// The profile's number (`surfer`): 1 the cone, 2 the hourglass, 3 the vase.
+    pub fn surfer(&self) -> u8 {
+        match self.profile {
+            Profile::Cone { .. } => 1,
+            Profile::Hourglass => 2,
+            Profile::Vase => 3,
+        }
+    }
+
+    /// The largest radius of the profile.
+    fn max_radius(&self) -> Option<S> {
+        match self.profile {
+            Profile::Cone { radius, .. } => Some(radius),
+            Profile::Hourglass | Profile::Vase => S::from_i32(3)?.mul_ratio(1, 2),
+        }
+    }
+
     /// `r(s)`, the radius at `s` along the axis.
     fn radius_at(&self, s: S) -> Option<S> {
-        self.radius.checked_sub(self.taper.checked_mul(s)?)
+        match self.profile {
+            Profile::Cone { radius, taper } => radius.checked_sub(taper.checked_mul(s)?),
+            Profile::Hourglass => S::ONE.checked_add(cos_any(s)?.mul_ratio(1, 2)?),
+            Profile::Vase => S::ONE.checked_add(sin_any(s)?.mul_ratio(1, 2)?),
+        }
+    }
+
+    /// The ray in the axis' terms.
+    fn axial(&self, ray: &Ray<S>) -> Option<Axial<S>> {
+        let a = self.axis;
+        let w0 = ray.base.diff(self.base)?;
+        let s0 = w0.dot(a)?;
+        let sd = ray.dir.dot(a)?;
+        let q0 = w0.diff(a.scale(s0)?)?;
+        let qd = ray.dir.diff(a.scale(sd)?)?;
+        Some(Axial { s0, sd, q0, qd })
     }
 
     /// Intersects a ray (unit direction): the nearest root `t > 0` on the profile.
     ///
     /// # Errors
-    /// [`Miss::NoRoot`] when the ray misses the double cone, [`Miss::Behind`] when no
-    /// root ahead lies on the profile, [`Miss::OutOfRange`] when a quantity does not fit
-    /// the format; the primary-ray screen rule as for every shape.
+    /// [`Miss::NoRoot`] when the ray misses the surface (the cone's double cone, the
+    /// other profiles' bounding cylinder), [`Miss::Behind`] when no root ahead lies on
+    /// the profile (or the root search ran out of steps), [`Miss::OutOfRange`] when a
+    /// quantity does not fit the format; the primary-ray screen rule as for every shape.
     pub fn intersect(&self, ray: &Ray<S>) -> Result<Hit<S>, Miss> {
+        let w = self.axial(ray).ok_or(Miss::OutOfRange)?;
+        let t = match self.profile {
+            Profile::Cone { radius, taper } => self.cone_root(&w, radius, taper)?,
+            Profile::Hourglass | Profile::Vase => self.search_root(&w)?,
+        };
+        ray.hit_at(t)
+    }
+
+    /// The cone's nearest root on the profile (the stable quadratic, module
+    /// documentation).
+    fn cone_root(&self, w: &Axial<S>, radius: S, taper: S) -> Result<S, Miss> {
         let range = Miss::OutOfRange;
-        let a = self.axis;
-        let w0 = ray.base.diff(self.base).ok_or(range)?;
-        let s0 = w0.dot(a).ok_or(range)?;
-        let sd = ray.dir.dot(a).ok_or(range)?;
-        let q0 = a.scale(s0).and_then(|p| w0.diff(p)).ok_or(range)?;
-        let qd = a.scale(sd).and_then(|p| ray.dir.diff(p)).ok_or(range)?;
-        let r0 = self.radius_at(s0).ok_or(range)?;
+        let Axial { s0, sd, q0, qd } = *w;
+        let r0 = radius
+            .checked_sub(taper.checked_mul(s0).ok_or(range)?)
+            .ok_or(range)?;
         // m = −taper: A = |q_d|² − taper² s_d², B = q₀·q_d + taper s_d r₀, C = |q₀|² − r₀².
-        let ts = self.taper.checked_mul(sd).ok_or(range)?;
+        let ts = taper.checked_mul(sd).ok_or(range)?;
         let qa = qd.to_array();
         let big_a = S::dot3([qa[0], qa[1], qa[2]], qa)
             .and_then(|qq| S::sub_dot3(qq, [ts, S::ZERO, S::ZERO], [ts, S::ZERO, S::ZERO]))
@@ -169,22 +274,155 @@ impl<S: Scalar> Revsurf<S> {
                 best = Some(t);
             }
         }
-        let t = best.ok_or(Miss::Behind)?;
-        ray.hit_at(t)
+        best.ok_or(Miss::Behind)
     }
 
-    /// The outward unit normal the course lights a point with, `unit(q + 2 r(s) taper a)`:
-    /// tilted along the axis twice as far as the surface's own normal
-    /// `unit(q + r(s) taper a)` (the gradient of `|q|² − r(s)²`): the tilt that draws
-    /// revsurfa's shading (the fit and its figures: `docs/numerics.md`, "Surfaces of revolution"). `None` at the
-    /// apex or off the format's range.
+    /// `F(t) = |q(t)|² − r(s(t))²`: positive outside the surface, negative inside.
+    fn excess(&self, w: &Axial<S>, t: S) -> Option<S> {
+        let q = w.q0.sum(w.qd.scale(t)?)?.to_array();
+        let r = self.radius_at(w.s0.checked_add(w.sd.checked_mul(t)?)?)?;
+        S::sub_dot3(S::dot3(q, q)?, [r, S::ZERO, S::ZERO], [r, S::ZERO, S::ZERO])
+    }
+
+    /// The part `(lo, hi)` of the ray ahead (`lo ≥ 0`) inside the bounding cylinder and
+    /// between the end planes.
+    fn search_interval(&self, w: &Axial<S>) -> Result<(S, S), Miss> {
+        let range = Miss::OutOfRange;
+        let far = S::MAX;
+        let near = far.checked_neg().ok_or(range)?;
+        let (mut lo, mut hi) = (S::ZERO, far);
+        // The end planes: 0 ≤ s0 + sd t ≤ height.
+        if w.sd == S::ZERO {
+            if w.s0 < S::ZERO || w.s0 > self.height {
+                return Err(Miss::NoRoot);
+            }
+        } else {
+            let neg_s0 = w.s0.checked_neg().ok_or(range)?;
+            let ta = div_or_far(neg_s0, w.sd);
+            let tb = div_or_far(self.height.checked_sub(w.s0).ok_or(range)?, w.sd);
+            lo = lo.max(ta.min(tb));
+            hi = hi.min(ta.max(tb));
+        }
+        // The bounding cylinder: A t² + 2 B t + C ≤ 0.
+        let rmax = self.max_radius().ok_or(range)?;
+        let qd = w.qd.to_array();
+        let q0 = w.q0.to_array();
+        let big_a = S::dot3(qd, qd).ok_or(range)?;
+        let big_b = S::dot3(q0, qd).ok_or(range)?;
+        let big_c = S::dot3(q0, q0)
+            .and_then(|qq| S::sub_dot3(qq, [rmax, S::ZERO, S::ZERO], [rmax, S::ZERO, S::ZERO]))
+            .ok_or(range)?;
+        if big_a == S::ZERO {
+            if big_c > S::ZERO {
+                return Err(Miss::NoRoot);
+            }
+        } else {
+            let neg_a = big_a.checked_neg().ok_or(range)?;
+            let disc = S::dot3([big_b, neg_a, S::ZERO], [big_b, big_c, S::ZERO]).ok_or(range)?;
+            if disc <= S::ZERO {
+                return Err(Miss::NoRoot);
+            }
+            let root = disc.checked_sqrt().ok_or(range)?;
+            let q = if big_b >= S::ZERO {
+                big_b.checked_add(root).and_then(S::checked_neg)
+            } else {
+                root.checked_sub(big_b)
+            }
+            .ok_or(range)?;
+            let (t1, t2) = (div_or_far(q, big_a), div_or_far(big_c, q));
+            lo = lo.max(t1.min(t2).max(near));
+            hi = hi.min(t1.max(t2));
+        }
+        if hi <= lo {
+            return Err(Miss::NoRoot);
+        }
+        Ok((lo, hi))
+    }
+
+    /// The first sign change of [`Self::excess`] on the search interval (module
+    /// documentation).
+    fn search_root(&self, w: &Axial<S>) -> Result<S, Miss> {
+        let range = Miss::OutOfRange;
+        let (lo, hi) = self.search_interval(w)?;
+        let min_step = S::ONE.mul_ratio(MIN_STEP.0, MIN_STEP.1).ok_or(range)?;
+        let mut t = lo;
+        let mut f = self.excess(w, t).ok_or(range)?;
+        if f == S::ZERO && t > S::ZERO {
+            return Ok(t);
+        }
+        for _ in 0..MAX_STEPS {
+            if t >= hi {
+                return Err(Miss::Behind);
+            }
+            // |F'| < 4 on the interval: no root within |F|/4.
+            let step = f.abs().mul_ratio(1, 4).ok_or(range)?.max(min_step);
+            let next = t.checked_add(step).map_or(hi, |n| n.min(hi));
+            let g = self.excess(w, next).ok_or(range)?;
+            if g == S::ZERO || (g < S::ZERO) != (f < S::ZERO) {
+                return self.bisect(w, t, next, f < S::ZERO);
+            }
+            t = next;
+            f = g;
+        }
+        Err(Miss::Behind)
+    }
+
+    /// Halves the bracket `[a, b]` (`F(a)` negative when `inside`, `F(b)` of the other sign
+    /// or zero) until its midpoint rounds to an end; the end past the surface.
+    fn bisect(&self, w: &Axial<S>, mut a: S, mut b: S, inside: bool) -> Result<S, Miss> {
+        let range = Miss::OutOfRange;
+        for _ in 0..128 {
+            let m = b
+                .checked_sub(a)
+                .and_then(|d| d.mul_ratio(1, 2))
+                .and_then(|h| a.checked_add(h))
+                .ok_or(range)?;
+            if m <= a || m >= b {
+                break;
+            }
+            let fm = self.excess(w, m).ok_or(range)?;
+            if fm != S::ZERO && (fm < S::ZERO) == inside {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        if b > S::ZERO {
+            Ok(b)
+        } else {
+            Err(Miss::Behind)
+        }
+    }
+
+    /// The outward unit normal the course lights a point with. The cone's,
+    /// `unit(q + 2 r(s) taper a)`, is tilted along the axis twice as far as the surface's
+    /// own normal `unit(q + r(s) taper a)` (the gradient of `|q|² − r(s)²`): the tilt that
+    /// draws revsurfa's shading. The hourglass and the vase take their true normal,
+    /// `unit(q − r(s) r'(s) a)` (the fits and their figures: `docs/numerics.md`,
+    /// "Surfaces of revolution"). `None` at the cone's apex or off the format's range.
     pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
         let w = point.diff(self.base)?;
         let s = w.dot(self.axis)?;
         let q = w.diff(self.axis.scale(s)?)?;
-        let r = self.radius_at(s)?.max(S::ZERO);
-        let tilt = r.checked_mul(self.taper)?;
-        q.sum(self.axis.scale(tilt.checked_add(tilt)?)?)?.unit()
+        // The normal's part along the axis, −r r' (doubled for the cone).
+        let along = match self.profile {
+            Profile::Cone { taper, .. } => {
+                let r = self.radius_at(s)?.max(S::ZERO);
+                let tilt = r.checked_mul(taper)?;
+                tilt.checked_add(tilt)?
+            }
+            Profile::Hourglass => {
+                // r r' = −(1 + cos s / 2) sin s / 2
+                let r = self.radius_at(s)?;
+                r.checked_mul(sin_any(s)?.mul_ratio(1, 2)?)?
+            }
+            Profile::Vase => {
+                // r r' = (1 + sin s / 2) cos s / 2
+                let r = self.radius_at(s)?;
+                r.checked_mul(cos_any(s)?.mul_ratio(1, 2)?)?.checked_neg()?
+            }
+        };
+        q.sum(self.axis.scale(along)?)?.unit()
     }
 
     /// A secondary ray leaving a hit in direction `dir`, based off the surface along its
@@ -197,7 +435,7 @@ impl<S: Scalar> Revsurf<S> {
             .max(hit.point.max_abs())
             .max(self.base.max_abs())
             .max(self.height)
-            .max(self.radius);
+            .max(self.max_radius()?);
         spawn_along(hit, self.normal_at(hit.point)?, dir, m)
     }
 }
@@ -309,10 +547,12 @@ mod tests {
     #[test]
     fn unknown_profiles_and_bad_axes_are_errors() {
         let v = |x, y, z| Vec3::<f64>::from_f64([x, y, z]).unwrap();
-        assert_eq!(
-            Revsurf::new(2, v(0.0, 0.0, 0.0), v(0.0, 1.0, 0.0), 6.0),
-            Err(RevsurfError::UnknownProfile)
-        );
+        for k in [0, 4, -1] {
+            assert_eq!(
+                Revsurf::new(k, v(0.0, 0.0, 0.0), v(0.0, 1.0, 0.0), 6.0),
+                Err(RevsurfError::UnknownProfile)
+            );
+        }
         assert_eq!(
             Revsurf::new(1, v(0.0, 0.0, 0.0), v(0.0, 0.0, 0.0), 6.0),
             Err(RevsurfError::ZeroDirection)

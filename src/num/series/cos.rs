@@ -20,6 +20,29 @@ pub fn cos<S: Scalar>(x: S) -> Option<S> {
     Some(acc)
 }
 
+/// cos x for any x, through [`crate::num::Series::cos`] (the series above in the fixed
+/// formats, `libm` in the floats) on the angle reduced to [−π/2, π/2]: `x − 2πk` with
+/// `k = round(x / 2π)`, then `cos y = −cos(π − |y|)` for `|y| > π/2`. The reduction
+/// rounds `2π k` (and π) in the format: the reduced angle is off by about `(1 + 7|k|) δ`,
+/// and so is the cosine. `None` when a step overflows. The profiles of the course's
+/// `revsurf` (`surfer 2` and `3`) take their cosines and sines here.
+pub fn cos_any<S: Scalar>(x: S) -> Option<S> {
+    use core::f64::consts::{PI, TAU};
+    let k = x.checked_mul(S::from_f64(1.0 / TAU)?)?.round_to_i32()?;
+    let y = x.checked_sub(S::from_f64(TAU)?.checked_mul_int(k)?)?;
+    let pi = S::from_f64(PI)?;
+    if y.abs() <= S::from_f64(PI / 2.0)? {
+        y.cos()
+    } else {
+        pi.checked_sub(y.abs())?.cos()?.checked_neg()
+    }
+}
+
+/// sin x for any x: `cos(x − π/2)` by [`cos_any`].
+pub fn sin_any<S: Scalar>(x: S) -> Option<S> {
+    cos_any(x.checked_sub(S::from_f64(core::f64::consts::FRAC_PI_2)?)?)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -54,6 +77,37 @@ mod tests {
         vectors::<I16F16>(16.0);
         vectors::<I20F12>(16.0);
         vectors::<I32F32>(16.0);
+    }
+
+    /// Any angle: the reduction's rounding (`(1 + 7|k|) δ`, `|k| ≤ 2` here) and the
+    /// series' on [−π/2, π/2], in every fixed format and f64.
+    fn any_angle<S: Scalar>() {
+        for i in -400..=400 {
+            let x = f64::from(i) * 0.031;
+            let xs = S::from_f64(x).unwrap();
+            let bound = MAX_ERROR + 40.0 * S::DELTA.to_f64();
+            let c = cos_any(xs).unwrap().to_f64();
+            let s = sin_any(xs).unwrap().to_f64();
+            let exact = xs.to_f64();
+            assert!(
+                (c - exact.cos()).abs() <= bound,
+                "{}: cos {x} = {c}",
+                S::NAME
+            );
+            assert!(
+                (s - exact.sin()).abs() <= bound,
+                "{}: sin {x} = {s}",
+                S::NAME
+            );
+        }
+    }
+
+    #[test]
+    fn any_angle_is_reduced_within_its_error() {
+        any_angle::<f64>();
+        any_angle::<I16F16>();
+        any_angle::<I20F12>();
+        any_angle::<I32F32>();
     }
 
     #[test]

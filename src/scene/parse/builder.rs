@@ -202,8 +202,8 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
             .map_err(|e| match e {
                 RevsurfError::UnknownProfile => surfer.pos.error(SceneErrorKind::OutOfDomain {
                     attribute: "surfer",
-                    rule: "1 (the cone; the profiles of 2 and 3 are not known: no \
-                       public picture shows them)",
+                    rule: "1, 2 or 3 (the cone, the hourglass and the vase: the \
+                       course's profiles)",
                 }),
                 RevsurfError::ZeroDirection => direction.pos.error(SceneErrorKind::OutOfDomain {
                     attribute: "direction",
