@@ -310,13 +310,63 @@ fn the_ppm_reader_survives_a_million_inputs() {
     assert!(read > 100_000 && read < 900_000, "{read} read");
 }
 
+/// Surfaces of revolution of every profile made of arbitrary bit patterns (any base,
+/// direction, height and ray the format can hold): the intersection, the normal and the
+/// spawned ray end in a value or a typed miss.
+fn fuzz_revsurf<S: Scalar>(cases: u32) {
+    let mut rng = SplitMix(0x2E75_F022);
+    let mut outcomes = [0u32; 2];
+    for i in 0..cases {
+        let mut vec = || {
+            Vec3::new(
+                arbitrary::<S>(&mut rng),
+                arbitrary::<S>(&mut rng),
+                arbitrary::<S>(&mut rng),
+            )
+        };
+        let (base, direction, origin, dir) = (vec(), vec(), vec(), vec());
+        let height = arbitrary::<S>(&mut rng);
+        let surfer = i64::from(i % 5);
+        let Ok(shape) = fixray::Revsurf::new(surfer, base, direction, height) else {
+            continue;
+        };
+        // Half the rays with a unit direction, as the tracer casts them.
+        let dir = if i % 2 == 0 { dir.unit().unwrap_or(dir) } else { dir };
+        let ray = Ray {
+            base: origin,
+            dir,
+            kind: RayKind::Secondary,
+        };
+        let result = shape.intersect(&ray);
+        outcomes[usize::from(result.is_ok())] += 1;
+        if let Ok(hit) = result {
+            let _ = shape.normal_at(hit.point);
+            let _ = shape.spawn(&ray, &hit, dir);
+        }
+    }
+    assert!(outcomes[0] > 0 && outcomes[1] > 0, "{}: {outcomes:?}", S::NAME);
+}
+
+#[test]
+fn surfaces_of_revolution_survive_arbitrary_bit_patterns() {
+    fixray::for_each_format!(all: fuzz_revsurf(20_000));
+}
+
 /// The course's scenes with textures, projectors and translucency, mutated (a token
 /// replaced, numbers at the edges of the ranges), their texture files fuzzed PPM bytes:
 /// parsed in every format, the small ones drawn.
 #[test]
 fn the_course_entities_survive_200_000_mutated_files() {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/course/scenes");
-    let bases: Vec<Vec<String>> = ["texplane1", "texplane3", "translucent", "proj1", "proj3"]
+    let bases: Vec<Vec<String>> = [
+        "texplane1",
+        "texplane3",
+        "translucent",
+        "proj1",
+        "proj3",
+        "revsurfa",
+        "revsurfe",
+    ]
         .iter()
         .map(|n| {
             let text = std::fs::read_to_string(format!("{dir}/{n}.txt")).unwrap();

@@ -37,9 +37,10 @@
 //!
 //! ## The hourglass and the vase
 //! Not quadrics: the hit is the first sign change of `F(t) = |q₀ + q_d t|² − r(s₀ + s_d t)²`
-//! on the part of the ray inside the bounding cylinder (radius 3/2, the profiles' largest
-//! radius) and between the end planes (`0 ≤ s ≤ height`), found by stepping and then
-//! bisecting. On that part `|F'(t)| ≤ 3|q_d| + (3/2)|s_d| < 4`, so a step of `|F(t)|/4`
+//! on the part of the ray inside the bounding cylinder (radius 25/16, the profiles'
+//! largest radius 3/2 with a margin, so that no root lies where the ray enters it) and
+//! between the end planes (`0 ≤ s ≤ height`), found by stepping and then bisecting. On
+//! that part `|F'(t)| ≤ (25/8)|q_d| + (3/2)|s_d| < 4`, so a step of `|F(t)|/4`
 //! cannot pass a root; a step is at least [`MIN_STEP`] (a ray that grazes the surface for
 //! less than that may pass it: the silhouette's last sliver), at most [`MAX_STEPS`] steps
 //! (a longer search is a documented miss, [`Miss::Behind`]). The bisection halves the
@@ -180,11 +181,13 @@ impl<S: Scalar> Revsurf<S> {
         }
     }
 
-    /// The largest radius of the profile.
+    /// The largest radius of the profile (the hourglass's and the vase's with a margin
+    /// of 1/16: their bounding cylinder, which then meets the surface nowhere, so that
+    /// `F` at a side entry is clearly positive and no root lies at the search's start).
     fn max_radius(&self) -> Option<S> {
         match self.profile {
             Profile::Cone { radius, .. } => Some(radius),
-            Profile::Hourglass | Profile::Vase => S::from_i32(3)?.mul_ratio(1, 2),
+            Profile::Hourglass | Profile::Vase => S::from_i32(25)?.mul_ratio(1, 16),
         }
     }
 

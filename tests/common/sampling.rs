@@ -376,3 +376,173 @@ pub fn revsurf_stats<S: Scalar>(n: u64, seed: u64) -> RevsurfStats {
     }
     st
 }
+
+/// Hit/miss and `t` of the hourglass and the vase (`surfer 2`, `3`) in a format against
+/// f64 on the same inputs, and f64's own root search against a dense scan.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct WaveStats {
+    /// Rays cast.
+    pub rays: u64,
+    /// Rays f64 hits.
+    pub hits: u64,
+    /// Hit/miss disagreements where the hit (whichever side found it) is clear: the ray
+    /// meets the surface at more than 0.1 of a right angle (`|d·n| ≥ 0.1`) and `s` lies
+    /// more than 10⁻³ height from an end.
+    pub disagree_clear: u64,
+    /// Hit/miss disagreements at grazing angles or the ends.
+    pub disagree_near: u64,
+    /// Largest `|Δt| |d·n| / ((1 + t) δ)` over clear hits both found (first order,
+    /// `Δt ≈ ΔF / |F'|` and `|F'| = |∇F| |d·n|`).
+    pub max_clear: f64,
+    /// Largest `|Δt| / √δ` over the other hits both found.
+    pub max_near: f64,
+    /// Rays on which a scan of `F` in f64 at 1/1024 steps finds a sign change before
+    /// f64's hit (or on a ray f64 misses): slivers the search stepped over.
+    pub stepped_over: u64,
+}
+
+/// `(F(t), s(t), |d·n|)` of profile `surfer` (2 or 3) in f64: `F = |q|² − r(s)²`, `n` the
+/// surface's unit normal.
+fn wave_terms(
+    surfer: i64,
+    (base, axis): ([f64; 3], [f64; 3]),
+    (o, d): ([f64; 3], [f64; 3]),
+    t: f64,
+) -> (f64, f64, f64) {
+    let p = [o[0] + d[0] * t, o[1] + d[1] * t, o[2] + d[2] * t];
+    let w = [p[0] - base[0], p[1] - base[1], p[2] - base[2]];
+    let s = dot(w, axis);
+    let q = [w[0] - s * axis[0], w[1] - s * axis[1], w[2] - s * axis[2]];
+    let (r, dr) = if surfer == 2 {
+        (1.0 + s.cos() / 2.0, -s.sin() / 2.0)
+    } else {
+        (1.0 + s.sin() / 2.0, s.cos() / 2.0)
+    };
+    let g = [
+        q[0] - r * dr * axis[0],
+        q[1] - r * dr * axis[1],
+        q[2] - r * dr * axis[2],
+    ];
+    let gn = dot(g, g).sqrt();
+    (dot(q, q) - r * r, s, dot(g, d).abs() / gn)
+}
+
+/// Seeded random hourglasses and vases (random base in ±8, axis, height 1..8) and rays
+/// aimed near them (from ±16, towards a point within 2 of the axis' middle): the test in
+/// format `S` against f64 on the same (converted) inputs.
+pub fn wave_stats<S: Scalar>(surfer: i64, n: u64, seed: u64) -> WaveStats {
+    use fixray::Revsurf;
+    let mut rng = SplitMix(seed);
+    let mut st = WaveStats::default();
+    let to_s = |v: [f64; 3]| Vec3::<S>::from_f64(v);
+    let back = |v: Vec3<S>| [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()];
+    while st.rays < n {
+        let (Some(b), Some(a), Some(h)) = (
+            to_s(rng.vector(8.0)),
+            to_s(rng.unit()),
+            S::from_f64(rng.uniform(1.0, 8.0)),
+        ) else {
+            continue;
+        };
+        let Ok(shape) = Revsurf::new(surfer, b, a, h) else {
+            continue;
+        };
+        let (bf, af, hf) = (back(shape.base()), back(shape.axis()), shape.height().to_f64());
+        let Ok(exact) = Revsurf::<f64>::new(
+            surfer,
+            Vec3::new(bf[0], bf[1], bf[2]),
+            Vec3::new(af[0], af[1], af[2]),
+            hf,
+        ) else {
+            continue;
+        };
+        // The scan's axis: f64's unit axis (a format whose square root is approximate
+        // hands back a vector a little off unit length).
+        let af = [exact.axis().x, exact.axis().y, exact.axis().z];
+        for _ in 0..16 {
+            let from = rng.vector(16.0);
+            let target = rng.vector(2.0);
+            let mid = [
+                bf[0] + af[0] * hf / 2.0,
+                bf[1] + af[1] * hf / 2.0,
+                bf[2] + af[2] * hf / 2.0,
+            ];
+            let dir = unit([
+                mid[0] + target[0] - from[0],
+                mid[1] + target[1] - from[1],
+                mid[2] + target[2] - from[2],
+            ]);
+            let (Some(o), Some(d)) = (to_s(from), to_s(dir)) else {
+                continue;
+            };
+            let ray = Ray {
+                base: o,
+                dir: d,
+                kind: RayKind::Secondary,
+            };
+            let (of, df) = (back(o), back(d));
+            let exact_ray = Ray {
+                base: Vec3::new(of[0], of[1], of[2]),
+                dir: Vec3::new(df[0], df[1], df[2]),
+                kind: RayKind::Secondary,
+            };
+            st.rays += 1;
+            let want = exact.intersect(&exact_ray);
+            let got = shape.intersect(&ray);
+            let terms = |t: f64| wave_terms(surfer, (bf, af), (of, df), t);
+            let clear_at = |t: f64| {
+                let (_, s, c) = terms(t);
+                c >= 0.1 && s > 1e-3 * hf && s < hf * (1.0 - 1e-3)
+            };
+            // The dense scan: a sign change of F between 0 and the hit (or 40 units).
+            let end = want.map_or(40.0, |w| w.t);
+            // Sign changes of F between samples both between the end planes (an open
+            // end is not the surface).
+            let steps = (end * 1024.0) as u64;
+            let mut last: Option<bool> = None;
+            for k in 1..steps.saturating_sub(2) {
+                let (f, s, _) = terms(k as f64 / 1024.0);
+                if !(0.0..=hf).contains(&s) {
+                    last = None;
+                    continue;
+                }
+                if last.is_some_and(|l| l != (f < 0.0)) {
+                    st.stepped_over += 1;
+                    break;
+                }
+                last = Some(f < 0.0);
+            }
+            if want.is_ok() {
+                st.hits += 1;
+            }
+            match (want, got) {
+                (Ok(w), Ok(g)) => {
+                    let dt = (w.t - g.t.to_f64()).abs();
+                    if clear_at(w.t) {
+                        let c = terms(w.t).2;
+                        let e = dt * c / ((1.0 + w.t) * S::DELTA.to_f64());
+                        st.max_clear = st.max_clear.max(e);
+                    } else {
+                        st.max_near = st.max_near.max(dt / S::DELTA.to_f64().sqrt());
+                    }
+                }
+                (Ok(w), Err(_)) => {
+                    if clear_at(w.t) {
+                        st.disagree_clear += 1;
+                    } else {
+                        st.disagree_near += 1;
+                    }
+                }
+                (Err(_), Ok(g)) => {
+                    if clear_at(g.t.to_f64()) {
+                        st.disagree_clear += 1;
+                    } else {
+                        st.disagree_near += 1;
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    st
+}
