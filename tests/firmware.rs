@@ -200,7 +200,7 @@ fn absent_effects_cost_nothing_on_the_chip() {
 }
 
 /// The course's entities on the chips (issue 15): one shipped scene each (translucency,
-/// a textured plane, a projector, a surface of revolution), built with the `textures`
+/// a textured plane, a projector, surfaces of revolution), built with the `textures`
 /// feature (its texture, 32×32, in flash), in I16F16 and f32 on both cores: instructions
 /// per pixel, flash, and the frame hash against the host's (equal in I16F16, asserted).
 #[test]
@@ -212,6 +212,7 @@ fn course_entities_on_the_chips() {
         ("texplane", include_str!("../scenes/texplane.scene")),
         ("projector", include_str!("../scenes/projector.scene")),
         ("revsurf", include_str!("../scenes/revsurf.scene")),
+        ("vases", include_str!("../scenes/vases.scene")),
     ];
     let names = scenes.map(|s| s.0).join(",");
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/x.scene");
@@ -309,7 +310,7 @@ fn i32f32_fits_the_cortex_m0_in_every_shipped_scene() {
     ];
     // The scenes of the course's entities need the `textures` feature (room for
     // textures in the scene, the texel lookups).
-    let textured = ["translucent", "texplane", "projector", "revsurf"];
+    let textured = ["translucent", "texplane", "projector", "revsurf", "vases"];
     let runs = [
         (names.as_slice(), None, M0_RAM_BUDGET),
         (

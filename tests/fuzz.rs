@@ -331,7 +331,11 @@ fn fuzz_revsurf<S: Scalar>(cases: u32) {
             continue;
         };
         // Half the rays with a unit direction, as the tracer casts them.
-        let dir = if i % 2 == 0 { dir.unit().unwrap_or(dir) } else { dir };
+        let dir = if i % 2 == 0 {
+            dir.unit().unwrap_or(dir)
+        } else {
+            dir
+        };
         let ray = Ray {
             base: origin,
             dir,
@@ -344,7 +348,11 @@ fn fuzz_revsurf<S: Scalar>(cases: u32) {
             let _ = shape.spawn(&ray, &hit, dir);
         }
     }
-    assert!(outcomes[0] > 0 && outcomes[1] > 0, "{}: {outcomes:?}", S::NAME);
+    assert!(
+        outcomes[0] > 0 && outcomes[1] > 0,
+        "{}: {outcomes:?}",
+        S::NAME
+    );
 }
 
 #[test]
@@ -367,14 +375,14 @@ fn the_course_entities_survive_200_000_mutated_files() {
         "revsurfa",
         "revsurfe",
     ]
-        .iter()
-        .map(|n| {
-            let text = std::fs::read_to_string(format!("{dir}/{n}.txt")).unwrap();
-            // Drawn at 3×2 pixels: the pixel count is not what is fuzzed.
-            let text = text.replace("640 480", "3 2").replace("800 600", "3 2");
-            text.split_whitespace().map(str::to_string).collect()
-        })
-        .collect();
+    .iter()
+    .map(|n| {
+        let text = std::fs::read_to_string(format!("{dir}/{n}.txt")).unwrap();
+        // Drawn at 3×2 pixels: the pixel count is not what is fuzzed.
+        let text = text.replace("640 480", "3 2").replace("800 600", "3 2");
+        text.split_whitespace().map(str::to_string).collect()
+    })
+    .collect();
     let mut rng = SplitMix(0x7E47_2026);
     let (mut parsed, mut drawn) = (0u32, 0u32);
     for i in 0..200_000u32 {

@@ -71,7 +71,11 @@ fn check_waves<S: Scalar>() -> bool {
     for surfer in [2, 3] {
         let st = wave_stats::<S>(surfer, 10_000, 0x5EAF_2026 + surfer as u64);
         println!("{} surfer {surfer}: {st:?}", S::NAME);
-        assert!(st.hits > st.rays / 5, "{}: the sampler must hit: {st:?}", S::NAME);
+        assert!(
+            st.hits > st.rays / 5,
+            "{}: the sampler must hit: {st:?}",
+            S::NAME
+        );
         // f64's search against a scan at 1/1024: only grazing slivers are stepped over.
         assert!(st.stepped_over * 1_000 <= st.rays, "{}: {st:?}", S::NAME);
         if !sqrt_is_rounded::<S>() {

@@ -447,7 +447,11 @@ pub fn wave_stats<S: Scalar>(surfer: i64, n: u64, seed: u64) -> WaveStats {
         let Ok(shape) = Revsurf::new(surfer, b, a, h) else {
             continue;
         };
-        let (bf, af, hf) = (back(shape.base()), back(shape.axis()), shape.height().to_f64());
+        let (bf, af, hf) = (
+            back(shape.base()),
+            back(shape.axis()),
+            shape.height().to_f64(),
+        );
         let Ok(exact) = Revsurf::<f64>::new(
             surfer,
             Vec3::new(bf[0], bf[1], bf[2]),

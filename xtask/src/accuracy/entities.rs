@@ -1,12 +1,12 @@
 //! The course's entities (issue 15): one shipped scene each for translucency, a textured
-//! plane, a projector and a surface of revolution, read with their texture files (the
+//! plane, a projector and surfaces of revolution, read with their texture files (the
 //! `textures` feature): error against f64 and host time per format, and instructions per
 //! pixel on both cores (I16F16 and f32, the firmware built with `textures`).
 
 use super::*;
 
 /// The scenes: name, what it is, text (their texture files are in `scenes/textures/`).
-const ENTITY_SCENES: [(&str, &str, &str); 4] = [
+const ENTITY_SCENES: [(&str, &str, &str); 5] = [
     (
         "translucent",
         "transparency: a translucent sphere before a lit sphere",
@@ -26,6 +26,11 @@ const ENTITY_SCENES: [(&str, &str, &str); 4] = [
         "revsurf",
         "a surface of revolution (`surfer 1`, a cone)",
         include_str!("../../../scenes/revsurf.scene"),
+    ),
+    (
+        "vases",
+        "surfaces of revolution (`surfer 2` and `3`: an hourglass and a vase)",
+        include_str!("../../../scenes/vases.scene"),
     ),
 ];
 
@@ -87,8 +92,8 @@ pub(super) fn entities_section(quick: bool) -> String {
         r,
         "\nFirmware instructions per pixel (QEMU, `-icount shift=0`, deterministic), built \
          with `--no-default-features --features {FEATURES}` and \
-         `FIXRAY_FW_SCENES=translucent,texplane,projector,revsurf`; flash is the whole \
-         firmware's (the four scenes and their texture).\n"
+         `FIXRAY_FW_SCENES=translucent,texplane,projector,revsurf,vases`; flash is the whole \
+         firmware's (the five scenes and their texture).\n"
     );
     if quick {
         let _ = writeln!(r, "--quick: firmware not measured.");
