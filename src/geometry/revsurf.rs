@@ -109,6 +109,16 @@ pub struct Revsurf<S> {
     profile: Profile<S>,
 }
 
+/// `Q = −(B + sign(B)√disc)` of the stable root pair `Q/A`, `C/Q` (no cancellation
+/// between `B` and the square root `root`).
+fn stable_q<S: Scalar>(big_b: S, root: S) -> Option<S> {
+    if big_b >= S::ZERO {
+        big_b.checked_add(root).and_then(S::checked_neg)
+    } else {
+        root.checked_sub(big_b)
+    }
+}
+
 /// `n / d`, or the format's largest magnitude of the quotient's sign where it does not
 /// fit (a bound of the search interval that lies beyond the format's range).
 fn div_or_far<S: Scalar>(n: S, d: S) -> S {
@@ -255,12 +265,7 @@ impl<S: Scalar> Revsurf<S> {
             return Err(Miss::NoRoot);
         }
         let root = disc.checked_sqrt().ok_or(range)?;
-        let q = if big_b >= S::ZERO {
-            big_b.checked_add(root).and_then(S::checked_neg)
-        } else {
-            root.checked_sub(big_b)
-        }
-        .ok_or(range)?;
+        let q = stable_q(big_b, root).ok_or(range)?;
         let mut best: Option<S> = None;
         for t in [q.checked_div(big_a), big_c.checked_div(q)]
             .into_iter()
@@ -326,12 +331,7 @@ impl<S: Scalar> Revsurf<S> {
                 return Err(Miss::NoRoot);
             }
             let root = disc.checked_sqrt().ok_or(range)?;
-            let q = if big_b >= S::ZERO {
-                big_b.checked_add(root).and_then(S::checked_neg)
-            } else {
-                root.checked_sub(big_b)
-            }
-            .ok_or(range)?;
+            let q = stable_q(big_b, root).ok_or(range)?;
             let (t1, t2) = (div_or_far(q, big_a), div_or_far(big_c, q));
             lo = lo.max(t1.min(t2).max(near));
             hi = hi.min(t1.max(t2));
