@@ -296,9 +296,7 @@ impl<S: Scalar> Revsurf<S> {
     /// between the end planes.
     fn search_interval(&self, w: &Axial<S>) -> Result<(S, S), Miss> {
         let range = Miss::OutOfRange;
-        let far = S::MAX;
-        let near = far.checked_neg().ok_or(range)?;
-        let (mut lo, mut hi) = (S::ZERO, far);
+        let (mut lo, mut hi) = (S::ZERO, S::MAX);
         // The end planes: 0 ≤ s0 + sd t ≤ height.
         if w.sd == S::ZERO {
             if w.s0 < S::ZERO || w.s0 > self.height {
@@ -333,7 +331,7 @@ impl<S: Scalar> Revsurf<S> {
             let root = disc.checked_sqrt().ok_or(range)?;
             let q = stable_q(big_b, root).ok_or(range)?;
             let (t1, t2) = (div_or_far(q, big_a), div_or_far(big_c, q));
-            lo = lo.max(t1.min(t2).max(near));
+            lo = lo.max(t1.min(t2));
             hi = hi.min(t1.max(t2));
         }
         if hi <= lo {
