@@ -273,58 +273,21 @@ pub struct RevsurfStats {
 /// near them (from ±16, towards a point within the cone's bounding ball): the cone test
 /// in format `S` against f64 on the same (converted) inputs.
 pub fn revsurf_stats<S: Scalar>(n: u64, seed: u64) -> RevsurfStats {
-    use fixray::Revsurf;
     let mut rng = SplitMix(seed);
     let mut st = RevsurfStats::default();
-    let to_s = |v: [f64; 3]| Vec3::<S>::from_f64(v);
     let back = |v: Vec3<S>| [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()];
     while st.rays < n {
-        let base = rng.vector(8.0);
-        let axis = rng.unit();
-        let height = rng.uniform(1.0, 8.0);
-        let (Some(b), Some(a), Some(h)) = (to_s(base), to_s(axis), S::from_f64(height)) else {
-            continue;
-        };
-        let Ok(cone) = Revsurf::new(1, b, a, h) else {
+        let Some((cone, exact)) = random_revsurf::<S>(&mut rng, 1) else {
             continue;
         };
         let (bf, af, hf) = (back(cone.base()), back(cone.axis()), cone.height().to_f64());
-        let Ok(exact) = Revsurf::<f64>::new(
-            1,
-            Vec3::new(bf[0], bf[1], bf[2]),
-            Vec3::new(af[0], af[1], af[2]),
-            hf,
-        ) else {
-            continue;
-        };
         for _ in 0..16 {
-            let from = rng.vector(16.0);
-            let r = 4.0f64.max(hf);
-            let target = rng.vector(r);
-            let mid = [
-                bf[0] + af[0] * hf / 2.0,
-                bf[1] + af[1] * hf / 2.0,
-                bf[2] + af[2] * hf / 2.0,
-            ];
-            let dir = unit([
-                mid[0] + target[0] - from[0],
-                mid[1] + target[1] - from[1],
-                mid[2] + target[2] - from[2],
-            ]);
-            let (Some(o), Some(d)) = (to_s(from), to_s(dir)) else {
+            let Some((ray, exact_ray)) =
+                aimed_ray::<S>(&mut rng, axis_middle(&cone), 4.0f64.max(hf))
+            else {
                 continue;
             };
-            let ray = Ray {
-                base: o,
-                dir: d,
-                kind: RayKind::Secondary,
-            };
-            let (of, df) = (back(o), back(d));
-            let exact_ray = Ray {
-                base: Vec3::new(of[0], of[1], of[2]),
-                dir: Vec3::new(df[0], df[1], df[2]),
-                kind: RayKind::Secondary,
-            };
+            let (of, df) = (back(ray.base), back(ray.dir));
             st.rays += 1;
             let want = exact.intersect(&exact_ray);
             let got = cone.intersect(&ray);
@@ -431,65 +394,22 @@ fn wave_terms(
 /// aimed near them (from ±16, towards a point within 2 of the axis' middle): the test in
 /// format `S` against f64 on the same (converted) inputs.
 pub fn wave_stats<S: Scalar>(surfer: i64, n: u64, seed: u64) -> WaveStats {
-    use fixray::Revsurf;
     let mut rng = SplitMix(seed);
     let mut st = WaveStats::default();
-    let to_s = |v: [f64; 3]| Vec3::<S>::from_f64(v);
     let back = |v: Vec3<S>| [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()];
     while st.rays < n {
-        let (Some(b), Some(a), Some(h)) = (
-            to_s(rng.vector(8.0)),
-            to_s(rng.unit()),
-            S::from_f64(rng.uniform(1.0, 8.0)),
-        ) else {
-            continue;
-        };
-        let Ok(shape) = Revsurf::new(surfer, b, a, h) else {
-            continue;
-        };
-        let (bf, af, hf) = (
-            back(shape.base()),
-            back(shape.axis()),
-            shape.height().to_f64(),
-        );
-        let Ok(exact) = Revsurf::<f64>::new(
-            surfer,
-            Vec3::new(bf[0], bf[1], bf[2]),
-            Vec3::new(af[0], af[1], af[2]),
-            hf,
-        ) else {
+        let Some((shape, exact)) = random_revsurf::<S>(&mut rng, surfer) else {
             continue;
         };
         // The scan's axis: f64's unit axis (a format whose square root is approximate
         // hands back a vector a little off unit length).
+        let (bf, hf) = (back(shape.base()), shape.height().to_f64());
         let af = [exact.axis().x, exact.axis().y, exact.axis().z];
         for _ in 0..16 {
-            let from = rng.vector(16.0);
-            let target = rng.vector(2.0);
-            let mid = [
-                bf[0] + af[0] * hf / 2.0,
-                bf[1] + af[1] * hf / 2.0,
-                bf[2] + af[2] * hf / 2.0,
-            ];
-            let dir = unit([
-                mid[0] + target[0] - from[0],
-                mid[1] + target[1] - from[1],
-                mid[2] + target[2] - from[2],
-            ]);
-            let (Some(o), Some(d)) = (to_s(from), to_s(dir)) else {
+            let Some((ray, exact_ray)) = aimed_ray::<S>(&mut rng, axis_middle(&exact), 2.0) else {
                 continue;
             };
-            let ray = Ray {
-                base: o,
-                dir: d,
-                kind: RayKind::Secondary,
-            };
-            let (of, df) = (back(o), back(d));
-            let exact_ray = Ray {
-                base: Vec3::new(of[0], of[1], of[2]),
-                dir: Vec3::new(df[0], df[1], df[2]),
-                kind: RayKind::Secondary,
-            };
+            let (of, df) = (back(ray.base), back(ray.dir));
             st.rays += 1;
             let want = exact.intersect(&exact_ray);
             let got = shape.intersect(&ray);
@@ -549,4 +469,77 @@ pub fn wave_stats<S: Scalar>(surfer: i64, n: u64, seed: u64) -> WaveStats {
         }
     }
     st
+}
+
+/// A random surface of revolution of profile `surfer` (base within ±8, a random axis,
+/// height 1..8) in format `S`, and the same one built in f64 from its values converted
+/// back.
+fn random_revsurf<S: Scalar>(
+    rng: &mut SplitMix,
+    surfer: i64,
+) -> Option<(fixray::Revsurf<S>, fixray::Revsurf<f64>)> {
+    let base = rng.vector(8.0);
+    let axis = rng.unit();
+    let height = rng.uniform(1.0, 8.0);
+    let shape = fixray::Revsurf::new(
+        surfer,
+        Vec3::<S>::from_f64(base)?,
+        Vec3::<S>::from_f64(axis)?,
+        S::from_f64(height)?,
+    )
+    .ok()?;
+    let exact = fixray::Revsurf::<f64>::new(
+        surfer,
+        to_f64(shape.base()),
+        to_f64(shape.axis()),
+        shape.height().to_f64(),
+    )
+    .ok()?;
+    Some((shape, exact))
+}
+
+/// A vector of format `S` in f64.
+fn to_f64<S: Scalar>(v: Vec3<S>) -> Vec3<f64> {
+    Vec3::new(v.x.to_f64(), v.y.to_f64(), v.z.to_f64())
+}
+
+/// A secondary ray from a random point within ±16 towards `mid` moved by a random offset
+/// within `spread`, in format `S`, and the same ray converted back to f64.
+fn aimed_ray<S: Scalar>(
+    rng: &mut SplitMix,
+    mid: [f64; 3],
+    spread: f64,
+) -> Option<(Ray<S>, Ray<f64>)> {
+    let from = rng.vector(16.0);
+    let target = rng.vector(spread);
+    let dir = unit([
+        mid[0] + target[0] - from[0],
+        mid[1] + target[1] - from[1],
+        mid[2] + target[2] - from[2],
+    ]);
+    let ray = Ray {
+        base: Vec3::<S>::from_f64(from)?,
+        dir: Vec3::<S>::from_f64(dir)?,
+        kind: RayKind::Secondary,
+    };
+    let exact = Ray {
+        base: to_f64(ray.base),
+        dir: to_f64(ray.dir),
+        kind: RayKind::Secondary,
+    };
+    Some((ray, exact))
+}
+
+/// The middle of a surface of revolution's axis, in f64.
+fn axis_middle<S: Scalar>(shape: &fixray::Revsurf<S>) -> [f64; 3] {
+    let (b, a, h) = (
+        to_f64(shape.base()),
+        to_f64(shape.axis()),
+        shape.height().to_f64(),
+    );
+    [
+        b.x + a.x * h / 2.0,
+        b.y + a.y * h / 2.0,
+        b.z + a.z * h / 2.0,
+    ]
 }
