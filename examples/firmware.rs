@@ -1,7 +1,8 @@
-//! `firmware`: the ray caster on a Cortex-M chip. Parses the default scene text at run
-//! time with the library's parser, renders it one scanline at a time into a line buffer
-//! (no framebuffer) in every number format built in, and reports each frame over
-//! semihosting as one line:
+//! `firmware`: the ray caster on a Cortex-M chip. Parses the default scene and the boing
+//! ball's scene at run time with the library's parser, renders them one scanline at a
+//! time into a line buffer (no framebuffer) in every number format built in (the boing
+//! ball 16 times, its sphere moved along its bounce by `fixray::anim::Bounce`), and
+//! reports each frame over semihosting as one line (`frame=K` for the ball's frames):
 //!
 //! ```text
 //! format=i16f16 size=160x120 hash=0x1a2b3c4d instructions=1234567 per_pixel=64.3 stack=2048 parse_instructions=… hash_instructions=…
@@ -18,7 +19,7 @@
 //! cargo run --release --example firmware --target thumbv6m-none-eabi      # Cortex-M0 (micro:bit)
 //! cargo run --release --example firmware --target thumbv7em-none-eabihf  # Cortex-M4F (MPS2 AN386)
 //! FIXRAY_FW_FORMATS=i16f16 cargo build ...   # only some formats (to measure flash per format)
-//! FIXRAY_FW_SCENES=default,planes cargo ...  # which scenes/ to embed (default: default)
+//! FIXRAY_FW_SCENES=default,planes cargo ...  # which scenes/ to embed (default: default,boing)
 //! FIXRAY_FW_SPANS=1 cargo run ...            # pure-geometry plane scenes in span mode
 //! FIXRAY_FW_PPM=1 cargo run ...              # also write fixray-<core>-<scene>-<format>.ppm
 //! ```
@@ -47,12 +48,13 @@ mod firmware {
     use cortex_m_rt::{entry, exception};
     use cortex_m_semihosting::{debug, hprintln};
     use embedded_graphics::pixelcolor::Rgb888;
+    use fixray::anim::Bounce;
     use fixray::hash::FrameHash;
     use fixray::{Frame, PlaneMode, Scalar, Scene};
     use panic_semihosting as _;
 
     // The scenes, as text (parsed on the chip): `SCENES`, chosen at build time by
-    // FIXRAY_FW_SCENES (default: the default scene).
+    // FIXRAY_FW_SCENES (default: the default scene and the boing ball).
     include!(concat!(env!("OUT_DIR"), "/fw_scenes.rs"));
 
     /// The line buffer's capacity in pixels (a 320-pixel-wide panel; 960 bytes).
@@ -124,13 +126,22 @@ mod firmware {
     /// Writes one frame to the host as `fixray-<core>-<scene>-<format>.ppm` (semihosting
     /// file I/O).
     #[cfg(fw_ppm)]
-    fn write_ppm<S: Scalar>(name: &str, scene: &Scene<S>, line: &mut [Rgb888]) {
+    fn write_ppm<S: Scalar>(
+        name: &str,
+        frame_no: Option<u16>,
+        scene: &Scene<S>,
+        line: &mut [Rgb888],
+    ) {
         use core::fmt::Write;
         use cortex_m_semihosting::{nr, syscall};
         use embedded_graphics::pixelcolor::RgbColor;
         let scene_name = name;
         let mut name: heapless::String<64> = heapless::String::new();
-        let _ = write!(name, "fixray-{}-{}-{}.ppm\0", BOARD.0, scene_name, S::NAME);
+        let _ = write!(name, "fixray-{}-{}", BOARD.0, scene_name);
+        if let Some(k) = frame_no {
+            let _ = write!(name, "{k:02}");
+        }
+        let _ = write!(name, "-{}.ppm\0", S::NAME);
         // SAFETY: semihosting OPEN with a NUL-terminated name and its length without NUL.
         let fd = unsafe {
             syscall!(
@@ -232,7 +243,7 @@ mod firmware {
             return;
         }
         let parsed = instructions();
-        let (w, h) = (usize::from(scene.camera.width), scene.camera.height);
+        let w = usize::from(scene.camera.width);
         if w > MAX_WIDTH {
             hprintln!(
                 "format={} scene={} error=\"width {} > line buffer {}\"",
@@ -243,10 +254,51 @@ mod firmware {
             );
             return;
         }
+        let parse = parsed - start;
+        if name == ANIMATED {
+            // The boing ball: one parsed scene, its sphere moved per frame (no re-parsing).
+            let bounce = match Bounce::boing(&scene.objects) {
+                Ok(b) => b,
+                Err(e) => {
+                    hprintln!("format={} scene={} error=\"{}\"", S::NAME, name, e);
+                    return;
+                }
+            };
+            for k in 0..bounce.frames() {
+                if let Err(e) = bounce.apply(&mut scene, k) {
+                    hprintln!("format={} scene={} error=\"{}\"", S::NAME, name, e);
+                    return;
+                }
+                if k > 0 {
+                    // Each frame's stack on its own (the first's includes the parse).
+                    paint_stack();
+                }
+                draw(name, &scene, Some(k), parse, line);
+            }
+        } else {
+            draw(name, &scene, None, parse, line);
+        }
+    }
+
+    /// The scene the firmware animates (`fixray::anim::Bounce::boing`), one report line
+    /// per frame with `frame=K`.
+    const ANIMATED: &str = "boing";
+
+    /// Renders one frame of a parsed scene and reports it (`parse`: the parse's
+    /// instructions, reported with every frame of the scene).
+    #[inline(never)]
+    fn draw<S: Scalar>(
+        name: &str,
+        scene: &Scene<S>,
+        frame_no: Option<u16>,
+        parse: u64,
+        line: &mut [Rgb888; MAX_WIDTH],
+    ) {
+        let (w, h) = (usize::from(scene.camera.width), scene.camera.height);
         let mut hash = FrameHash::new();
         let before = instructions();
         // What is constant for the frame is computed once (`Frame`), then line by line.
-        let frame = Frame::with_mode(&scene, MODE);
+        let frame = Frame::with_mode(scene, MODE);
         for row in 0..h {
             frame.render_line(row, &mut line[..w]);
             for c in &line[..w] {
@@ -269,7 +321,7 @@ mod firmware {
         let frame = after - before;
         let tenths = frame * 10 / pixels;
         hprintln!(
-            "format={} size={}x{} hash=0x{:08x} instructions={} per_pixel={}.{} stack={} parse_instructions={} hash_instructions={} core={} scene={} mode={:?}",
+            "format={} size={}x{} hash=0x{:08x} instructions={} per_pixel={}.{} stack={} parse_instructions={} hash_instructions={} core={} scene={} mode={:?}{}",
             S::NAME,
             w,
             h,
@@ -278,14 +330,27 @@ mod firmware {
             tenths / 10,
             tenths % 10,
             stack,
-            parsed - start,
+            parse,
             hash_cost,
             BOARD.0,
             name,
-            MODE
+            MODE,
+            FrameNo(frame_no)
         );
         #[cfg(fw_ppm)]
-        write_ppm(name, &scene, line);
+        write_ppm(name, frame_no, scene, line);
+    }
+
+    /// ` frame=K` for an animation's frame, nothing otherwise.
+    struct FrameNo(Option<u16>);
+
+    impl core::fmt::Display for FrameNo {
+        fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+            match self.0 {
+                Some(k) => write!(f, " frame={k}"),
+                None => Ok(()),
+            }
+        }
     }
 
     /// Exactly 4000 instructions: 1000 rounds of two `nop`s, a subtract and a branch.

@@ -46,6 +46,7 @@ mod kernel;
 
 mod render;
 
+pub mod anim;
 pub mod compare;
 pub mod hash;
 
@@ -68,10 +69,12 @@ pub use scene::{
     Scene, SceneError, SceneErrorKind, SceneView,
 };
 pub use shade::color::{to_pixel, to_rgb888};
-pub use shade::rules::{Course, Fixray, RuleSet};
-pub use shade::{
-    MAX_COURSE_BOUNCES, MAX_PATH, MAX_REFLECTION_DEPTH, Traced, pixel, shade, trace, trace_pixel,
-};
+#[cfg(feature = "course")]
+pub use shade::rules::Course;
+pub use shade::rules::{Fixray, RuleSet};
+#[cfg(feature = "course")]
+pub use shade::{MAX_COURSE_BOUNCES, MAX_PATH};
+pub use shade::{MAX_REFLECTION_DEPTH, Traced, pixel, shade, trace, trace_pixel};
 pub use stats::Counters;
 
 /// Kernel internals for the crate's own tests and benchmarks: not part of the API, and

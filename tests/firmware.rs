@@ -150,10 +150,16 @@ fn absent_effects_cost_nothing_on_the_chip() {
     }
     report.push_str("\n| cargo features | flash bytes (M0, i16f16) | planes scene instructions (M0) |\n|---|---|---|\n");
     let mut flash = Vec::new();
-    for features in [Some(""), Some("lighting"), Some("lighting,spheres"), None] {
+    for features in [
+        Some(""),
+        Some("lighting"),
+        Some("lighting,spheres"),
+        Some("lighting,spheres,reflection"),
+        None,
+    ] {
         let run =
             qemu::run_with_features("thumbv6m-none-eabi", "i16f16", "planes", features).unwrap();
-        let name = features.map_or("all (default)", |f| {
+        let name = features.map_or("all (default: with `course`)", |f| {
             if f.is_empty() {
                 "none: planes + ambient"
             } else {
@@ -180,11 +186,18 @@ fn absent_effects_cost_nothing_on_the_chip() {
         &report,
     )
     .unwrap();
-    let (bare, full) = (flash[0], flash[3]);
+    let (bare, full) = (flash[0], flash[4]);
     // The planes + ambient firmware carries no lighting, sphere or reflection code.
     assert!(
-        bare.0 < flash[1].0 && flash[1].0 < flash[2].0 && flash[2].0 <= full.0,
+        bare.0 < flash[1].0 && flash[1].0 < flash[2].0 && flash[2].0 <= flash[3].0,
         "{flash:?}"
+    );
+    // Without the `course` feature the course's tracer is not linked (issue 25: 12.5 KB
+    // on the M0 in I16F16 when it was measured).
+    assert!(
+        full.0 - flash[3].0 >= 4096,
+        "the course's tracer is {} bytes: is it gated by its feature? {flash:?}",
+        full.0 - flash[3].0
     );
     // Regression: the `spheres` feature gated only the parser's arm (312 bytes), and the
     // sphere intersection, normal and spawn were linked without it. Now they are not.
@@ -337,4 +350,83 @@ fn i32f32_fits_the_cortex_m0_in_every_shipped_scene() {
             );
         }
     }
+}
+
+/// The host's hash of frame `k` of the boing ball in format `S` (its sphere moved by
+/// `Bounce::boing`, as the firmware moves it).
+fn boing_hash<S: Scalar>(k: u16) -> u32 {
+    let mut scene = Scene::<S>::parse(include_str!("../scenes/boing.scene")).unwrap();
+    fixray::anim::Bounce::boing(&scene.objects)
+        .unwrap()
+        .apply(&mut scene, k)
+        .unwrap();
+    let mut line = vec![Rgb888::BLACK; usize::from(scene.camera.width)];
+    let mut hash = FrameHash::new();
+    for row in 0..scene.camera.height {
+        render_line(&scene, row, &mut line);
+        line.iter().for_each(|c| hash.push(*c));
+    }
+    hash.value()
+}
+
+/// The boing ball (issue 25) as the README's plain firmware commands build it (default
+/// features and formats, I16F16 and f32): 16 frames on each core, every frame's hash
+/// equal to the host's (asserted for both formats: f32 is correctly rounded everywhere),
+/// and the animation's table (instructions per pixel, frames per second at 133 and 168
+/// MHz if an instruction took a cycle) to stdout and `target/boing-report.md`.
+#[test]
+#[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
+fn the_boing_ball_bounces_bit_for_bit_on_both_cores() {
+    assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
+    let mut per_pixel = std::collections::BTreeMap::new();
+    let mut mismatches = Vec::new();
+    for (target, core) in qemu::CORES {
+        let run = qemu::run(target, "i16f16,f32", "boing").unwrap();
+        assert_eq!(run.frames.len(), 32, "{target}: {:?}", run.frames);
+        for f in &run.frames {
+            let format = f.get("format");
+            let k: u16 = f.get("frame").parse().expect("a frame number");
+            let host = fixray::with_format!(format, boing_hash(k)).unwrap();
+            if host != f.hash() {
+                mismatches.push(format!("{core} {format} frame {k}"));
+            }
+            let cost: f64 = f.get("per_pixel").parse().expect("per_pixel");
+            per_pixel.insert((format.to_string(), k, core), cost);
+        }
+    }
+    let mut report = String::from(
+        "| format | frame | M0 instructions/pixel | M4F instructions/pixel | fps at 133 MHz (M0) | fps at 168 MHz (M4F) |\n|---|---|---|---|---|---|\n",
+    );
+    let pixels = 128.0 * 64.0;
+    for format in ["i16f16", "f32"] {
+        let (mut m0_sum, mut m4_sum) = (0.0, 0.0);
+        for k in 0..16u16 {
+            let m0 = per_pixel[&(format.to_string(), k, "cortex-m0")];
+            let m4 = per_pixel[&(format.to_string(), k, "cortex-m4f")];
+            m0_sum += m0;
+            m4_sum += m4;
+            writeln!(
+                report,
+                "| {format} | {k} | {m0:.1} | {m4:.1} | {:.1} | {:.1} |",
+                133e6 / (m0 * pixels),
+                168e6 / (m4 * pixels)
+            )
+            .unwrap();
+        }
+        let (m0, m4) = (m0_sum / 16.0, m4_sum / 16.0);
+        writeln!(
+            report,
+            "| {format} | **mean** | **{m0:.1}** | **{m4:.1}** | **{:.1}** | **{:.1}** |",
+            133e6 / (m0 * pixels),
+            168e6 / (m4 * pixels)
+        )
+        .unwrap();
+    }
+    println!("{report}");
+    std::fs::write(
+        concat!(env!("CARGO_MANIFEST_DIR"), "/target/boing-report.md"),
+        &report,
+    )
+    .unwrap();
+    assert!(mismatches.is_empty(), "{mismatches:?}");
 }

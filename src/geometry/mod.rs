@@ -42,10 +42,12 @@ mod triangle;
 mod vec3;
 
 pub use frame::{FrameError, PlaneFrame, Slide, TexMode, Tiling};
+#[cfg(feature = "course")]
 pub(crate) use plane::crossing_point;
 pub use plane::{Plane, PlaneError};
 pub use revsurf::{CONE_BASE_RADIUS, Revsurf, RevsurfError};
 pub use shape::Shape;
+#[cfg(feature = "course")]
 pub(crate) use shape::{SPHERES, unit_ray};
 pub(crate) use spawn::surface_tolerance;
 pub use spawn::{RESIDUAL_ULPS, SPAWN_MARGIN_ULPS};

@@ -110,6 +110,7 @@ pub(crate) struct Lit<'a, 'b, S> {
     pub(crate) ray: &'a Incoming<'b, S>,
     pub(crate) object: &'a Object<S>,
     /// The object's index (the course's shadow rays skip it).
+    #[cfg_attr(not(feature = "course"), allow(dead_code))] // read by the course's rules only
     pub(crate) index: usize,
     pub(crate) material: &'a Material<S>,
     pub(crate) hit: Hit<S>,

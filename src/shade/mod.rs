@@ -12,7 +12,9 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 pub(crate) mod color;
 pub(crate) use crate::scene::light_tolerance;
+#[cfg(feature = "course")]
 mod course;
+#[cfg(feature = "course")]
 pub use course::{MAX_COURSE_BOUNCES, MAX_PATH};
 mod fixray;
 mod light;

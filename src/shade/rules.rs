@@ -28,12 +28,14 @@ pub struct Fixray;
 /// The course tracer's rules ([`Rules::Course`], `course/COURSE-RULES.md`): the screen
 /// rule for plane-type hits of every ray, the near sphere root only, secondary rays that
 /// start on the hit and skip its object, colours divided by the path length.
+#[cfg(feature = "course")]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Course;
 
 mod sealed {
     pub trait Sealed {}
     impl Sealed for super::Fixray {}
+    #[cfg(feature = "course")]
     impl Sealed for super::Course {}
 }
 
@@ -189,8 +191,16 @@ macro_rules! with_rules {
             $crate::Rules::Fixray => {
                 $($f)::+::<$s, $crate::shade::rules::Fixray $(, $more)*>($($arg),*)
             }
+            #[cfg(feature = "course")]
             $crate::Rules::Course => {
                 $($f)::+::<$s, $crate::shade::rules::Course $(, $more)*>($($arg),*)
+            }
+            // Without the cargo feature `course` no file is read by the course's rules
+            // (the parser refuses them); a scene set to them in code is drawn by the
+            // crate's, so that the course's tracer is not linked.
+            #[cfg(not(feature = "course"))]
+            $crate::Rules::Course => {
+                $($f)::+::<$s, $crate::shade::rules::Fixray $(, $more)*>($($arg),*)
             }
         }
     };

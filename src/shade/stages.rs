@@ -34,6 +34,7 @@ pub(crate) struct LightStages {
     /// Specular glints.
     pub(crate) specular: bool,
     /// Light filtered through translucent occluders.
+    #[cfg_attr(not(feature = "course"), allow(dead_code))] // read by the course's rules only
     pub(crate) transparency: bool,
 }
 

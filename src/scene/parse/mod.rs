@@ -516,6 +516,13 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
         self.clear();
         let found = rules_of(text);
         let result = found.map(|r| rules.unwrap_or(r)).and_then(|rules| {
+            // Without the course's tracer, a course file is refused at its start.
+            if rules == Rules::Course && !cfg!(feature = "course") {
+                return Err(Lexer::new(text).pos.error(SceneErrorKind::NotBuiltIn {
+                    what: "the course's rules (a file without `rules fixray` is read by them) are",
+                    feature: "course",
+                }));
+            }
             Parser {
                 lexer: Lexer::new(text),
                 camera: None,
