@@ -96,16 +96,16 @@ impl<S: Scalar> PlaneFrame<S> {
     /// `floor(a / W) + floor(b / H)` odd.
     pub fn odd_tile(&self, p: Vec3<S>) -> Option<bool> {
         let (a, b) = self.coords(p)?;
-        let i = a.checked_div(self.size[0])?.floor_to_i32()?;
-        let j = b.checked_div(self.size[1])?.floor_to_i32()?;
+        let i = tile_index(a, self.size[0])?;
+        let j = tile_index(b, self.size[1])?;
         Some((i.wrapping_add(j)) & 1 == 1)
     }
 
     /// The course's checkerboard of the frame's axes, anchored at the world origin:
     /// `floor(p·u / W) + floor(p·v / H)` odd.
     pub fn odd_tile_from_origin(&self, p: Vec3<S>) -> Option<bool> {
-        let i = p.dot(self.u)?.checked_div(self.size[0])?.floor_to_i32()?;
-        let j = p.dot(self.v)?.checked_div(self.size[1])?.floor_to_i32()?;
+        let i = tile_index(p.dot(self.u)?, self.size[0])?;
+        let j = tile_index(p.dot(self.v)?, self.size[1])?;
         Some((i.wrapping_add(j)) & 1 == 1)
     }
 
@@ -114,14 +114,8 @@ impl<S: Scalar> PlaneFrame<S> {
     /// x, z > −10000, where it is used).
     pub fn odd_tile_world_xz(&self, p: Vec3<S>) -> Option<bool> {
         let shift = S::from_i32(10_000)?;
-        let i =
-            p.x.checked_add(shift)?
-                .checked_div(self.size[0])?
-                .floor_to_i32()?;
-        let j =
-            p.z.checked_add(shift)?
-                .checked_div(self.size[1])?
-                .floor_to_i32()?;
+        let i = tile_index(p.x.checked_add(shift)?, self.size[0])?;
+        let j = tile_index(p.z.checked_add(shift)?, self.size[1])?;
         Some((i.wrapping_add(j)) & 1 == 1)
     }
 
@@ -152,4 +146,17 @@ pub struct Slide<S> {
     pub texture: u8,
     /// How the texture lies on it.
     pub mode: TexMode,
+}
+
+/// `floor(x / size)`, the tile a coordinate falls in. A tile of size 1 (the usual one)
+/// takes no division: `x / 1` is `x` exactly in every format, so the index is the same
+/// bit for bit, and a division (about 200 instructions on the Cortex-M0) is saved twice
+/// per tiled pixel (issue 25).
+#[inline]
+fn tile_index<S: Scalar>(x: S, size: S) -> Option<i32> {
+    if size == S::ONE {
+        x.floor_to_i32()
+    } else {
+        x.checked_div(size)?.floor_to_i32()
+    }
 }
