@@ -7,6 +7,7 @@
 //! cargo run --release --example render -- [SCENE_FILE] [--format FORMAT]
 //!                                         [--out FILE.png] [--compare FILE.png]
 //!                                         [--rules course|fixray]
+//! cargo run --release --example render -- scenes/boing.scene --bounce-strip FILE.png
 //! ```
 //!
 //! Without `--format` every format is rendered and reported, and `--out` (default
@@ -17,6 +18,11 @@
 //! whatever its file says (a file without a `rules` statement is a course file); the
 //! first line printed names the rule set used. A scene error prints `FILE:LINE:COL: message`
 //! and exits with status 1; bad arguments exit with status 2.
+//!
+//! `--bounce-strip FILE.png` draws the 16 frames of the scene's bounce
+//! (`fixray::anim::Bounce::boing`: its first sphere moved as the firmware moves it) in
+//! `--format` (default I16F16) into one picture, 8 frames a row, and prints each frame's
+//! share of pixels that differ from the f64 frame.
 
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -33,7 +39,7 @@ const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
 const DEFAULT_SCENE_NAME: &str = "scenes/default.scene";
 
 const USAGE: &str = "usage: render [SCENE_FILE] [--format FORMAT] [--out FILE.png] \
-                     [--compare FILE.png] [--rules course|fixray]   (FORMAT: one of \
+                     [--compare FILE.png] [--rules course|fixray] [--bounce-strip FILE.png]   (FORMAT: one of \
                      fixray::num::formats::FORMATS; without it, every main format)";
 
 struct Args {
@@ -42,6 +48,7 @@ struct Args {
     out: String,
     compare: Option<String>,
     rules: Option<Rules>,
+    strip: Option<String>,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -51,6 +58,7 @@ fn parse_args() -> Result<Args, String> {
         out: "render.png".into(),
         compare: None,
         rules: None,
+        strip: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -63,6 +71,7 @@ fn parse_args() -> Result<Args, String> {
             }
             "--out" => args.out = value("--out")?,
             "--compare" => args.compare = Some(value("--compare")?),
+            "--bounce-strip" => args.strip = Some(value("--bounce-strip")?),
             "--rules" => {
                 let r = value("--rules")?;
                 args.rules = Some(r.parse().map_err(|e| format!("--rules `{r}`: {e}"))?);
@@ -270,6 +279,18 @@ fn main() -> ExitCode {
         "the file"
     };
     println!("rules: {} (from {from})", reference.rules());
+    if let Some(path) = &args.strip {
+        let format = args.format.as_deref().unwrap_or("i16f16");
+        let outcome = fixray::with_format!(format, bounce_strip(&text, args.rules, path))
+            .unwrap_or_else(|unknown| unreachable!("{unknown}: checked with the arguments"));
+        return match outcome {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("render: {scene_name}: {e}");
+                ExitCode::from(1)
+            }
+        };
+    }
     let reference_image = render_image(&reference);
     let outcome = match &args.format {
         Some(format) => {
@@ -337,5 +358,44 @@ fn finish(format: &str, run: &Run, reference: &Image, args: &Args) -> Result<(),
         write_compare(run, reference, path)?;
         println!("wrote {path} ({format} | f64 | channel error heat map)");
     }
+    Ok(())
+}
+
+/// The scene's bounce (`Bounce::boing`), every frame in format `S`, 8 frames a row, into
+/// `path`; prints each frame's share of pixels that differ from f64.
+fn bounce_strip<S: Scalar>(text: &str, rules: Option<Rules>, path: &str) -> Result<(), String> {
+    use fixray::anim::Bounce;
+    const PER_ROW: u32 = 8;
+    let mut scene = read::<S>(text, rules).map_err(|e| e.to_string())?;
+    let mut reference = read::<f64>(text, rules).map_err(|e| e.to_string())?;
+    let bounce = Bounce::boing(&scene.objects).map_err(|e| e.to_string())?;
+    let reference_bounce = Bounce::boing(&reference.objects).map_err(|e| e.to_string())?;
+    let (w, h) = (
+        u32::from(scene.camera.width),
+        u32::from(scene.camera.height),
+    );
+    let n = u32::from(bounce.frames());
+    let rows = n.div_ceil(PER_ROW);
+    let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(PER_ROW * w, rows * h));
+    println!("frame  differ from f64 ({})", S::NAME);
+    for k in 0..bounce.frames() {
+        bounce.apply(&mut scene, k).map_err(|e| e.to_string())?;
+        reference_bounce
+            .apply(&mut reference, k)
+            .map_err(|e| e.to_string())?;
+        let image = render_image(&scene);
+        let differ = compare(&scene, &reference, |_, _, _, _| {}).differing_share();
+        println!("{k:>5}  {:>6.3}%", 100.0 * differ);
+        let (col, row) = (u32::from(k) % PER_ROW, u32::from(k) / PER_ROW);
+        let wu = usize::from(image.width);
+        let pixels = image.pixels.iter().enumerate().map(|(i, c)| {
+            let (x, y) = ((i % wu) as u32 + col * w, (i / wu) as u32 + row * h);
+            Pixel(Point::new(x as i32, y as i32), *c)
+        });
+        // SimulatorDisplay's drawing is infallible.
+        let _ = display.draw_iter(pixels);
+    }
+    save(&display, path)?;
+    println!("wrote {path} ({} frames, {})", n, S::NAME);
     Ok(())
 }

@@ -19,6 +19,8 @@
 //! - `--scale N`: window pixels per display pixel (default 3).
 //! - `--frames N`: quit after N frames (for scripts and CI).
 //! - `--fly`: move the eye forward by itself every frame (a fly-through).
+//! - `--bounce`: bounce the scene's first sphere, one step of `fixray::anim::Bounce::boing`
+//!   per frame, as the firmware does (`scenes/boing.scene`: the boing ball).
 //! - `--record DIR`: save every frame as `DIR/frame-NNNN.png` (a PNG sequence).
 //! - `--screenshot FILE`: save the last frame to FILE on quitting.
 //! - `--rules course|fixray`: draw by that rule set whatever the file says (a file
@@ -43,6 +45,7 @@ mod window {
     use embedded_graphics_simulator::{
         OutputSettings, OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
     };
+    use fixray::anim::Bounce;
     use fixray::compare::heat_color;
     use fixray::num::formats::MAIN as FORMATS;
     use fixray::{LargeScene as Scene, Rules, Scalar, Vec3, render_line};
@@ -64,6 +67,7 @@ mod window {
         scale: u32,
         frames: Option<u32>,
         fly: bool,
+        bounce: bool,
         record: Option<String>,
         screenshot: Option<String>,
         rules: Option<Rules>,
@@ -76,6 +80,7 @@ mod window {
             scale: 3,
             frames: None,
             fly: false,
+            bounce: false,
             record: None,
             screenshot: None,
             rules: None,
@@ -106,6 +111,7 @@ mod window {
                     o.frames = Some(value("--frames")?.parse().map_err(|_| "bad --frames")?)
                 }
                 "--fly" => o.fly = true,
+                "--bounce" => o.bounce = true,
                 "--record" => o.record = Some(value("--record")?),
                 "--screenshot" => o.screenshot = Some(value("--screenshot")?),
                 "--rules" => {
@@ -149,13 +155,27 @@ mod window {
         Ok(scene)
     }
 
+    /// What a frame shows: the eye's offset, the panel's size, the bounce's frame.
+    #[derive(Clone, Copy)]
+    struct View {
+        eye: Eye,
+        size: Option<(u16, u16)>,
+        bounce: Option<u16>,
+    }
+
     fn scene_for<S: Scalar>(
         text: &str,
         rules: Option<Rules>,
-        eye: Eye,
-        size: Option<(u16, u16)>,
+        view: View,
     ) -> Result<Scene<S>, String> {
+        let View { eye, size, bounce } = view;
         let mut scene = read::<S>(text, rules).map_err(|e| e.to_string())?;
+        if let Some(k) = bounce {
+            // The sphere moved in the parsed scene, as the firmware moves it.
+            let b = Bounce::boing(&scene.objects).map_err(|e| format!("--bounce: {e}"))?;
+            b.apply(&mut scene, k)
+                .map_err(|e| format!("--bounce: {e}"))?;
+        }
         let v = scene.camera.viewpoint.to_f64();
         scene.camera.viewpoint =
             Vec3::from_f64([v[0] + eye.dx, v[1] + eye.dy, (v[2] + eye.dz).max(0.1)])
@@ -176,17 +196,12 @@ mod window {
         pixels
     }
 
-    fn frame_in<S: Scalar>(
-        text: &str,
-        rules: Option<Rules>,
-        eye: Eye,
-        size: Option<(u16, u16)>,
-    ) -> Result<Frame, String> {
-        let scene = scene_for::<S>(text, rules, eye, size)?;
+    fn frame_in<S: Scalar>(text: &str, rules: Option<Rules>, view: View) -> Result<Frame, String> {
+        let scene = scene_for::<S>(text, rules, view)?;
         let start = Instant::now();
         let pixels = render_all(&scene);
         let ms = start.elapsed().as_secs_f64() * 1e3;
-        let reference = render_all(&scene_for::<f64>(text, rules, eye, size)?);
+        let reference = render_all(&scene_for::<f64>(text, rules, view)?);
         let differ = pixels
             .iter()
             .zip(&reference)
@@ -201,14 +216,8 @@ mod window {
         })
     }
 
-    fn frame(
-        format: &str,
-        text: &str,
-        rules: Option<Rules>,
-        eye: Eye,
-        size: Option<(u16, u16)>,
-    ) -> Result<Frame, String> {
-        fixray::with_format!(format, frame_in(text, rules, eye, size)).map_err(|e| e.to_string())?
+    fn frame(format: &str, text: &str, rules: Option<Rules>, view: View) -> Result<Frame, String> {
+        fixray::with_format!(format, frame_in(text, rules, view)).map_err(|e| e.to_string())?
     }
 
     /// 4×4 Bayer thresholds for ordered dithering to black and white.
@@ -269,7 +278,8 @@ mod window {
             std::fs::create_dir_all(dir).map_err(|e| format!("{dir}: {e}"))?;
         }
         loop {
-            let f = frame(FORMATS[format], &text, o.rules, eye, size)?;
+            let bounce = o.bounce.then_some((n % u32::from(u16::MAX)) as u16);
+            let f = frame(FORMATS[format], &text, o.rules, View { eye, size, bounce })?;
             let wu = usize::from(w);
             for (i, (p, r)) in f.pixels.iter().zip(&f.reference).enumerate() {
                 let (x, y) = (i % wu, i / wu);

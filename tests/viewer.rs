@@ -102,3 +102,36 @@ fn the_viewer_reads_a_scenes_texture_files() {
     let n = colours(&shot);
     assert!(n > 100, "a blank or flat screenshot: {n} colours");
 }
+
+/// The boing ball plays (issue 25): `--bounce` moves the sphere one step of its loop per
+/// frame, so consecutive recorded frames differ and frame 16 is frame 0 again.
+#[test]
+fn the_viewer_plays_the_boing_ball() {
+    let out = out_dir("boing");
+    let record = out.join("frames");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/boing.scene");
+    let run = Command::new("xvfb-run")
+        .arg("-a")
+        .arg(viewer())
+        .arg(&scene)
+        .args(["--frames", "17", "--bounce", "--record"])
+        .arg(&record)
+        .output()
+        .expect("xvfb-run and the viewer example (cargo test --features window builds it)");
+    assert!(run.status.success(), "{run:?}");
+    let frame = |k: u32| {
+        let image =
+            SimulatorDisplay::<Rgb888>::load_png(record.join(format!("frame-{k:04}.png"))).unwrap();
+        let size = image.size();
+        // The picture without the status line (its frame time changes).
+        let rows = size.height as i32 - 12;
+        (0..rows)
+            .flat_map(|y| (0..size.width as i32).map(move |x| Point::new(x, y)))
+            .map(|p| image.get_pixel(p))
+            .collect::<Vec<_>>()
+    };
+    let first = frame(0);
+    assert_ne!(first, frame(1), "the ball did not move");
+    assert_ne!(frame(4), frame(8));
+    assert_eq!(first, frame(16), "the loop does not close");
+}
