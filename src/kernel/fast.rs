@@ -41,6 +41,10 @@ struct Term<S> {
     index: u8,
     num: S,
     sphere: bool,
+    /// The rows the term can be hit on (first, last): every row for a plane; for a
+    /// sphere the rows whose plane of rays passes near it ([`sphere_rows`]), so that a
+    /// pixel on another row skips its test.
+    rows: (u16, u16),
 }
 
 /// What a term dots `D` with: the unit normal of a plane-like object, `eye − centre` of
@@ -118,6 +122,7 @@ pub struct Row<S: Scalar> {
     yz: S::Acc,
     dir: Vec3<S>,
     column: u16,
+    row: u16,
 }
 
 /// The plane test of the definition for a primary ray with unnormalised direction `D`:
@@ -187,6 +192,46 @@ fn sphere_root<S: Scalar>(c: S, b: S, a: S) -> Result<Option<(S, S)>, ()> {
     Ok(Some((c, q)))
 }
 
+/// The rows whose primary rays can meet a sphere (centre `eye − oc`, radius² `rr`):
+/// `(first, last)`, or `(1, 0)` (none). A scanline's rays `D = (x − eye.x, dy, dz)` all
+/// lie in the plane through the eye with normal `n = (0, −dz, dy)`; a ray misses the
+/// sphere when the centre lies farther than `r` from that plane, and every row from
+/// which the centre is farther than `r·√(9/8)` is left out. There the ray test's
+/// discriminant `b² − ac = |D|²(r² − dist²) ≤ −|D|²r²/8` is negative by far more than
+/// its rounding (checked only for `r² ≥ 1/16` and `|oc| ≤ 1024`; any other sphere, or a
+/// quantity that does not fit, keeps every row), so the skipped pixels draw what the
+/// test would have: bit for bit (issue 25).
+fn sphere_rows<S: Scalar>(scene: &SceneView<'_, S>, oc: Vec3<S>, rr: S, dz: S) -> (u16, u16) {
+    let all = (0, scene.camera.height.saturating_sub(1));
+    let (Some(min_rr), Some(max_oc)) = (S::ONE.mul_ratio(1, 16), S::from_i32(1024)) else {
+        return all;
+    };
+    if rr < min_rr || oc.max_abs() > max_oc {
+        return all;
+    }
+    let eye_y = scene.camera.viewpoint.y;
+    // Whether row `j`'s plane passes farther than r·√(9/8) from the centre:
+    // (dz·oc.y − dy·oc.z)² > (9/8)·r²·(dy² + dz²), in the format, each side with margin.
+    let far = |j: u16| -> Option<bool> {
+        let dy = scene.camera.screen_y(j)?.checked_sub(eye_y)?;
+        let k = dz.checked_mul(oc.y)?.checked_sub(dy.checked_mul(oc.z)?)?;
+        let nn = dy.checked_mul(dy)?.checked_add(dz.checked_mul(dz)?)?;
+        let rhs = rr.checked_mul(nn)?.mul_ratio(9, 8)?;
+        Some(k.checked_mul(k)? > rhs)
+    };
+    let mut rows = (1, 0);
+    for j in 0..scene.camera.height {
+        if far(j) != Some(true) {
+            if rows.0 > rows.1 {
+                rows = (j, j);
+            } else {
+                rows.1 = j;
+            }
+        }
+    }
+    rows
+}
+
 impl<S: Scalar> Primary<S> {
     /// Prepares a frame, or `None` when the fast path does not apply (the eye inside a
     /// sphere, more than
@@ -202,7 +247,8 @@ impl<S: Scalar> Primary<S> {
         let mut steps = Vec::new();
         let mut spheres = false;
         for (index, object) in scene.objects.iter().enumerate() {
-            let (num, axis, sphere) = match &object.shape {
+            let all_rows = (0, scene.camera.height.saturating_sub(1));
+            let (num, axis, sphere, rows) = match &object.shape {
                 Shape::Sphere(s) => {
                     // Only with the eye outside every sphere (the near root is then the
                     // one, and c/q has no cancellation), and with the sphere code built in.
@@ -216,7 +262,8 @@ impl<S: Scalar> Primary<S> {
                         return None;
                     }
                     spheres = true;
-                    (c, oc, true)
+                    let dz = S::ZERO.checked_sub(eye.z)?;
+                    (c, oc, true, sphere_rows(scene, oc, s.radius_sq(), dz))
                 }
                 // The kernel has no term for a surface of revolution: the reference path.
                 Shape::Revsurf(_) => return None,
@@ -228,18 +275,31 @@ impl<S: Scalar> Primary<S> {
                     let plane = shape.plane()?;
                     let num =
                         S::sub_dot3(plane.offset(), plane.normal().to_array(), eye.to_array())?;
-                    (num, plane.normal(), false)
+                    (num, plane.normal(), false, all_rows)
                 }
             };
             let index = u8::try_from(index).ok()?;
-            terms.push(Term { index, num, sphere }).ok()?;
+            terms
+                .push(Term {
+                    index,
+                    num,
+                    sphere,
+                    rows,
+                })
+                .ok()?;
             steps.push(S::acc_mul(axis.x, step_x)?).ok()?;
         }
         let mut at_lights = Vec::new();
         let sides = terms.len().checked_mul(scene.lights.len());
-        if !spheres && sides.is_some_and(|n| n <= MAX_SIDES) {
+        if sides.is_some_and(|n| n <= MAX_SIDES) {
             'lights: for light in scene.lights {
                 for term in &terms {
+                    if term.sphere {
+                        // A sphere's shadow test does not use sides (`meets_segment_with`):
+                        // a place holder keeps the list indexed by object.
+                        at_lights.push(S::ZERO).ok()?;
+                        continue;
+                    }
                     let object = scene.objects.get(usize::from(term.index))?;
                     let plane = object.shape.plane()?;
                     let side = S::sub_dot3(
@@ -275,6 +335,7 @@ impl<S: Scalar> Primary<S> {
             yz: S::acc_mul(S::ZERO, S::ZERO)?,
             dir: Vec3::new(S::ZERO, S::ZERO, S::ZERO),
             column,
+            row,
         };
         self.restart(scene, row, column, &mut r)?;
         Some(r)
@@ -294,6 +355,7 @@ impl<S: Scalar> Primary<S> {
         let x = scene.camera.screen_x(column)?;
         r.dir = Vec3::new(x.checked_sub(eye.x)?, y.checked_sub(eye.y)?, self.dz);
         r.column = column;
+        r.row = row;
         r.nd.clear();
         r.acc.clear();
         if self.spheres {
@@ -347,17 +409,27 @@ impl<S: Scalar> Primary<S> {
                 .and_then(|s| eps.checked_mul(s))
                 .and_then(|b| b.checked_add(b.ulp()))
                 .and_then(|b| b.checked_add(b.ulp()));
-        // `D·D`, for spheres: `D.x²` added to the row's `D.y² + D.z²`.
-        let dd = if self.spheres {
-            S::acc_round(S::acc_add(row.yz, S::acc_mul(d.x, d.x).ok_or(())?).ok_or(())?).ok_or(())?
-        } else {
-            S::ZERO
+        // `D·D`, for spheres: `D.x²` added to the row's `D.y² + D.z²` (once, when a
+        // sphere on this row asks for it).
+        let mut dd = None;
+        let mut dd = || -> Result<S, ()> {
+            if let Some(v) = dd {
+                return Ok(v);
+            }
+            let v = S::acc_round(S::acc_add(row.yz, S::acc_mul(d.x, d.x).ok_or(())?).ok_or(())?)
+                .ok_or(())?;
+            dd = Some(v);
+            Ok(v)
         };
         // The best so far: (term, its t' as the fraction p/q with q > 0).
         let mut best: Option<(&Term<S>, S, S)> = None;
         for (term, &nd) in self.terms.iter().zip(&row.nd) {
             let (p, q) = if term.sphere {
-                match sphere_root(term.num, nd, dd)? {
+                if row.row < term.rows.0 || row.row > term.rows.1 {
+                    // The row's plane of rays passes far from the sphere: `sphere_rows`.
+                    continue;
+                }
+                match sphere_root(term.num, nd, dd()?)? {
                     Some(pq) => pq,
                     None => continue,
                 }
@@ -412,9 +484,13 @@ impl<S: Scalar> Primary<S> {
     ) -> Option<()> {
         sides.clear();
         for (term, &nd) in self.terms.iter().zip(&row.nd) {
-            sides
-                .push(term.num.checked_sub(param.checked_mul(nd)?)?)
-                .ok()?;
+            let side = if term.sphere {
+                // Not read for a sphere (see `Primary::new`).
+                S::ZERO
+            } else {
+                term.num.checked_sub(param.checked_mul(nd)?)?
+            };
+            sides.push(side).ok()?;
         }
         Some(())
     }
