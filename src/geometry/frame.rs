@@ -89,7 +89,7 @@ impl<S: Scalar> PlaneFrame<S> {
     /// The plane coordinates `(a, b)` of a point.
     pub fn coords(&self, p: Vec3<S>) -> Option<(S, S)> {
         let q = p.diff(self.corner)?;
-        Some((along(q, self.u)?, along(q, self.v)?))
+        Some((q.dot_axis(self.u)?, q.dot_axis(self.v)?))
     }
 
     /// Whether a point lies on the checkerboard's odd squares:
@@ -104,8 +104,8 @@ impl<S: Scalar> PlaneFrame<S> {
     /// The course's checkerboard of the frame's axes, anchored at the world origin:
     /// `floor(p·u / W) + floor(p·v / H)` odd.
     pub fn odd_tile_from_origin(&self, p: Vec3<S>) -> Option<bool> {
-        let i = tile_index(along(p, self.u)?, self.size[0])?;
-        let j = tile_index(along(p, self.v)?, self.size[1])?;
+        let i = tile_index(p.dot_axis(self.u)?, self.size[0])?;
+        let j = tile_index(p.dot_axis(self.v)?, self.size[1])?;
         Some((i.wrapping_add(j)) & 1 == 1)
     }
 
@@ -146,39 +146,6 @@ pub struct Slide<S> {
     pub texture: u8,
     /// How the texture lies on it.
     pub mode: TexMode,
-}
-
-/// `q·a`, the coordinate of `q` along the frame's axis `a`. An axis along a world axis
-/// (`±1` on one coordinate, `0` on the others: every floor and wall whose `xdir` is one,
-/// as in most scenes) takes no product: the dot product is then `±q`'s coordinate exactly
-/// in every format (one rounding of an exact value; in the float formats `x·1 + y·0 +
-/// z·0 = x` up to the sign of a zero), so the coordinate is the same bit for bit and six
-/// double-width products are saved per tiled pixel (issue 25).
-#[inline]
-fn along<S: Scalar>(q: Vec3<S>, a: Vec3<S>) -> Option<S> {
-    let zero = S::ZERO;
-    let unit = |c: S, value: S| {
-        if c == S::ONE {
-            Some(Some(value))
-        } else if c.checked_neg() == Some(S::ONE) {
-            Some(value.checked_neg())
-        } else {
-            None
-        }
-    };
-    let axis = if a.y == zero && a.z == zero {
-        unit(a.x, q.x)
-    } else if a.x == zero && a.z == zero {
-        unit(a.y, q.y)
-    } else if a.x == zero && a.y == zero {
-        unit(a.z, q.z)
-    } else {
-        None
-    };
-    match axis {
-        Some(coordinate) => coordinate,
-        None => q.dot(a),
-    }
 }
 
 /// `floor(x / size)`, the tile a coordinate falls in. A tile of size 1 (the usual one)

@@ -110,7 +110,11 @@ fn own_color<S: Scalar, T: Stages>(
         return (color, None);
     };
     // The normal facing the incoming ray.
-    let facing = if surface_normal.dot(ray.dir).is_some_and(|d| d > S::ZERO) {
+    let facing = if ray
+        .dir
+        .dot_axis(surface_normal)
+        .is_some_and(|d| d > S::ZERO)
+    {
         surface_normal.checked_neg().unwrap_or(surface_normal)
     } else {
         surface_normal

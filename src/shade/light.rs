@@ -154,7 +154,7 @@ fn segment_terms<S: Scalar, R: Tracer>(
 ) -> (Terms<S>, bool) {
     let mut continues = false;
     let mut terms = || -> Terms<S> {
-        let nl = at.normal.dot(to_light).filter(|c| *c > S::ZERO)?;
+        let nl = to_light.dot_axis(at.normal).filter(|c| *c > S::ZERO)?;
         if on_own_plane(at, light.location) {
             return None;
         }
