@@ -58,6 +58,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                         p.sides_at(r, h.param, &mut at_hit).map(|()| PlaneSides {
                             at_hit: &at_hit,
                             at_lights: p.at_lights(),
+                            cones: p.cones(),
                         })
                     }
                     _ => None,

@@ -204,17 +204,26 @@ fn occludes_segment<S: Scalar>(
         // j < lights and n ≤ MAX_OBJECTS: the product is small (a checked one would call
         // the 64-bit multiply helper on a Cortex-M0).
         let at_light = s.at_lights.get(j * n..)?.get(..n)?;
-        (n == scene.objects.len()).then_some((s.at_hit, at_light))
+        (n == scene.objects.len()).then_some((s.at_hit, at_light, s.cones, j))
     });
     match known {
-        Some((at_hit, at_light)) => {
+        Some((at_hit, at_light, cones, j)) => {
+            // A sphere whose shadow cone from this light clearly misses `from` is passed
+            // over (`ShadowCone::clears`): what its exact test would decide.
+            let clear = |i: usize| {
+                cones.iter().any(|c| {
+                    usize::from(c.light) == j && usize::from(c.object) == i && c.clears(l, ll)
+                })
+            };
             scene
                 .objects
                 .iter()
                 .zip(at_hit.iter().zip(at_light))
-                .any(|(o, (&a0, &a1))| {
-                    o.shape
-                        .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
+                .enumerate()
+                .any(|(i, (o, (&a0, &a1)))| {
+                    !(matches!(o.shape, Shape::Sphere(_)) && clear(i))
+                        && o.shape
+                            .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
                         && !spared(&o.shape)
                 })
         }

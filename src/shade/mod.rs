@@ -77,6 +77,8 @@ pub(crate) struct PlaneSides<'a, S> {
     pub(crate) at_hit: &'a [S],
     /// `D'_i − N_i·light_j` at `j × objects + i`.
     pub(crate) at_lights: &'a [S],
+    /// The spheres' shadow cones from the lights (per frame).
+    pub(crate) cones: &'a [crate::kernel::fast::ShadowCone<S>],
 }
 
 /// The nearest hit of a ray by the rule set `R` ([`rules::RuleSet::intersect`]), with the
