@@ -44,6 +44,7 @@ mod vec3;
 pub use frame::{FrameError, PlaneFrame, Slide, TexMode, Tiling};
 #[cfg(feature = "course")]
 pub(crate) use plane::crossing_point;
+pub(crate) use plane::sides_differ;
 pub use plane::{Plane, PlaneError};
 pub use revsurf::{CONE_BASE_RADIUS, Revsurf, RevsurfError};
 pub use shape::Shape;

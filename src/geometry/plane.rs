@@ -151,10 +151,6 @@ impl<S: Scalar> Plane<S> {
     }
 }
 
-/// [`Plane::crossing`] from the two ends' sides `a₀ = D' − N·from` and `a₁ = D' − N·to`
-/// (what a kernel that knows them per frame and per pixel passes: no products), with
-/// `N·l = a₀ − a₁`.
-#[inline]
 /// The point where the segment from `from` along `l` crosses a plane, from what
 /// [`Plane::crossing`] returned: `from + l·a₀/(N·l)` (one division, for a shape whose
 /// bounds need the point). `None` when it does not fit the format.
@@ -166,6 +162,18 @@ pub(crate) fn crossing_point<S: Scalar>(
     from.sum(l.scale(a0.checked_div(nl)?)?)
 }
 
+/// Whether the ends' sides `a₀` and `a₁` of a segment lie strictly on the two sides of
+/// a plane, each farther than `tol` from it: where [`crossing_of_sides`] goes on to
+/// its products (a shadow test that knows the sides asks this first, without calls).
+#[inline]
+pub(crate) fn sides_differ<S: Scalar>(a0: S, a1: S, tol: S) -> bool {
+    a0.abs() > tol && a1.abs() > tol && (a0 > S::ZERO) != (a1 > S::ZERO)
+}
+
+/// [`Plane::crossing`] from the two ends' sides `a₀ = D' − N·from` and `a₁ = D' − N·to`
+/// (what a kernel that knows them per frame and per pixel passes: no products), with
+/// `N·l = a₀ − a₁`.
+#[inline]
 pub(crate) fn crossing_of_sides<S: Scalar>(
     a0: S,
     a1: S,
@@ -173,7 +181,7 @@ pub(crate) fn crossing_of_sides<S: Scalar>(
     tol: S,
     epsilon: S,
 ) -> Option<(S, S)> {
-    if a0.abs() <= tol || a1.abs() <= tol || (a0 > S::ZERO) == (a1 > S::ZERO) {
+    if !sides_differ(a0, a1, tol) {
         return None;
     }
     let nl = a0.checked_sub(a1)?;

@@ -16,11 +16,12 @@ use super::light::{Lit, Passage, light_with, spared};
 use super::rules::{Fixray, RuleSet, Tracer};
 use super::stages::{LightStages, Stages};
 use super::{Incoming, MAX_REFLECTION_DEPTH, PlaneSides, Traced, surface};
-use crate::geometry::surface_tolerance;
+use crate::geometry::{sides_differ, surface_tolerance};
 use crate::scene::PixelRay;
 use crate::stats::{Counters, count};
 use crate::{
-    Color, Hit, Light, Material, Miss, PlaneFrame, Ray, Rules, Scalar, SceneView, Shape, Vec3,
+    Color, Hit, Light, Material, Miss, Object, PlaneFrame, Ray, Rules, Scalar, SceneView, Shape,
+    Vec3,
 };
 use embedded_graphics_core::pixelcolor::Rgb888;
 
@@ -215,16 +216,28 @@ fn occludes_segment<S: Scalar>(
                     usize::from(c.light) == j && usize::from(c.object) == i && c.clears(l, ll)
                 })
             };
+            let meets = |o: &Object<S>, a0: S, a1: S| {
+                o.shape
+                    .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
+            };
             scene
                 .objects
                 .iter()
                 .zip(at_hit.iter().zip(at_light))
                 .enumerate()
                 .any(|(i, (o, (&a0, &a1)))| {
-                    !(matches!(o.shape, Shape::Sphere(_)) && clear(i))
-                        && o.shape
-                            .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
-                        && !spared(&o.shape)
+                    let maybe = match o.shape {
+                        Shape::Sphere(_) => !clear(i),
+                        // Both ends on one side of the plane (or one on it): no crossing,
+                        // as `crossing_of_sides` decides first (here without the calls).
+                        Shape::Plane(_)
+                        | Shape::Tiled { .. }
+                        | Shape::Finite(_)
+                        | Shape::Textured(_)
+                        | Shape::Triangle(_) => sides_differ(a0, a1, tol),
+                        Shape::Revsurf(_) => true,
+                    };
+                    maybe && meets(o, a0, a1) && !spared(&o.shape)
                 })
         }
         None => scene
