@@ -255,7 +255,7 @@ fn course_entities_on_the_chips() {
                 target,
                 format,
                 &names,
-                Some("lighting,spheres,reflection,textures"),
+                Some("lighting,spheres,reflection,course,textures"),
             )
             .unwrap();
             assert_eq!(
@@ -331,7 +331,7 @@ fn i32f32_fits_the_cortex_m0_in_every_shipped_scene() {
         (names.as_slice(), None, M0_RAM_BUDGET),
         (
             textured.as_slice(),
-            Some("lighting,spheres,reflection,textures"),
+            Some("lighting,spheres,reflection,course,textures"),
             16 * 1024,
         ),
     ];

@@ -107,16 +107,17 @@ pub(crate) struct ShadowCone<S> {
     pub(crate) object: u8,
     u: Vec3<S>,
     k: S,
-    /// 1/16: shorter segments take the exact test.
-    min_ll: S,
 }
 
 impl<S: Scalar> ShadowCone<S> {
     /// Whether the segment from a point to the light (`l = light − point`, `ll = l·l`)
-    /// clearly misses the sphere: the point lies outside its shadow cone.
-    #[inline]
+    /// clearly misses the sphere: the point lies outside its shadow cone. Segments
+    /// shorter than 1/4 (`16 ll < 1`) take the exact test. Out of line: its products'
+    /// temporaries stay out of the shadow loop's frame (the stack of an I32F32 frame on
+    /// a 16 KB chip).
+    #[inline(never)]
     pub(crate) fn clears(&self, l: Vec3<S>, ll: S) -> bool {
-        if ll < self.min_ll {
+        if ll.checked_mul_int(16).is_none_or(|x| x < S::ONE) {
             return false;
         }
         let Some(lu) = l.dot(self.u) else {
@@ -282,7 +283,7 @@ fn shadow_cones<S: Scalar>(
     terms: &[Term<S>],
 ) -> Vec<ShadowCone<S>, MAX_CONES> {
     let mut cones = Vec::new();
-    let Some(min_ll) = S::ONE.mul_ratio(1, 16) else {
+    let Some(min_k) = S::ONE.mul_ratio(1, 16) else {
         return cones;
     };
     for (j, light) in scene.lights.iter().enumerate() {
@@ -296,13 +297,12 @@ fn shadow_cones<S: Scalar>(
                 let uu = u.dot(u)?;
                 let rr = s.radius_sq();
                 let k = uu.checked_sub(rr.mul_ratio(9, 8)?)?;
-                (k >= min_ll && uu <= rr.checked_mul_int(512)?).then_some(())?;
+                (k >= min_k && uu <= rr.checked_mul_int(512)?).then_some(())?;
                 Some(ShadowCone {
                     light: u8::try_from(j).ok()?,
                     object: term.index,
                     u,
                     k,
-                    min_ll,
                 })
             });
             if let Some(c) = cone
@@ -645,8 +645,8 @@ mod tests {
                 let Some(k) = uu.checked_sub(rr.mul_ratio(9, 8).unwrap()) else {
                     continue;
                 };
-                let min_ll = S::ONE.mul_ratio(1, 16).unwrap();
-                if k < min_ll || uu > rr.checked_mul_int(512).unwrap() {
+                let min_k = S::ONE.mul_ratio(1, 16).unwrap();
+                if k < min_k || uu > rr.checked_mul_int(512).unwrap() {
                     continue;
                 }
                 let cone = ShadowCone {
@@ -654,7 +654,6 @@ mod tests {
                     object: 0,
                     u,
                     k,
-                    min_ll,
                 };
                 total += 1;
                 if cone.clears(l, ll) {
