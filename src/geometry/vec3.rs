@@ -64,7 +64,7 @@ impl<S: Scalar> Vec3<S> {
     /// `x·1 + y·0 + z·0 = x` up to the sign of a zero, which no caller tells apart), so
     /// the result is [`Vec3::dot`]'s bit for bit, for about ten instructions instead of
     /// three double-width products (issue 25). Other axes: [`Vec3::dot`].
-    #[inline]
+    #[inline(always)]
     pub(crate) fn dot_axis(self, axis: Self) -> Option<S> {
         let zero = S::ZERO;
         let signed = |c: S, value: S| {
