@@ -57,8 +57,10 @@ mod firmware {
     // FIXRAY_FW_SCENES (default: the default scene and the boing ball).
     include!(concat!(env!("OUT_DIR"), "/fw_scenes.rs"));
 
-    /// The line buffer's capacity in pixels (a 320-pixel-wide panel; 960 bytes).
-    const MAX_WIDTH: usize = 320;
+    /// The line buffer's capacity in pixels: a 240-pixel-wide panel (an ST7789 240×240),
+    /// 720 bytes of the 16 KB (320 until issue 25: the shipped scenes are at most 160
+    /// wide, and the 240 bytes keep the deepest I32F32 frame within its budget).
+    const MAX_WIDTH: usize = 240;
 
     /// Board name and SysTick rate: instructions per tick × 2 (62.5 is not an integer).
     #[cfg(fw_microbit)]
@@ -254,18 +256,33 @@ mod firmware {
             );
             return;
         }
-        let parse = parsed - start;
-        if name == ANIMATED {
-            // The boing ball: one parsed scene, its sphere moved per frame (no re-parsing).
-            let bounce = match Bounce::boing(&scene.objects) {
-                Ok(b) => b,
+        frames_of(name, &mut scene, parsed - start, line);
+    }
+
+    /// Renders the frames of a parsed scene and reports each: one, or the boing ball's 16
+    /// (its sphere moved per frame, no re-parsing). Out of line, beside the parser (its
+    /// frame and the parser's do not add up on the stack).
+    #[inline(never)]
+    fn frames_of<S: Scalar>(
+        name: &str,
+        scene: &mut Scene<S>,
+        parse: u64,
+        line: &mut [Rgb888; MAX_WIDTH],
+    ) {
+        let bounce = if name == ANIMATED {
+            match Bounce::boing(&scene.objects) {
+                Ok(b) => Some(b),
                 Err(e) => {
                     hprintln!("format={} scene={} error=\"{}\"", S::NAME, name, e);
                     return;
                 }
-            };
-            for k in 0..bounce.frames() {
-                if let Err(e) = bounce.apply(&mut scene, k) {
+            }
+        } else {
+            None
+        };
+        for k in 0..bounce.map_or(1, |b| b.frames()) {
+            if let Some(b) = bounce {
+                if let Err(e) = b.apply(scene, k) {
                     hprintln!("format={} scene={} error=\"{}\"", S::NAME, name, e);
                     return;
                 }
@@ -273,10 +290,8 @@ mod firmware {
                     // Each frame's stack on its own (the first's includes the parse).
                     paint_stack();
                 }
-                draw(name, &scene, Some(k), parse, line);
             }
-        } else {
-            draw(name, &scene, None, parse, line);
+            draw(name, scene, bounce.map(|_| k), parse, line);
         }
     }
 
@@ -285,9 +300,8 @@ mod firmware {
     const ANIMATED: &str = "boing";
 
     /// Renders one frame of a parsed scene and reports it (`parse`: the parse's
-    /// instructions, reported with every frame of the scene). Inlined into `frame`: out
-    /// of line, its frame under the parse's made the deepest I32F32 stack 900 bytes
-    /// deeper (14,788 bytes in the specular scene, over the Cortex-M0's budget).
+    /// instructions, reported with every frame of the scene). Inlined (into
+    /// `frames_of`): out of line, its frame made the deepest I32F32 stack deeper.
     #[inline(always)]
     fn draw<S: Scalar>(
         name: &str,

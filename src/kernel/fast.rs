@@ -129,12 +129,13 @@ impl<S: Scalar> ShadowCone<S> {
 }
 
 /// How many sphere–light shadow cones a frame keeps (beyond, the exact test alone).
-pub const MAX_CONES: usize = 4;
+pub const MAX_CONES: usize = 3;
 
 /// How many plane–light sides a frame keeps (objects × lights; beyond, shadow segments
-/// compute their sides themselves): 128 bytes in I16F16, 256 in I32F32, a RAM budget a
-/// 16 KB chip affords beside the rest of the frame.
-pub const MAX_SIDES: usize = 32;
+/// compute their sides themselves): 64 bytes in I16F16, 128 in I32F32, a RAM budget a
+/// 16 KB chip affords beside the rest of the frame (the shipped scenes need at most 9;
+/// 32 until issue 25, whose per-frame sphere terms took the difference).
+pub const MAX_SIDES: usize = 16;
 
 /// The most objects the fast kernel takes: a scene with more is drawn on the reference
 /// path. Its per-frame and per-scanline vectors (terms, steps, `N·D` and its unrounded
