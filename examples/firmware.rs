@@ -21,7 +21,7 @@
 //! FIXRAY_FW_FORMATS=i16f16 cargo build ...   # only some formats (to measure flash per format)
 //! FIXRAY_FW_SCENES=default,planes cargo ...  # which scenes/ to embed (default: default,boing)
 //! FIXRAY_FW_SPANS=1 cargo run ...            # pure-geometry plane scenes in span mode
-//! FIXRAY_FW_PPM=1 cargo run ...              # also write fixray-<core>-<scene>-<format>.ppm
+//! FIXRAY_FW_PPM=1 cargo run ...              # also write fixray-<core>-<scene>[NN]-<format>.ppm
 //! ```
 //!
 //! Counting: QEMU does not model the cycle counter, but with `-icount shift=0` each
@@ -125,7 +125,8 @@ mod firmware {
         top - p as usize
     }
 
-    /// Writes one frame to the host as `fixray-<core>-<scene>-<format>.ppm` (semihosting
+    /// Writes one frame to the host as `fixray-<core>-<scene>[NN]-<format>.ppm` (`NN`:
+    /// an animation's frame number, e.g. `fixray-cortex-m0-boing07-i16f16.ppm`; semihosting
     /// file I/O).
     #[cfg(fw_ppm)]
     fn write_ppm<S: Scalar>(

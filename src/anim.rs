@@ -10,9 +10,10 @@
 //! ```
 //!
 //! where `(x₀, y₀, z₀)` is the centre the scene file gives (the ball at rest, touching
-//! the floor). Each coordinate is one [`Scalar::mul_ratio`] of integers (one rounding), so
-//! a frame's scene is bit for bit the same on a host and on a chip, and the frames loop
-//! (frame `n` is frame 0).
+//! the floor). Each offset is one [`Scalar::mul_ratio`] of integers (one rounding) added
+//! to the rest position (exact in the fixed formats, a second rounding in the float
+//! ones), the same operations on a host and on a chip: a frame's scene is the same bit
+//! for bit on both, and the frames loop (frame `n` is frame 0).
 //!
 //! ```
 //! use fixray::anim::Bounce;

@@ -68,7 +68,8 @@ fn axis_of<S: Scalar>(scene: &SceneView<'_, S>, index: u8) -> Option<Vec3<S>> {
 pub const RESYNC_PIXELS: u16 = 8;
 
 /// The per-frame part of the fast path; `None` from [`Primary::new`] when the scene is not
-/// made of planes only or a per-frame quantity does not fit the format.
+/// made of planes and spheres (the eye outside them) or a per-frame quantity does not fit
+/// the format.
 #[derive(Debug, Clone)]
 pub struct Primary<S: Scalar> {
     terms: Vec<Term<S>, FAST_OBJECTS>,
@@ -95,10 +96,18 @@ pub struct Primary<S: Scalar> {
 /// centre: `s = (P − light)·u > 0` and `s² ≥ ll·(|u|² − r²)`. [`ShadowCone::clears`]
 /// tells, from three products and one exact comparison, the points whose line passes
 /// farther than `r·√(9/8)` from the centre: most of a frame's pixels, which then skip
-/// the sphere's exact segment test (issue 25). At the cone's edge the two sides differ
-/// by `ll·r²/8`, at least `1/4096` of either (kept only for `|u|² ≤ 512 r²`), far beyond
-/// the rounding of either test; and only for a light clearly outside the sphere
-/// (`k ≥ 1/16`).
+/// the sphere's exact segment test (issue 25).
+///
+/// Why a cleared point is one the exact test finds clear: at the cone's edge the two
+/// sides of `s² < ll·k` differ by `ll·r²/8`, i.e. by `r²/8` in squared distance from
+/// the centre. For a point at least half the centre's distance from the light
+/// (`4 ll ≥ |u|²`, checked per pixel; nearer points take the exact test) the rounding of
+/// `s`, `ll` and `k` moves the comparison by about `6 DELTA` in those units, and the exact
+/// test's own rounding by about `90 DELTA` (its `|from − centre|` is at most three times
+/// `|l|` there); a cone is kept only for `r² ≥ 4096 DELTA` (`r ≥ 1/4` in I16F16, 1 in
+/// I20F12), so `r²/8 ≥ 512 DELTA` covers both with room, and only for a light clearly
+/// outside the sphere (`k ≥ 1/16`). In the float formats `DELTA` is the ulp at 1 and the
+/// same argument holds relative to the magnitudes.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ShadowCone<S> {
     /// The light's index.
@@ -107,17 +116,38 @@ pub(crate) struct ShadowCone<S> {
     pub(crate) object: u8,
     u: Vec3<S>,
     k: S,
+    /// `|u|²/4`, rounded down: the nearest `ll` the shortcut takes.
+    near: S,
 }
 
 impl<S: Scalar> ShadowCone<S> {
+    /// The cone of `sphere` from the light at `light` (index `index`), object `object`;
+    /// `None` when the shortcut does not apply (see the type's documentation).
+    fn new(index: usize, object: u8, sphere: &crate::Sphere<S>, light: Vec3<S>) -> Option<Self> {
+        let min_k = S::ONE.mul_ratio(1, 16)?;
+        let min_rr = S::DELTA.checked_mul_int(4096)?;
+        let u = sphere.center().diff(light)?;
+        let uu = u.dot(u)?;
+        let rr = sphere.radius_sq();
+        let k = uu.checked_sub(rr.mul_ratio(9, 8)?)?;
+        (k >= min_k && rr >= min_rr).then_some(())?;
+        Some(ShadowCone {
+            light: u8::try_from(index).ok()?,
+            object,
+            u,
+            k,
+            near: uu.mul_ratio(1, 4)?.checked_sub(S::DELTA)?,
+        })
+    }
+
     /// Whether the segment from a point to the light (`l = light − point`, `ll = l·l`)
-    /// clearly misses the sphere: the point lies outside its shadow cone. Segments
-    /// shorter than 1/4 (`16 ll < 1`) take the exact test. Out of line: its products'
-    /// temporaries stay out of the shadow loop's frame (the stack of an I32F32 frame on
-    /// a 16 KB chip).
+    /// clearly misses the sphere: the point lies outside its shadow cone. A point
+    /// nearer to the light than half the centre's distance (`ll < |u|²/4`) takes the
+    /// exact test. Out of line: its products' temporaries stay out of the shadow loop's
+    /// frame (the stack of an I32F32 frame on a 16 KB chip).
     #[inline(never)]
     pub(crate) fn clears(&self, l: Vec3<S>, ll: S) -> bool {
-        if ll.checked_mul_int(16).is_none_or(|x| x < S::ONE) {
+        if ll < self.near {
             return false;
         }
         let Some(lu) = l.dot(self.u) else {
@@ -243,20 +273,27 @@ fn sphere_root<S: Scalar>(c: S, b: S, a: S) -> Result<Option<(S, S)>, ()> {
 /// sphere when the centre lies farther than `r` from that plane, and every row from
 /// which the centre is farther than `r·√(9/8)` is left out. There the ray test's
 /// discriminant `b² − ac = |D|²(r² − dist²) ≤ −|D|²r²/8` is negative by far more than
-/// its rounding (checked only for `r² ≥ 1/16` and `|oc| ≤ 1024`; any other sphere, or a
-/// quantity that does not fit, keeps every row), so the skipped pixels draw what the
-/// test would have: bit for bit (issue 25).
+/// the rounding of `b`, `a = |D|²` and `c`, and than this test's own: in units of
+/// `|D|²`, both are a few `DELTA·(1 + |oc|/|dz|)²` (`|D| ≥ |dz|`, `|b| ≤ |oc||D|`,
+/// `c ≤ |oc|²`), and a sphere's rows are bounded only when `r² ≥ 256 DELTA (1 +
+/// 2|oc|∞/|dz|)²`, so `r²/8` is at least 32 times that (any other sphere, or a quantity
+/// that does not fit, keeps every row). The skipped pixels draw what the test would
+/// have: bit for bit (issue 25).
 fn sphere_rows<S: Scalar>(scene: &SceneView<'_, S>, oc: Vec3<S>, rr: S, dz: S) -> (u16, u16) {
     let all = (0, scene.camera.height.saturating_sub(1));
-    let (Some(min_rr), Some(max_oc)) = (S::ONE.mul_ratio(1, 16), S::from_i32(1024)) else {
-        return all;
-    };
-    if rr < min_rr || oc.max_abs() > max_oc {
+    let bound = oc
+        .max_abs()
+        .checked_mul_int(2)
+        .and_then(|m| m.checked_div(dz.abs()))
+        .and_then(|q| S::ONE.checked_add(q))
+        .and_then(|g| g.checked_mul(g))
+        .and_then(|g| g.checked_mul(S::DELTA.checked_mul_int(256)?));
+    if bound.is_none_or(|b| rr < b) {
         return all;
     }
     let eye_y = scene.camera.viewpoint.y;
     // Whether row `j`'s plane passes farther than r·√(9/8) from the centre:
-    // (dz·oc.y − dy·oc.z)² > (9/8)·r²·(dy² + dz²), in the format, each side with margin.
+    // (dz·oc.y − dy·oc.z)² > (9/8)·r²·(dy² + dz²), in the format.
     let far = |j: u16| -> Option<bool> {
         let dy = scene.camera.screen_y(j)?.checked_sub(eye_y)?;
         let k = dz.checked_mul(oc.y)?.checked_sub(dy.checked_mul(oc.z)?)?;
@@ -284,9 +321,6 @@ fn shadow_cones<S: Scalar>(
     terms: &[Term<S>],
 ) -> Vec<ShadowCone<S>, MAX_CONES> {
     let mut cones = Vec::new();
-    let Some(min_k) = S::ONE.mul_ratio(1, 16) else {
-        return cones;
-    };
     for (j, light) in scene.lights.iter().enumerate() {
         for term in terms.iter().filter(|t| t.sphere) {
             let Some(Shape::Sphere(s)) =
@@ -294,18 +328,7 @@ fn shadow_cones<S: Scalar>(
             else {
                 continue;
             };
-            let cone = s.center().diff(light.location).and_then(|u| {
-                let uu = u.dot(u)?;
-                let rr = s.radius_sq();
-                let k = uu.checked_sub(rr.mul_ratio(9, 8)?)?;
-                (k >= min_k && uu <= rr.checked_mul_int(512)?).then_some(())?;
-                Some(ShadowCone {
-                    light: u8::try_from(j).ok()?,
-                    object: term.index,
-                    u,
-                    k,
-                })
-            });
+            let cone = ShadowCone::new(j, term.index, &s, light.location);
             if let Some(c) = cone
                 && cones.push(c).is_err()
             {
@@ -606,9 +629,11 @@ mod tests {
     use crate::{I16F16, I20F12, I32F32, Sphere};
 
     /// `ShadowCone::clears` never passes over a sphere its exact segment test finds in
-    /// the way: on seeded random spheres, lights and points (half of them aimed near the
-    /// cone's edge), whenever it clears, `Sphere::meets_segment` says no (or cannot
-    /// tell). And it clears most points of a wide field (it is worth its products).
+    /// the way (`Shape::meets_segment`, its fallback for quantities out of range
+    /// included): on seeded random spheres (radii 0.01 to 2: the small ones get no cone),
+    /// lights and points, a third of them aimed near the cone's edge and a sixth near the
+    /// light, whenever it clears, the exact test says no. And it clears a good share of a
+    /// wide field (it is worth its products).
     #[test]
     fn a_cleared_shadow_segment_misses_the_sphere_in_every_format() {
         fn check<S: Scalar>() {
@@ -620,17 +645,24 @@ mod tests {
                 (x >> 11) as f64 / (1u64 << 53) as f64
             };
             let (mut cleared, mut total) = (0u32, 0u32);
-            for _ in 0..20_000 {
+            for _ in 0..30_000 {
                 let mut point = || [0; 3].map(|_| 20.0 * next() - 10.0);
                 let (c, light, mut p) = (point(), point(), point());
-                let radius = 0.2 + 2.0 * next();
-                if next() < 0.5 {
+                let radius = 0.01 + 2.0 * next() * next();
+                let pick = next();
+                let u = [c[0] - light[0], c[1] - light[1], c[2] - light[2]];
+                let off = [next() - 0.5, next() - 0.5, next() - 0.5];
+                if pick < 1.0 / 3.0 {
                     // Near the cone's edge: beyond the sphere, just off its tangent line.
-                    let u = [c[0] - light[0], c[1] - light[1], c[2] - light[2]];
-                    let off = [next() - 0.5, next() - 0.5, next() - 0.5];
                     let s = 1.0 + 2.0 * next();
                     for i in 0..3 {
                         p[i] = light[i] + s * (u[i] + radius * 2.0 * off[i]);
+                    }
+                } else if pick < 0.5 {
+                    // Near the light: short segments, some at half the centre's distance.
+                    let s = next();
+                    for i in 0..3 {
+                        p[i] = light[i] + s * u[i] + off[i];
                     }
                 }
                 let v = |a: [f64; 3]| Vec3::<S>::from_f64(a).unwrap();
@@ -640,29 +672,16 @@ mod tests {
                 let (light, from) = (v(light), v(p));
                 let Some(l) = light.diff(from) else { continue };
                 let Some(ll) = l.dot(l) else { continue };
-                let u = sphere.center().diff(light).unwrap();
-                let uu = u.dot(u).unwrap();
-                let rr = sphere.radius_sq();
-                let Some(k) = uu.checked_sub(rr.mul_ratio(9, 8).unwrap()) else {
+                let Some(cone) = ShadowCone::new(0, 0, &sphere, light) else {
                     continue;
-                };
-                let min_k = S::ONE.mul_ratio(1, 16).unwrap();
-                if k < min_k || uu > rr.checked_mul_int(512).unwrap() {
-                    continue;
-                }
-                let cone = ShadowCone {
-                    light: 0,
-                    object: 0,
-                    u,
-                    k,
                 };
                 total += 1;
                 if cone.clears(l, ll) {
                     cleared += 1;
                     let tol = S::DELTA.checked_mul_int(64).unwrap();
-                    assert_ne!(
-                        sphere.meets_segment(from, l, ll, tol),
-                        Some(true),
+                    let shape = Shape::Sphere(sphere);
+                    assert!(
+                        !shape.meets_segment(from, l, ll, tol, S::DEFAULT_EPSILON),
                         "{}: sphere {c:?} r {radius}, light {:?}, point {p:?}",
                         S::NAME,
                         light.to_f64()

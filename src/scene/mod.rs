@@ -318,7 +318,16 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
 
     /// Draws the scene by `rules` from now on (a tool's `--rules` override). The camera's
     /// pixel grid follows: pixel centres for `fixray`, the window's corners for `course`.
+    ///
+    /// Without the cargo feature `course` the course's rules are not built in: the scene
+    /// is then drawn by the crate's (`Rules::Course` is taken as `Rules::Fixray`, grid
+    /// and plan included).
     pub fn set_rules(&mut self, rules: Rules) {
+        let rules = if cfg!(feature = "course") {
+            rules
+        } else {
+            Rules::Fixray
+        };
         self.rules = rules;
         self.camera.grid = match rules {
             Rules::Course => PixelGrid::Corners,

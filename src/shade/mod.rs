@@ -67,7 +67,7 @@ impl<S: Scalar> From<&Ray<S>> for Incoming<'_, S> {
     }
 }
 
-/// What the fast kernel knows of a hit among planes: `D'_i − N_i·P` of every object `i`
+/// What the fast kernel knows of a primary hit: `D'_i − N_i·P` of every object `i`
 /// at the hit point `P` (`at_hit`, one product each from the primary ray's terms) and
 /// `D'_i − N_i·light_j` (`at_lights`, per frame, light by light), so that a shadow
 /// segment's plane tests need no product ([`crate::Shape::meets_segment`]).
@@ -75,7 +75,8 @@ impl<S: Scalar> From<&Ray<S>> for Incoming<'_, S> {
 pub(crate) struct PlaneSides<'a, S> {
     /// `D'_i − N_i·P`, one per object.
     pub(crate) at_hit: &'a [S],
-    /// `D'_i − N_i·light_j` at `j × objects + i`.
+    /// `D'_i − N_i·light_j` at `j × objects + i` (a sphere's entries are place holders:
+    /// its segment test does not use sides).
     pub(crate) at_lights: &'a [S],
     /// The spheres' shadow cones from the lights (per frame).
     pub(crate) cones: &'a [crate::kernel::fast::ShadowCone<S>],
