@@ -29,14 +29,16 @@ const SCENES: [(&str, &str); 2] = [
 
 /// The host's hash of a scene in format `S`: every pixel, row by row.
 fn host_hash<S: Scalar>(text: &str) -> u32 {
-    let scene = Scene::<S>::parse(text).unwrap();
+    frame_hash(&Scene::<S>::parse(text).unwrap())
+}
+
+/// The hash of a parsed scene's frame, drawn line by line as the firmware draws it.
+fn frame_hash<S: Scalar>(scene: &Scene<S>) -> u32 {
     let mut line = vec![Rgb888::BLACK; usize::from(scene.camera.width)];
     let mut hash = FrameHash::new();
     for row in 0..scene.camera.height {
-        render_line(&scene, row, &mut line);
-        for c in &line {
-            hash.push(*c);
-        }
+        render_line(scene, row, &mut line);
+        line.iter().for_each(|c| hash.push(*c));
     }
     hash.value()
 }
@@ -235,13 +237,7 @@ fn course_entities_on_the_chips() {
             scene
                 .read_with(text, None, &mut fixray::scene::files::beside(dir.as_ref()))
                 .unwrap();
-            let mut line = vec![Rgb888::BLACK; usize::from(scene.camera.width)];
-            let mut h = FrameHash::new();
-            for row in 0..scene.camera.height {
-                render_line(&scene, row, &mut line);
-                line.iter().for_each(|c| h.push(*c));
-            }
-            h.value()
+            frame_hash(&scene)
         }
         fixray::with_format!(format, hash(text, dir)).unwrap()
     };
@@ -360,13 +356,7 @@ fn boing_hash<S: Scalar>(k: u16) -> u32 {
         .unwrap()
         .apply(&mut scene, k)
         .unwrap();
-    let mut line = vec![Rgb888::BLACK; usize::from(scene.camera.width)];
-    let mut hash = FrameHash::new();
-    for row in 0..scene.camera.height {
-        render_line(&scene, row, &mut line);
-        line.iter().for_each(|c| hash.push(*c));
-    }
-    hash.value()
+    frame_hash(&scene)
 }
 
 /// The boing ball (issue 25) as the README's plain firmware commands build it (default
