@@ -93,6 +93,11 @@ pub fn run_spans(target: &str, formats: &str, scenes: &str) -> Result<Run, Strin
     run_with(target, formats, scenes, None, true)
 }
 
+/// One firmware build and run at a time: the builds share `target/` (one ELF per
+/// target), and the test harness runs tests on parallel threads, so without it one
+/// test's `cargo run` could start the ELF another test's build had just replaced.
+static FIRMWARE: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 fn run_with(
     target: &str,
     formats: &str,
@@ -100,6 +105,8 @@ fn run_with(
     features: Option<&str>,
     spans: bool,
 ) -> Result<Run, String> {
+    // A panic in another test while it held the lock leaves nothing half-done here.
+    let _one_at_a_time = FIRMWARE.lock().unwrap_or_else(|e| e.into_inner());
     let root = root();
     let manifest = root.to_str().ok_or("the repository path is not UTF-8")?;
     let mut args = vec![
