@@ -198,6 +198,12 @@ pub struct Row<S: Scalar> {
     dir: Vec3<S>,
     column: u16,
     row: u16,
+    /// `ε·(dx_limit + |D.y| + |D.z|)` plus two ulps, set at each restart: a bound of
+    /// `accepts_bounded` valid for every pixel whose `|D.x| ≤ dx_limit` (the next
+    /// [`RESYNC_PIXELS`]), so that a pixel needs no product for it. When it does not
+    /// fit, `dx_limit` is negative and each pixel computes its own bound.
+    eps_l1: S,
+    dx_limit: S,
 }
 
 /// The plane test of the definition for a primary ray with unnormalised direction `D`:
@@ -218,6 +224,16 @@ pub(crate) fn accepts<S: Scalar>(num: S, nd: S, eps: S, eps_d2: S) -> bool {
 #[inline]
 fn ahead<S: Scalar>(num: S, nd: S) -> bool {
     nd != S::ZERO && num != S::ZERO && (num > S::ZERO) == (nd > S::ZERO) && num.abs() >= nd.abs()
+}
+
+/// `ε·(ax + |dy| + |dz|)` plus two ulps: the bound of [`accepts_bounded`] for every `D`
+/// with `|D.x| ≤ ax` (`‖D‖₁` is at most `ax + |dy| + |dz|` there).
+fn eps_l1_of<S: Scalar>(eps: S, ax: S, dy: S, dz: S) -> Option<S> {
+    ax.checked_add(dy.abs())
+        .and_then(|s| s.checked_add(dz.abs()))
+        .and_then(|s| eps.checked_mul(s))
+        .and_then(|b| b.checked_add(b.ulp()))
+        .and_then(|b| b.checked_add(b.ulp()))
 }
 
 /// [`accepts`] with a bound first: `|N·D| ≥ ε·‖D‖₁` (`eps_l1`, with a margin of two
@@ -449,6 +465,8 @@ impl<S: Scalar> Primary<S> {
             dir: Vec3::new(S::ZERO, S::ZERO, S::ZERO),
             column,
             row,
+            eps_l1: S::ZERO,
+            dx_limit: S::ZERO,
         };
         self.restart(scene, row, column, &mut r)?;
         Some(r)
@@ -469,6 +487,13 @@ impl<S: Scalar> Primary<S> {
         r.dir = Vec3::new(x.checked_sub(eye.x)?, y.checked_sub(eye.y)?, self.dz);
         r.column = column;
         r.row = row;
+        // The epsilon bound for this pixel and the next RESYNC_PIXELS (|D.x| grows by at
+        // most a step each; a larger bound only sends more planes to the exact test).
+        let limit = S::from_i32(i32::from(RESYNC_PIXELS))
+            .and_then(|n| n.checked_mul(self.step_x.abs()))
+            .and_then(|m| m.checked_add(r.dir.x.abs()));
+        let bound = limit.and_then(|m| Some((m, eps_l1_of(scene.epsilon, m, r.dir.y, r.dir.z)?)));
+        (r.dx_limit, r.eps_l1) = bound.unwrap_or((S::ONE.checked_neg()?, S::ZERO));
         r.nd.clear();
         r.acc.clear();
         if self.spheres {
@@ -515,13 +540,11 @@ impl<S: Scalar> Primary<S> {
         let eps = scene.epsilon;
         let d = row.dir;
         let eps_d2 = || d.dot(d).and_then(|d2| eps.checked_mul(d2));
-        let eps_l1 =
-            d.x.abs()
-                .checked_add(d.y.abs())
-                .and_then(|s| s.checked_add(d.z.abs()))
-                .and_then(|s| eps.checked_mul(s))
-                .and_then(|b| b.checked_add(b.ulp()))
-                .and_then(|b| b.checked_add(b.ulp()));
+        let eps_l1 = if d.x.abs() <= row.dx_limit {
+            Some(row.eps_l1)
+        } else {
+            eps_l1_of(eps, d.x.abs(), d.y, d.z)
+        };
         // `D·D`, for spheres: `D.x²` added to the row's `D.y² + D.z²` (once, when a
         // sphere on this row asks for it).
         let mut dd = None;
