@@ -30,6 +30,7 @@ use heapless::Vec;
 
 use core::cmp::Ordering;
 
+use crate::geometry::ShadowCone;
 use crate::{Scalar, SceneView, Shape, Vec3};
 
 /// A term of the fast path: which object and, for a plane, `num = D' − N·eye`, for a
@@ -86,76 +87,11 @@ pub struct Primary<S: Scalar> {
     spheres: bool,
     /// Screen x step between pixel centres, `WX / W`.
     step_x: S,
+    /// `RESYNC_PIXELS·|step_x|`: how far `|D.x|` can move between two restarts of a
+    /// scanline (`None`: too far for the format; each pixel then bounds itself).
+    resync_span: Option<S>,
     /// `−eye.z`, the z of every `D`.
     dz: S,
-}
-
-/// A sphere's shadow cone from a light, per frame: `u = centre − light` and
-/// `k = |u|² − (9/8)r²`. A point `P` (with `l = light − P`, `ll = l·l`) can lie in the
-/// sphere's shadow only if the line from the light to `P` passes within `r` of the
-/// centre: `s = (P − light)·u > 0` and `s² ≥ ll·(|u|² − r²)`. [`ShadowCone::clears`]
-/// tells, from three products and one exact comparison, the points whose line passes
-/// farther than `r·√(9/8)` from the centre: most of a frame's pixels, which then skip
-/// the sphere's exact segment test (issue 25).
-///
-/// Why a cleared point is one the exact test finds clear: at the cone's edge the two
-/// sides of `s² < ll·k` differ by `ll·r²/8`, i.e. by `r²/8` in squared distance from
-/// the centre. For a point at least half the centre's distance from the light
-/// (`4 ll ≥ |u|²`, checked per pixel; nearer points take the exact test) the rounding of
-/// `s`, `ll` and `k` moves the comparison by about `6 DELTA` in those units, and the exact
-/// test's own rounding by about `90 DELTA` (its `|from − centre|` is at most three times
-/// `|l|` there); a cone is kept only for `r² ≥ 4096 DELTA` (`r ≥ 1/4` in I16F16, 1 in
-/// I20F12), so `r²/8 ≥ 512 DELTA` covers both with room, and only for a light clearly
-/// outside the sphere (`k ≥ 1/16`). In the float formats `DELTA` is the ulp at 1 and the
-/// same argument holds relative to the magnitudes.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct ShadowCone<S> {
-    /// The light's index.
-    pub(crate) light: u8,
-    /// The sphere's index.
-    pub(crate) object: u8,
-    u: Vec3<S>,
-    k: S,
-    /// `|u|²/4`, rounded down: the nearest `ll` the shortcut takes.
-    near: S,
-}
-
-impl<S: Scalar> ShadowCone<S> {
-    /// The cone of `sphere` from the light at `light` (index `index`), object `object`;
-    /// `None` when the shortcut does not apply (see the type's documentation).
-    fn new(index: usize, object: u8, sphere: &crate::Sphere<S>, light: Vec3<S>) -> Option<Self> {
-        let min_k = S::ONE.mul_ratio(1, 16)?;
-        let min_rr = S::DELTA.checked_mul_int(4096)?;
-        let u = sphere.center().diff(light)?;
-        let uu = u.dot(u)?;
-        let rr = sphere.radius_sq();
-        let k = uu.checked_sub(rr.mul_ratio(9, 8)?)?;
-        (k >= min_k && rr >= min_rr).then_some(())?;
-        Some(ShadowCone {
-            light: u8::try_from(index).ok()?,
-            object,
-            u,
-            k,
-            near: uu.mul_ratio(1, 4)?.checked_sub(S::DELTA)?,
-        })
-    }
-
-    /// Whether the segment from a point to the light (`l = light − point`, `ll = l·l`)
-    /// clearly misses the sphere: the point lies outside its shadow cone. A point
-    /// nearer to the light than half the centre's distance (`ll < |u|²/4`) takes the
-    /// exact test. Out of line: its products' temporaries stay out of the shadow loop's
-    /// frame (the stack of an I32F32 frame on a 16 KB chip).
-    #[inline(never)]
-    pub(crate) fn clears(&self, l: Vec3<S>, ll: S) -> bool {
-        if ll < self.near {
-            return false;
-        }
-        let Some(lu) = l.dot(self.u) else {
-            return false;
-        };
-        // s = −l·u ≤ 0: the nearest point of the segment to the centre is the light.
-        lu >= S::ZERO || S::cmp_products(lu, lu, ll, self.k) == Some(Ordering::Less)
-    }
 }
 
 /// How many sphere–light shadow cones a frame keeps (beyond, the exact test alone).
@@ -452,6 +388,8 @@ impl<S: Scalar> Primary<S> {
             cones,
             spheres,
             step_x,
+            resync_span: S::from_i32(i32::from(RESYNC_PIXELS))
+                .and_then(|n| n.checked_mul(step_x.abs())),
             dz: S::ZERO.checked_sub(eye.z)?,
         })
     }
@@ -489,9 +427,7 @@ impl<S: Scalar> Primary<S> {
         r.row = row;
         // The epsilon bound for this pixel and the next RESYNC_PIXELS (|D.x| grows by at
         // most a step each; a larger bound only sends more planes to the exact test).
-        let limit = S::from_i32(i32::from(RESYNC_PIXELS))
-            .and_then(|n| n.checked_mul(self.step_x.abs()))
-            .and_then(|m| m.checked_add(r.dir.x.abs()));
+        let limit = self.resync_span.and_then(|m| m.checked_add(r.dir.x.abs()));
         let bound = limit.and_then(|m| Some((m, eps_l1_of(scene.epsilon, m, r.dir.y, r.dir.z)?)));
         (r.dx_limit, r.eps_l1) = bound.unwrap_or((S::ONE.checked_neg()?, S::ZERO));
         r.nd.clear();
@@ -643,84 +579,5 @@ impl<S: Scalar> Primary<S> {
         // |D| ≤ √3 |D|∞ < 2 |D|∞: the world distance t'·|D| is below t'·2|D|∞.
         let t_bound = t.checked_mul(d.max_abs().checked_add(d.max_abs())?)?;
         Some((point, t_bound, t))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::{I16F16, I20F12, I32F32, Sphere};
-
-    /// `ShadowCone::clears` never passes over a sphere its exact segment test finds in
-    /// the way (`Shape::meets_segment`, its fallback for quantities out of range
-    /// included): on seeded random spheres (radii 0.01 to 2: the small ones get no cone),
-    /// lights and points, a third of them aimed near the cone's edge and a sixth near the
-    /// light, whenever it clears, the exact test says no. And it clears a good share of a
-    /// wide field (it is worth its products).
-    #[test]
-    fn a_cleared_shadow_segment_misses_the_sphere_in_every_format() {
-        fn check<S: Scalar>() {
-            let mut x: u64 = 0x2026_1203;
-            let mut next = move || {
-                x ^= x << 13;
-                x ^= x >> 7;
-                x ^= x << 17;
-                (x >> 11) as f64 / (1u64 << 53) as f64
-            };
-            let (mut cleared, mut total) = (0u32, 0u32);
-            for _ in 0..30_000 {
-                let mut point = || [0; 3].map(|_| 20.0 * next() - 10.0);
-                let (c, light, mut p) = (point(), point(), point());
-                let radius = 0.01 + 2.0 * next() * next();
-                let pick = next();
-                let u = [c[0] - light[0], c[1] - light[1], c[2] - light[2]];
-                let off = [next() - 0.5, next() - 0.5, next() - 0.5];
-                if pick < 1.0 / 3.0 {
-                    // Near the cone's edge: beyond the sphere, just off its tangent line.
-                    let s = 1.0 + 2.0 * next();
-                    for i in 0..3 {
-                        p[i] = light[i] + s * (u[i] + radius * 2.0 * off[i]);
-                    }
-                } else if pick < 0.5 {
-                    // Near the light: short segments, some at half the centre's distance.
-                    let s = next();
-                    for i in 0..3 {
-                        p[i] = light[i] + s * u[i] + off[i];
-                    }
-                }
-                let v = |a: [f64; 3]| Vec3::<S>::from_f64(a).unwrap();
-                let Ok(sphere) = Sphere::new(v(c), S::from_f64(radius).unwrap()) else {
-                    continue;
-                };
-                let (light, from) = (v(light), v(p));
-                let Some(l) = light.diff(from) else { continue };
-                let Some(ll) = l.dot(l) else { continue };
-                let Some(cone) = ShadowCone::new(0, 0, &sphere, light) else {
-                    continue;
-                };
-                total += 1;
-                if cone.clears(l, ll) {
-                    cleared += 1;
-                    let tol = S::DELTA.checked_mul_int(64).unwrap();
-                    let shape = Shape::Sphere(sphere);
-                    assert!(
-                        !shape.meets_segment(from, l, ll, tol, S::DEFAULT_EPSILON),
-                        "{}: sphere {c:?} r {radius}, light {:?}, point {p:?}",
-                        S::NAME,
-                        light.to_f64()
-                    );
-                }
-            }
-            assert!(
-                cleared * 4 > total,
-                "{}: {cleared} of {total} cleared",
-                S::NAME
-            );
-        }
-        check::<I16F16>();
-        check::<I20F12>();
-        check::<I32F32>();
-        check::<f32>();
-        check::<f64>();
     }
 }

@@ -20,8 +20,7 @@ use crate::geometry::{sides_differ, surface_tolerance};
 use crate::scene::PixelRay;
 use crate::stats::{Counters, count};
 use crate::{
-    Color, Hit, Light, Material, Miss, Object, PlaneFrame, Ray, Rules, Scalar, SceneView, Shape,
-    Vec3,
+    Color, Hit, Light, Material, Miss, PlaneFrame, Ray, Rules, Scalar, SceneView, Shape, Vec3,
 };
 use embedded_graphics_core::pixelcolor::Rgb888;
 
@@ -216,10 +215,6 @@ fn occludes_segment<S: Scalar>(
                     usize::from(c.light) == j && usize::from(c.object) == i && c.clears(l, ll)
                 })
             };
-            let meets = |o: &Object<S>, a0: S, a1: S| {
-                o.shape
-                    .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
-            };
             scene
                 .objects
                 .iter()
@@ -237,7 +232,10 @@ fn occludes_segment<S: Scalar>(
                         | Shape::Triangle(_) => sides_differ(a0, a1, tol),
                         Shape::Revsurf(_) => true,
                     };
-                    maybe && meets(o, a0, a1) && !spared(&o.shape)
+                    maybe
+                        && o.shape
+                            .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
+                        && !spared(&o.shape)
                 })
         }
         None => scene

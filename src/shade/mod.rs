@@ -79,7 +79,7 @@ pub(crate) struct PlaneSides<'a, S> {
     /// its segment test does not use sides).
     pub(crate) at_lights: &'a [S],
     /// The spheres' shadow cones from the lights (per frame).
-    pub(crate) cones: &'a [crate::kernel::fast::ShadowCone<S>],
+    pub(crate) cones: &'a [crate::geometry::ShadowCone<S>],
 }
 
 /// The nearest hit of a ray by the rule set `R` ([`rules::RuleSet::intersect`]), with the
