@@ -11,7 +11,7 @@ use common::sampling::SplitMix;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use fixray::internals::Flat;
-use fixray::{Counters, Frame, KernelKind, PlaneMode, Scalar, Scene, render, render_line};
+use fixray::{Counters, Frame, KernelKind, PlaneMode, Scalar, Scene, Shape, render, render_line};
 
 /// A target that records every pixel and how often it was written.
 struct Capture {
@@ -147,7 +147,26 @@ fn agree<S: Scalar>(name: &str, text: &str, mode: PlaneMode) -> (Vec<Rgb888>, us
     {
         KernelKind::Flat
     } else if fixray::internals::Primary::new(&scene.view()).is_some() {
-        KernelKind::Fast
+        // Level planes (`N.x = 0`) and spheres lit by diffuse point lights: the
+        // level-plane kernel; any other scene of the crate's rules: the fast kernel.
+        let diffuse = plan.lighting
+            && !(plan.specular
+                || plan.spotlights
+                || plan.reflection
+                || plan.transparency
+                || plan.projectors
+                || plan.lights_on_surfaces);
+        let level = scene.objects.iter().all(|o| match &o.shape {
+            Shape::Sphere(_) => true,
+            Shape::Plane(p) => p.normal().x == S::ZERO,
+            Shape::Tiled { frame, .. } => frame.plane().normal().x == S::ZERO,
+            _ => false,
+        });
+        if diffuse && level {
+            KernelKind::Rows
+        } else {
+            KernelKind::Fast
+        }
     } else {
         KernelKind::Reference
     };

@@ -46,6 +46,9 @@ struct Term<S> {
     /// sphere the rows whose plane of rays passes near it ([`sphere_rows`]), so that a
     /// pixel on another row skips its test.
     rows: (u16, u16),
+    /// The columns likewise ([`sphere_columns`]): a sphere is tested only inside its
+    /// box on the screen.
+    columns: (u16, u16),
 }
 
 /// What a term dots `D` with: the unit normal of a plane-like object, `eye − centre` of
@@ -233,14 +236,7 @@ fn sphere_root<S: Scalar>(c: S, b: S, a: S) -> Result<Option<(S, S)>, ()> {
 /// have: bit for bit (issue 25).
 fn sphere_rows<S: Scalar>(scene: &SceneView<'_, S>, oc: Vec3<S>, rr: S, dz: S) -> (u16, u16) {
     let all = (0, scene.camera.height.saturating_sub(1));
-    let bound = oc
-        .max_abs()
-        .checked_mul_int(2)
-        .and_then(|m| m.checked_div(dz.abs()))
-        .and_then(|q| S::ONE.checked_add(q))
-        .and_then(|g| g.checked_mul(g))
-        .and_then(|g| g.checked_mul(S::DELTA.checked_mul_int(256)?));
-    if bound.is_none_or(|b| rr < b) {
+    if !bounded(oc, rr, dz) {
         return all;
     }
     let eye_y = scene.camera.viewpoint.y;
@@ -253,17 +249,59 @@ fn sphere_rows<S: Scalar>(scene: &SceneView<'_, S>, oc: Vec3<S>, rr: S, dz: S) -
         let rhs = rr.checked_mul(nn)?.mul_ratio(9, 8)?;
         Some(k.checked_mul(k)? > rhs)
     };
-    let mut rows = (1, 0);
-    for j in 0..scene.camera.height {
+    span(scene.camera.height, far)
+}
+
+/// The columns whose primary rays can meet a sphere: [`sphere_rows`] with the roles of
+/// `x` and `y` exchanged. A column's rays `D = (dx, y − eye.y, dz)` all lie in the plane
+/// through the eye with normal `(dz, 0, −dx)`, and the same test, margin and guard
+/// decide. A pixel's `D.x` is stepped along its scanline, off the column's exact
+/// `dx` by at most `RESYNC_PIXELS / 2` DELTAs: that moves the ray's squared distance
+/// from the centre by about `8 r DELTA |oc|/|dz|`, far inside the `r²/8` margin the
+/// guard leaves (`r ≥ 16 √DELTA (1 + 2|oc|∞/|dz|)`). Bit for bit, as the rows.
+fn sphere_columns<S: Scalar>(scene: &SceneView<'_, S>, oc: Vec3<S>, rr: S, dz: S) -> (u16, u16) {
+    let all = (0, scene.camera.width.saturating_sub(1));
+    if !bounded(oc, rr, dz) {
+        return all;
+    }
+    let eye_x = scene.camera.viewpoint.x;
+    // (dz·oc.x − dx·oc.z)² > (9/8)·r²·(dx² + dz²), in the format.
+    let far = |i: u16| -> Option<bool> {
+        let dx = scene.camera.screen_x(i)?.checked_sub(eye_x)?;
+        let k = dz.checked_mul(oc.x)?.checked_sub(dx.checked_mul(oc.z)?)?;
+        let nn = dx.checked_mul(dx)?.checked_add(dz.checked_mul(dz)?)?;
+        let rhs = rr.checked_mul(nn)?.mul_ratio(9, 8)?;
+        Some(k.checked_mul(k)? > rhs)
+    };
+    span(scene.camera.width, far)
+}
+
+/// Whether a sphere is large enough for [`sphere_rows`]' and [`sphere_columns`]' margin:
+/// `r² ≥ 256 DELTA (1 + 2|oc|∞/|dz|)²`.
+fn bounded<S: Scalar>(oc: Vec3<S>, rr: S, dz: S) -> bool {
+    let bound = oc
+        .max_abs()
+        .checked_mul_int(2)
+        .and_then(|m| m.checked_div(dz.abs()))
+        .and_then(|q| S::ONE.checked_add(q))
+        .and_then(|g| g.checked_mul(g))
+        .and_then(|g| g.checked_mul(S::DELTA.checked_mul_int(256)?));
+    bound.is_some_and(|b| rr >= b)
+}
+
+/// The first and last of `0..n` that `far` does not call far (`(1, 0)`: none).
+fn span(n: u16, far: impl Fn(u16) -> Option<bool>) -> (u16, u16) {
+    let mut found = (1, 0);
+    for j in 0..n {
         if far(j) != Some(true) {
-            if rows.0 > rows.1 {
-                rows = (j, j);
+            if found.0 > found.1 {
+                found = (j, j);
             } else {
-                rows.1 = j;
+                found.1 = j;
             }
         }
     }
-    rows
+    found
 }
 
 /// Every sphere's shadow cone from every light that fits ([`ShadowCone`]), up to
@@ -307,7 +345,8 @@ impl<S: Scalar> Primary<S> {
         let mut spheres = false;
         for (index, object) in scene.objects.iter().enumerate() {
             let all_rows = (0, scene.camera.height.saturating_sub(1));
-            let (num, axis, sphere, rows) = match &object.shape {
+            let all_columns = (0, scene.camera.width.saturating_sub(1));
+            let (num, axis, sphere, rows, columns) = match &object.shape {
                 Shape::Sphere(s) => {
                     // Only with the eye outside every sphere (the near root is then the
                     // one, and c/q has no cancellation), and with the sphere code built in.
@@ -322,7 +361,9 @@ impl<S: Scalar> Primary<S> {
                     }
                     spheres = true;
                     let dz = S::ZERO.checked_sub(eye.z)?;
-                    (c, oc, true, sphere_rows(scene, oc, s.radius_sq(), dz))
+                    let rr = s.radius_sq();
+                    let rows = sphere_rows(scene, oc, rr, dz);
+                    (c, oc, true, rows, sphere_columns(scene, oc, rr, dz))
                 }
                 // The kernel has no term for a surface of revolution: the reference path.
                 Shape::Revsurf(_) => return None,
@@ -334,7 +375,7 @@ impl<S: Scalar> Primary<S> {
                     let plane = shape.plane()?;
                     let num =
                         S::sub_dot3(plane.offset(), plane.normal().to_array(), eye.to_array())?;
-                    (num, plane.normal(), false, all_rows)
+                    (num, plane.normal(), false, all_rows, all_columns)
                 }
             };
             let index = u8::try_from(index).ok()?;
@@ -344,6 +385,7 @@ impl<S: Scalar> Primary<S> {
                     num,
                     sphere,
                     rows,
+                    columns,
                 })
                 .ok()?;
             steps.push(S::acc_mul(axis.x, step_x)?).ok()?;
@@ -448,6 +490,11 @@ impl<S: Scalar> Primary<S> {
         row.column
     }
 
+    /// The row's current unnormalised direction `D`.
+    pub(crate) fn dir(row: &Row<S>) -> Vec3<S> {
+        row.dir
+    }
+
     /// Moves a scanline to its next pixel: `D.x` grows by the pixel step (rounded once
     /// per frame; callers restart the row from the exact screen x every
     /// [`RESYNC_PIXELS`] pixels, so the drift stays below `RESYNC_PIXELS / 2` DELTAs), and
@@ -497,8 +544,13 @@ impl<S: Scalar> Primary<S> {
         let mut best: Option<(&Term<S>, S, S)> = None;
         for (term, &nd) in self.terms.iter().zip(&row.nd) {
             let (p, q) = if term.sphere {
-                if row.row < term.rows.0 || row.row > term.rows.1 {
-                    // The row's plane of rays passes far from the sphere: `sphere_rows`.
+                if row.row < term.rows.0
+                    || row.row > term.rows.1
+                    || row.column < term.columns.0
+                    || row.column > term.columns.1
+                {
+                    // The row's or the column's plane of rays passes far from the
+                    // sphere: `sphere_rows`, `sphere_columns`.
                     continue;
                 }
                 match sphere_root(term.num, nd, dd()?)? {
@@ -537,6 +589,83 @@ impl<S: Scalar> Primary<S> {
             dir: d,
             param,
         }))
+    }
+
+    /// The nearest plane of scanline `row` when every plane's `N·D` is the same at each
+    /// of its pixels (`N.x = 0`: the row's `N·D` steps by `N.x × step = 0`) and every
+    /// plane's test decides the same at each of them: `Some((object, p, q))` with the
+    /// winner's `t' = p/q`, `Some` of `None` when no plane is accepted, and `None` when the
+    /// row cannot be decided once (a plane with `N.x ≠ 0`, or one within the margin of the
+    /// epsilon at some pixel of the row: [`nearest`](Self::nearest) then decides each
+    /// pixel). `first` is the row started at column 0, `width` its pixels. Spheres are
+    /// left out: the caller tests them on the rows they can be met on
+    /// ([`Self::sphere_on_row`]). The same tests and the same tie rule as `nearest`, so
+    /// that a pixel's plane is `nearest`'s (`kernel/rows.rs`).
+    pub(crate) fn level_row(
+        &self,
+        scene: &SceneView<'_, S>,
+        first: &Row<S>,
+        width: u16,
+    ) -> Option<Option<(usize, S, S)>> {
+        let eps = scene.epsilon;
+        let eye_x = scene.camera.viewpoint.x;
+        // The largest |D.x| of the row, with the drift of the stepped coordinate.
+        let last = scene
+            .camera
+            .screen_x(width.checked_sub(1)?)?
+            .checked_sub(eye_x)?;
+        let widest = first.dir.x.abs().max(last.abs());
+        let widest = self.resync_span.and_then(|m| m.checked_add(widest))?;
+        let bound = eps_l1_of(eps, widest, first.dir.y, first.dir.z)?;
+        let mut best: Option<(&Term<S>, S, S)> = None;
+        for (term, &nd) in self.terms.iter().zip(&first.nd) {
+            if term.sphere {
+                continue;
+            }
+            if axis_of(scene, term.index)?.x != S::ZERO {
+                return None;
+            }
+            // Accepted at every pixel, or at none (`N·D = 0`); otherwise each pixel decides.
+            if nd.abs() < bound {
+                if nd == S::ZERO {
+                    continue;
+                }
+                return None;
+            }
+            if !ahead(term.num, nd) {
+                continue;
+            }
+            let (p, q) = (term.num.abs(), nd.abs());
+            if let Some((_, b_p, b_q)) = best
+                && S::cmp_products(p, b_q, b_p, q) != Some(Ordering::Less)
+            {
+                continue;
+            }
+            if !matches!(
+                scene.objects.get(usize::from(term.index)).map(|o| &o.shape),
+                Some(Shape::Plane(_) | Shape::Tiled { .. })
+            ) {
+                return None;
+            }
+            best = Some((term, p, q));
+        }
+        Some(best.map(|(term, p, q)| (usize::from(term.index), p, q)))
+    }
+
+    /// The columns of scanline `row` where a sphere can be met (the union of the boxes
+    /// of [`sphere_rows`] and [`sphere_columns`] of the spheres on the row; `(1, 0)`:
+    /// none).
+    pub(crate) fn sphere_columns_on_row(&self, row: u16) -> (u16, u16) {
+        self.terms
+            .iter()
+            .filter(|t| t.sphere && row >= t.rows.0 && row <= t.rows.1)
+            .fold((1, 0), |(a, b), t| {
+                if a > b {
+                    t.columns
+                } else {
+                    (a.min(t.columns.0), b.max(t.columns.1))
+                }
+            })
     }
 
     /// The lights' sides of every plane, per frame (empty when not kept).

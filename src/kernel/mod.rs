@@ -19,14 +19,16 @@
 pub(crate) mod fast;
 pub(crate) mod flat;
 mod reference;
+mod rows;
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 use crate::shade::stages::Stages;
 use crate::stats::{Counters, count_primary};
-use crate::{Plan, Rules, Scalar, SceneView};
+use crate::{Plan, Rules, Scalar, SceneView, Shape};
 use fast::Primary;
 use flat::{Flat, PlaneMode};
+use rows::Rows;
 
 pub(crate) use reference::scanline;
 
@@ -37,6 +39,8 @@ pub(crate) enum Kernel<S: Scalar> {
     Flat(Flat<S>),
     /// The fast primary-ray kernel's per-frame part.
     Fast(Primary<S>),
+    /// The level-plane kernel's per-frame part (the fast kernel's).
+    Rows(Rows<S>),
     /// The reference path (nothing per frame).
     Reference,
 }
@@ -52,6 +56,10 @@ pub enum KernelKind {
     /// Planes and spheres under the crate's rules with unnormalised directions stepped
     /// along the scanline (`kernel/fast.rs`).
     Fast,
+    /// Lit scenes of level planes (`N.x = 0`: floors, back walls) and spheres with
+    /// diffuse lights and shadows: each scanline's plane found once per row, the fast
+    /// kernel's pixels bit for bit (`kernel/rows.rs`).
+    Rows,
     /// The definition: a normalised ray per pixel (`kernel/reference.rs`).
     Reference,
 }
@@ -73,6 +81,7 @@ impl<S: Scalar> Drawing<S> {
         match self.kernel {
             Kernel::Flat(_) => KernelKind::Flat,
             Kernel::Fast(_) => KernelKind::Fast,
+            Kernel::Rows(_) => KernelKind::Rows,
             Kernel::Reference => KernelKind::Reference,
         }
     }
@@ -118,13 +127,46 @@ pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan
         kernel: Kernel::Reference,
         fast,
     };
+    // Level planes and spheres lit by diffuse point lights (with or without shadows):
+    // each scanline's plane once per row (`rows.rs`, the fast kernel's pixels bit for bit).
+    let rows = fast
+        && T::LIGHTING
+        && !T::SPECULAR
+        && !T::CONES
+        && !T::REFLECTION
+        && !T::TRANSPARENCY
+        && plan.lighting
+        && !plan.projectors
+        && !plan.lights_on_surfaces
+        && !scene.lights_on_surfaces
+        && scene.objects.iter().all(|o| match &o.shape {
+            Shape::Sphere(_) => true,
+            shape @ (Shape::Plane(_) | Shape::Tiled { .. }) => {
+                shape.plane().is_some_and(|p| p.normal().x == S::ZERO)
+            }
+            Shape::Finite(_) | Shape::Textured(_) | Shape::Triangle(_) | Shape::Revsurf(_) => false,
+        });
     drawing.kernel = match flat.then(|| Flat::new(scene)).flatten() {
         Some(f) => Kernel::Flat(f),
-        None => drawing
-            .handed_back(scene)
-            .map_or(Kernel::Reference, Kernel::Fast),
+        None => match drawing.handed_back(scene) {
+            Some(primary) if rows => Kernel::Rows(Rows { primary }),
+            Some(primary) => Kernel::Fast(primary),
+            None => Kernel::Reference,
+        },
     };
     drawing
+}
+
+/// The fast kernel for a frame of the crate's rules where [`select`] would pick a
+/// cheaper one (what the tests of the level-plane kernel compare with, bit for bit); the
+/// reference path where it cannot be formed.
+pub(crate) fn fast_only<S: Scalar>(scene: &SceneView<'_, S>) -> Drawing<S> {
+    let fast = scene.rules() == Rules::Fixray;
+    let kernel = match fast.then(|| Primary::new(scene)).flatten() {
+        Some(p) => Kernel::Fast(p),
+        None => Kernel::Reference,
+    };
+    Drawing { kernel, fast }
 }
 
 /// Fills `line` (at most the camera's width) with scanline `row` drawn by `kernel`.
@@ -148,6 +190,7 @@ pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
             return fallback_line::<S, T, C>(scene, drawing, row, line, counters);
         }
         Kernel::Fast(p) => Some(p),
+        Kernel::Rows(r) => return rows_line::<S, T, C>(scene, r, row, line, counters),
         Kernel::Reference => None,
     };
     primary_line::<S, T, C>(scene, primary, row, line, counters);
@@ -213,6 +256,9 @@ where
             }
         },
         Kernel::Fast(p) => Some(p),
+        Kernel::Rows(r) => {
+            return sink.fill(rows::scanline::<S, T, C>(scene, r, row, columns, counters));
+        }
         Kernel::Reference => None,
     };
     sink.fill(scanline::<S, T, C>(scene, primary, row, columns, counters))
@@ -248,6 +294,22 @@ fn flat_line<S: Scalar, C: From<Rgb888>>(
         }
     }
     true
+}
+
+/// A scanline of the level-plane kernel into `line`.
+#[inline(never)]
+fn rows_line<S: Scalar, T: Stages, C: From<Rgb888>>(
+    scene: &SceneView<'_, S>,
+    rows: &Rows<S>,
+    row: u16,
+    line: &mut [C],
+    counters: &mut Counters,
+) {
+    let width = u16::try_from(line.len()).unwrap_or(0);
+    let pixels = rows::scanline::<S, T, C>(scene, rows, row, 0..width, counters);
+    for (slot, c) in line.iter_mut().zip(pixels) {
+        *slot = c;
+    }
 }
 
 /// A scanline of the fast kernel (with its per-frame part `primary`) or, without it, of

@@ -10,7 +10,7 @@ use crate::shade::color::to_pixel;
 use crate::shade::stages::Stages;
 use crate::shade::{Incoming, PlaneSides, shade_with, trace_pixel_ray};
 use crate::stats::{Counters, count};
-use crate::{Hit, Scalar, SceneView};
+use crate::{Color, Hit, Scalar, SceneView};
 
 /// The pixels of columns `columns` of scanline `row` traced with the stage set `T`, one
 /// per step, as the caller (a `fill_contiguous` or a line buffer) pulls them. With a
@@ -49,38 +49,62 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
             p.nearest(scene, state.as_ref()?).ok()
         });
         let color = match found {
-            Some(Some(h)) => {
-                // The unnormalised direction: see `Incoming` (the fast kernel takes only
-                // stage sets that need no more of it than its side).
-                // Shadow segments take the planes' sides from the kernel's terms.
-                let sides = match (primary, state.as_ref()) {
-                    (Some(p), Some(r)) if T::SHADOWS && !p.at_lights().is_empty() => {
-                        p.sides_at(r, h.param, &mut at_hit).map(|()| PlaneSides {
-                            at_hit: &at_hit,
-                            at_lights: p.at_lights(),
-                            cones: p.cones(),
-                        })
-                    }
-                    _ => None,
-                };
-                let incoming = Incoming {
-                    base: scene.camera.viewpoint,
-                    dir: h.dir,
-                    unit: false,
-                    sides,
-                };
-                let hit = Hit {
-                    t: h.t_bound,
-                    point: h.point,
-                };
-                shade_with::<S, T>(scene, &incoming, h.index, &hit, counters)
-            }
-            Some(None) => scene.background,
-            None => match y.and_then(|y| scene.camera.pixel_ray_at(column, y)) {
-                Some(pixel) => trace_pixel_ray::<S, T>(scene, &pixel, counters).color,
+            Some(Some(h)) => match state.as_ref() {
+                Some(r) => fast_color::<S, T>(scene, primary, r, &h, &mut at_hit, counters),
                 None => scene.background,
             },
+            Some(None) => scene.background,
+            None => reference_color::<S, T>(scene, y, column, counters),
         };
         C::from(to_pixel(rules, color))
     })
+}
+
+/// The colour of the fast kernel's hit `h` at the row's current pixel: shaded with the
+/// unnormalised direction (see `Incoming`; the fast kernel takes only stage sets that
+/// need no more of it than its side), shadow segments taking the planes' sides from the
+/// kernel's terms (`at_hit`: a buffer the scanline keeps).
+pub(crate) fn fast_color<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    primary: Option<&Primary<S>>,
+    r: &Row<S>,
+    h: &fast::FastHit<S>,
+    at_hit: &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+    counters: &mut Counters,
+) -> Color<S> {
+    let sides = match primary {
+        Some(p) if T::SHADOWS && !p.at_lights().is_empty() => {
+            p.sides_at(r, h.param, at_hit).map(|()| PlaneSides {
+                at_hit,
+                at_lights: p.at_lights(),
+                cones: p.cones(),
+            })
+        }
+        _ => None,
+    };
+    let incoming = Incoming {
+        base: scene.camera.viewpoint,
+        dir: h.dir,
+        unit: false,
+        sides,
+    };
+    let hit = Hit {
+        t: h.t_bound,
+        point: h.point,
+    };
+    shade_with::<S, T>(scene, &incoming, h.index, &hit, counters)
+}
+
+/// The colour of pixel `column` of the scanline at screen `y` on the reference path (the
+/// background when its ray cannot be formed).
+pub(crate) fn reference_color<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    y: Option<S>,
+    column: u16,
+    counters: &mut Counters,
+) -> Color<S> {
+    match y.and_then(|y| scene.camera.pixel_ray_at(column, y)) {
+        Some(pixel) => trace_pixel_ray::<S, T>(scene, &pixel, counters).color,
+        None => scene.background,
+    }
 }

@@ -187,7 +187,7 @@ fn occludes<S: Scalar>(scene: &SceneView<'_, S>, ray: &Ray<S>, dist: S, light: V
 /// crate's shadow test, [`Shape::meets_segment`]; a light on a surface: as in
 /// [`occludes`]). `sides`: the planes' sides the fast kernel knows, and the light's index.
 #[inline(never)]
-fn occludes_segment<S: Scalar>(
+pub(crate) fn occludes_segment<S: Scalar>(
     scene: &SceneView<'_, S>,
     sides: Option<(PlaneSides<'_, S>, usize)>,
     from: Vec3<S>,

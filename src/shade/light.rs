@@ -125,6 +125,19 @@ fn channel_max<S: Scalar>() -> S {
     S::from_i32(255).unwrap_or(S::MAX)
 }
 
+/// A light's diffuse term in channel units, `255·(N·L)/|L|²` (`nl = N·L`, `ll = |L|²`),
+/// scaled to channel units before the division where that fits (the quotient then keeps
+/// the format's relative precision); the largest value when it does not fit.
+#[inline]
+pub(crate) fn diffuse_falloff<S: Scalar>(nl: S, ll: S) -> S {
+    let k = channel_max::<S>();
+    match nl.checked_mul(k) {
+        Some(knl) => knl.checked_div(ll),
+        None => nl.checked_div(ll).and_then(|q| q.checked_mul(k)),
+    }
+    .unwrap_or(S::MAX)
+}
+
 /// Whether a light at `light` lies in the plane of the surface it would light (see
 /// [`in_own_plane`]); asked only where the plan found a light on a surface.
 fn on_own_plane<S: Scalar>(at: &Lit<'_, '_, S>, light: Vec3<S>) -> bool {
@@ -190,14 +203,8 @@ fn segment_terms<S: Scalar, R: Tracer>(
             filter = combine(filter, f);
             entered = e;
         }
-        // 255·(N·L)/|L|², scaled to channel units before the division where that fits
-        // (the quotient then keeps the format's relative precision).
         let k = channel_max::<S>();
-        let mut diffuse_falloff = match nl.checked_mul(k) {
-            Some(knl) => knl.checked_div(ll),
-            None => nl.checked_div(ll).and_then(|q| q.checked_mul(k)),
-        }
-        .unwrap_or(S::MAX);
+        let mut diffuse_falloff = diffuse_falloff(nl, ll);
         // Through a translucent sphere (the course's, `Passage::lit`): cos/dist' with
         // dist' = (1 − s)|L| from the entry point nearest the light, s its share of L.
         if let Some(e) = entered {

@@ -1,0 +1,463 @@
+//! Lit scenes of level planes and spheres (the boing ball's kind): each scanline's plane
+//! is found once per row, not once per pixel.
+//!
+//! A primary ray of scanline `j` is `D = (x − eye.x, dy_j, dz)`: only `D.x` changes
+//! along the row. For a plane whose normal has `N.x = 0` (a floor, a ceiling, a back
+//! wall, any plane tilted only about the x axis), `N·D` is therefore the same at every
+//! pixel of the row, and so are its test, its parameter `t' = num/(N·D)` and the hit's
+//! `y` and `z`. When every plane is of that kind, the nearest plane of a row, its
+//! division, the normal facing the ray and every plane's side at the hit (for shadow
+//! segments) are worked out once per row ([`Primary::level_row`]); a pixel computes its
+//! hit's `x` (one product) and lights it: the tile, `L = light − hit`, `|L|²`, the shadow
+//! segment and one division for `255·(N·L)/|L|²`. Spheres are tested only on the rows
+//! they can be met on (the fast kernel's `sphere_rows`), by the fast kernel's own test.
+//!
+//! Every quantity is the fast kernel's, computed by the same operations in the same
+//! order, so a pixel is the fast kernel's bit for bit (`tests/kernels.rs` compares every
+//! pixel of every scene this kernel draws, in every format). A row that cannot be
+//! decided once (a plane within the epsilon's margin of parallel at some pixel), and any
+//! pixel whose quantity leaves the format, is drawn by the fast kernel itself.
+
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+use super::fast::{self, FAST_OBJECTS, Primary, Row};
+use super::reference::{fast_color, reference_color};
+use crate::geometry::{sides_differ, surface_tolerance};
+use crate::shade::color::{add_sat, term, to_pixel};
+use crate::shade::material_at;
+use crate::shade::stages::Stages;
+use crate::shade::{Incoming, PlaneSides, diffuse_falloff, occludes_segment, shade_with};
+use crate::stats::{Counters, count};
+use crate::{Color, Hit, Rules, Scalar, SceneView, Shape, Vec3};
+
+/// The per-frame part: the fast kernel's (its terms, the lights' sides of every plane,
+/// the spheres' rows and shadow cones).
+#[derive(Debug, Clone)]
+pub(crate) struct Rows<S: Scalar> {
+    pub(crate) primary: Primary<S>,
+}
+
+/// What a scanline's nearest plane gives every pixel of the row.
+#[derive(Debug, Clone)]
+struct Level<S: Scalar> {
+    /// The object.
+    index: usize,
+    /// Its parameter `t'` along `D` (the screen at 1).
+    t: S,
+    /// The hit's `y` and `z` (the same at every pixel).
+    y: S,
+    z: S,
+    /// The plane's normal facing the ray.
+    facing: Vec3<S>,
+    /// Every object's side at the hit (`Primary::sides_at`), for shadow segments; empty
+    /// when not kept.
+    sides: heapless::Vec<S, FAST_OBJECTS>,
+    /// Per light (the first [`ROW_LIGHTS`]): the objects that can stand between the
+    /// row's hits and the light, as bits: the spheres, and the planes whose sides at the
+    /// hit and at the light differ in sign (a plane with both on one side never crosses
+    /// a segment, whatever the tolerance: `sides_differ`). Empty: every light takes the
+    /// general test (`occludes_segment`).
+    occluders: heapless::Vec<u8, ROW_LIGHTS>,
+    /// The plane's materials (its own, a tiled plane's alternate) and, per material and
+    /// light (`material × ROW_LIGHTS + light`), `emissivity × diffuse` per channel: the
+    /// first product of `term([emissivity, diffuse, falloff])`, once per row. Empty when
+    /// the scene has more than [`ROW_LIGHTS`] lights.
+    materials: [u8; 2],
+    weights: heapless::Vec<[Option<S>; 3], { 2 * ROW_LIGHTS }>,
+}
+
+/// How many lights a row keeps per-row terms for (a scene with more lights shades every
+/// light the general way).
+const ROW_LIGHTS: usize = 2;
+
+/// What a scanline remembers from pixel to pixel: the last `2|D|∞` and the hit's
+/// distance bound `t'·2|D|∞` it gave, and the last `(t, ulp)` key of the segments'
+/// tolerance (`surface_tolerance` depends on nothing else) with its value. Along a row
+/// `|D|∞` is mostly `|dz|` or `|dy|`, so both are products a pixel mostly skips.
+#[derive(Debug, Clone, Copy)]
+struct Memo<S> {
+    bound: Option<(S, S)>,
+    tol: Option<(S, S, S)>,
+}
+
+/// One of two iterators (a row drawn by this kernel, or handed to the fast kernel).
+enum Either<A, B> {
+    Left(A),
+    Right(B),
+}
+
+impl<A: Iterator, B: Iterator<Item = A::Item>> Iterator for Either<A, B> {
+    type Item = A::Item;
+    #[inline]
+    fn next(&mut self) -> Option<A::Item> {
+        match self {
+            Either::Left(a) => a.next(),
+            Either::Right(b) => b.next(),
+        }
+    }
+}
+
+/// The row's plane, worked out once: `Some(None)` when no plane is accepted, `None` when
+/// the fast kernel must decide the row pixel by pixel.
+fn level<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    first: &Row<S>,
+) -> Option<Option<Level<S>>> {
+    let Some((index, num, den)) = p.level_row(scene, first, scene.camera.width)? else {
+        return Some(None);
+    };
+    // As `Primary::point`: t' = p/q, hit = eye + t'·D.
+    let t = num.checked_div(den)?;
+    let eye = scene.camera.viewpoint;
+    let d = Primary::dir(first);
+    let y = eye.y.checked_add(t.checked_mul(d.y)?)?;
+    let z = eye.z.checked_add(t.checked_mul(d.z)?)?;
+    let normal = scene
+        .objects
+        .get(index)?
+        .shape
+        .normal_at(Vec3::new(eye.x, y, z))?;
+    // As `own_color`: `D·N` has no `D.x` term (`N.x = 0`), the same at every pixel.
+    let facing = if d.dot_axis(normal).is_some_and(|v| v > S::ZERO) {
+        normal.checked_neg().unwrap_or(normal)
+    } else {
+        normal
+    };
+    let mut sides = heapless::Vec::new();
+    if T::SHADOWS && !p.at_lights().is_empty() && p.sides_at(first, t, &mut sides).is_none() {
+        sides.clear();
+    }
+    let lights = scene.lights.len();
+    let mut occluders = heapless::Vec::new();
+    let n = sides.len();
+    if n == scene.objects.len() && lights <= ROW_LIGHTS {
+        for j in 0..lights {
+            let at_light = p.at_lights().get(j * n..)?.get(..n)?;
+            let mut bits = 0u8;
+            for (i, ((o, &a0), &a1)) in scene.objects.iter().zip(&sides).zip(at_light).enumerate() {
+                let may = match o.shape {
+                    Shape::Sphere(_) => true,
+                    _ => (a0 > S::ZERO) != (a1 > S::ZERO),
+                };
+                if may {
+                    bits |= 1 << i;
+                }
+            }
+            let _ = occluders.push(bits);
+        }
+    }
+    let object = scene.objects.get(index)?;
+    let materials = match object.shape {
+        Shape::Tiled { alt, .. } => [object.material, alt],
+        _ => [object.material, object.material],
+    };
+    let mut weights = heapless::Vec::new();
+    if lights <= ROW_LIGHTS {
+        for m in materials {
+            let diffuse = scene.materials.get(usize::from(m)).map(|m| m.diffuse);
+            for j in 0..ROW_LIGHTS {
+                let w = match (diffuse, scene.lights.get(j)) {
+                    (Some(d), Some(light)) => {
+                        let e = light.emissivity;
+                        [0, 1, 2].map(|c| e[c].checked_mul(d[c]))
+                    }
+                    _ => [None; 3],
+                };
+                let _ = weights.push(w);
+            }
+        }
+    }
+    Some(Some(Level {
+        index,
+        t,
+        y,
+        z,
+        facing,
+        sides,
+        occluders,
+        materials,
+        weights,
+    }))
+}
+
+/// The pixels of columns `columns` of scanline `row`: the row's plane once, then per
+/// pixel its hit's `x` and light, spheres by the fast kernel's test on their rows. A row
+/// this kernel cannot decide once is the fast kernel's ([`super::reference::scanline`]).
+pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
+    scene: &'a SceneView<'a, S>,
+    rows: &'a Rows<S>,
+    row: u16,
+    columns: core::ops::Range<u16>,
+    counters: &'a mut Counters,
+) -> impl Iterator<Item = C> + 'a {
+    let p = &rows.primary;
+    let planned = p
+        .row(scene, row, 0)
+        .and_then(|first| Some((level::<S, T>(scene, p, &first)?, first)));
+    let Some((level, first)) = planned else {
+        return Either::Right(super::reference::scanline::<S, T, C>(
+            scene,
+            Some(p),
+            row,
+            columns,
+            counters,
+        ));
+    };
+    let y = scene.camera.screen_y(row);
+    let spheres = p.sphere_columns_on_row(row);
+    let rules = scene.rules();
+    let mut state = first;
+    // `state` is the row at column 0, as the fast kernel starts it; after a pixel whose
+    // step failed, the next one restarts (as `reference::scanline` does).
+    let (mut fresh, mut valid) = (true, true);
+    let mut at_hit = heapless::Vec::new();
+    let mut memo = Memo {
+        bound: None,
+        tol: None,
+    };
+    Either::Left(columns.map(move |column| {
+        count(&mut counters.primary_rays);
+        let stepped = if fresh && Primary::column(&state) == column {
+            Some(())
+        } else if valid
+            && Primary::column(&state).checked_add(1) == Some(column)
+            && column % fast::RESYNC_PIXELS != 0
+        {
+            p.advance(&mut state)
+        } else {
+            p.restart(scene, row, column, &mut state)
+        };
+        fresh = false;
+        valid = stepped.is_some();
+        let color = match stepped {
+            None => reference_color::<S, T>(scene, y, column, counters),
+            Some(()) if column >= spheres.0 && column <= spheres.1 => {
+                match p.nearest(scene, &state) {
+                    Ok(Some(h)) if level.as_ref().is_some_and(|l| l.index == h.index) => {
+                        plane_color::<S, T>(
+                            scene,
+                            p,
+                            &state,
+                            level.as_ref(),
+                            &mut memo,
+                            y,
+                            column,
+                            counters,
+                        )
+                    }
+                    Ok(Some(h)) => {
+                        fast_color::<S, T>(scene, Some(p), &state, &h, &mut at_hit, counters)
+                    }
+                    Ok(None) => scene.background,
+                    Err(()) => reference_color::<S, T>(scene, y, column, counters),
+                }
+            }
+            Some(()) => plane_color::<S, T>(
+                scene,
+                p,
+                &state,
+                level.as_ref(),
+                &mut memo,
+                y,
+                column,
+                counters,
+            ),
+        };
+        C::from(to_pixel(rules, color))
+    }))
+}
+
+/// The colour of the row's plane at the row's current pixel (the background without
+/// one): its hit's `x`, tile and lights. A pixel whose quantity leaves the format is the
+/// fast kernel's (the reference path), a light whose `|L|²` does not fit the general
+/// shading's.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+fn plane_color<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    state: &Row<S>,
+    level: Option<&Level<S>>,
+    memo: &mut Memo<S>,
+    y: Option<S>,
+    column: u16,
+    counters: &mut Counters,
+) -> Color<S> {
+    let Some(l) = level else {
+        return scene.background;
+    };
+    let d = Primary::dir(state);
+    let eye = scene.camera.viewpoint;
+    // As `Primary::point`: the hit, and the bound t'·2|D|∞ on its world distance.
+    let hit =
+        l.t.checked_mul(d.x)
+            .and_then(|tx| eye.x.checked_add(tx))
+            .map(|x| Vec3::new(x, l.y, l.z))
+            .and_then(|point| {
+                let twice = d.max_abs().checked_add(d.max_abs())?;
+                let t_bound = match memo.bound {
+                    Some((k, b)) if k == twice => b,
+                    _ => {
+                        let b = l.t.checked_mul(twice)?;
+                        memo.bound = Some((twice, b));
+                        b
+                    }
+                };
+                Some(Hit { t: t_bound, point })
+            });
+    let Some(hit) = hit else {
+        return reference_color::<S, T>(scene, y, column, counters);
+    };
+    let sides = (!l.sides.is_empty()).then(|| PlaneSides {
+        at_hit: &l.sides,
+        at_lights: p.at_lights(),
+        cones: p.cones(),
+    });
+    match lit::<S, T>(scene, l, &hit, sides, memo, counters) {
+        Some(c) => c,
+        None => {
+            let incoming = Incoming {
+                base: eye,
+                dir: d,
+                unit: false,
+                sides,
+            };
+            shade_with::<S, T>(scene, &incoming, l.index, &hit, counters)
+        }
+    }
+}
+
+/// The crate's shading of a plane hit for a diffuse stage set (`own_color`, `light_with`
+/// and `segment_terms` of `shade/`, for what this kernel's scenes have: no glint, cone,
+/// projector, mirror or light on a surface), with the row's facing normal, sides,
+/// occluders and weights. `None` where a light takes the general path (its `|L|²` or the
+/// segments' tolerance does not fit the format): the caller then shades the pixel the
+/// general way.
+#[inline]
+fn lit<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    l: &Level<S>,
+    hit: &Hit<S>,
+    sides: Option<PlaneSides<'_, S>>,
+    memo: &mut Memo<S>,
+    counters: &mut Counters,
+) -> Option<Color<S>> {
+    let object = scene.objects.get(l.index)?;
+    let m = material_at(object, hit.point, Rules::Fixray, counters);
+    let Some(material) = scene.materials.get(usize::from(m)) else {
+        return Some([S::ZERO; 3]);
+    };
+    let mut color = material.ambient;
+    if material.diffuse == [S::ZERO; 3] {
+        return Some(color);
+    }
+    let eye = scene.camera.viewpoint;
+    let tol = if T::SHADOWS {
+        // `surface_tolerance(t, m)` is `(t + c)·ulp(max(1, t, m))`.
+        let m = eye.max_abs().max(hit.point.max_abs());
+        let ulp = S::ONE.max(hit.t).max(m).ulp();
+        match memo.tol {
+            Some((t, u, tol)) if t == hit.t && u == ulp => tol,
+            _ => {
+                let tol = surface_tolerance(hit.t, m)?;
+                memo.tol = Some((hit.t, ulp, tol));
+                tol
+            }
+        }
+    } else {
+        S::ZERO
+    };
+    let slot = usize::from(m != l.materials[0]) * ROW_LIGHTS;
+    for (j, light) in scene.lights.iter().enumerate() {
+        let Some(to_light) = light.location.diff(hit.point) else {
+            continue;
+        };
+        let ll = to_light.dot(to_light).filter(|ll| *ll > S::ZERO)?;
+        let Some(nl) = to_light.dot_axis(l.facing).filter(|c| *c > S::ZERO) else {
+            continue;
+        };
+        if T::SHADOWS {
+            count(&mut counters.shadow_rays);
+            let shadowed = match (sides, l.occluders.get(j)) {
+                (Some(s), Some(&bits)) => occluded(scene, s, j, bits, hit.point, to_light, ll, tol),
+                _ => None,
+            };
+            let shadowed = match shadowed {
+                Some(v) => v,
+                None => occludes_segment(
+                    scene,
+                    sides.map(|s| (s, j)),
+                    hit.point,
+                    to_light,
+                    ll,
+                    tol,
+                    light.location,
+                ),
+            };
+            if shadowed {
+                continue;
+            }
+        }
+        let falloff = diffuse_falloff(nl, ll);
+        count(&mut counters.diffuse);
+        match l.weights.get(slot + j) {
+            Some(w) => {
+                for (c, w) in color.iter_mut().zip(w) {
+                    let t = w.and_then(|w| w.checked_mul(falloff)).unwrap_or(S::MAX);
+                    *c = add_sat(*c, t);
+                }
+            }
+            None => {
+                let e = light.emissivity;
+                for ((c, diffuse), emissivity) in color.iter_mut().zip(material.diffuse).zip(e) {
+                    *c = add_sat(*c, term([emissivity, diffuse, falloff]));
+                }
+            }
+        }
+    }
+    Some(color)
+}
+
+/// `occludes_segment` for a row's hit with the planes' sides known and no light on a
+/// surface, over the row's occluders of light `j` only (`bits`): a plane whose sides
+/// differ beyond the tolerance, or a sphere whose shadow cone does not clear the point,
+/// takes its exact segment test. `None` when the sides are not all there (the caller
+/// then asks `occludes_segment`).
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn occluded<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    sides: PlaneSides<'_, S>,
+    j: usize,
+    mut bits: u8,
+    from: Vec3<S>,
+    l: Vec3<S>,
+    ll: S,
+    tol: S,
+) -> Option<bool> {
+    let n = sides.at_hit.len();
+    let at_light = sides.at_lights.get(j * n..)?.get(..n)?;
+    while bits != 0 {
+        let i = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
+        let (o, &a0, &a1) = (
+            scene.objects.get(i)?,
+            sides.at_hit.get(i)?,
+            at_light.get(i)?,
+        );
+        let maybe = match o.shape {
+            Shape::Sphere(_) => !sides.cones.iter().any(|c| {
+                usize::from(c.light) == j && usize::from(c.object) == i && c.clears(l, ll)
+            }),
+            _ => sides_differ(a0, a1, tol),
+        };
+        if maybe
+            && o.shape
+                .meets_segment_with(Some((a0, a1)), from, l, ll, tol, scene.epsilon)
+        {
+            return Some(true);
+        }
+    }
+    Some(false)
+}
