@@ -135,9 +135,19 @@ fn level<S: Scalar, T: Stages>(
         for j in 0..lights {
             let at_light = p.at_lights().get(j * n..)?.get(..n)?;
             let mut bits = 0u8;
+            // The row's hits lie on the line (x, y, z) for every x: its offsets from the
+            // light in y and z.
+            let light = scene.lights.get(j)?.location;
+            let (wy, wz) = (y.checked_sub(light.y), z.checked_sub(light.z));
             for (i, ((o, &a0), &a1)) in scene.objects.iter().zip(&sides).zip(at_light).enumerate() {
                 let may = match o.shape {
-                    Shape::Sphere(_) => true,
+                    // A sphere whose shadow cone from this light misses the whole row
+                    // (`ShadowCone::clears_line`) is left out.
+                    Shape::Sphere(_) => !p.cones().iter().any(|c| {
+                        usize::from(c.light) == j
+                            && usize::from(c.object) == i
+                            && matches!((wy, wz), (Some(wy), Some(wz)) if c.clears_line(wy, wz))
+                    }),
                     _ => (a0 > S::ZERO) != (a1 > S::ZERO),
                 };
                 if may {
