@@ -190,7 +190,11 @@ pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
             return fallback_line::<S, T, C>(scene, drawing, row, line, counters);
         }
         Kernel::Fast(p) => Some(p),
-        Kernel::Rows(r) => return rows_line::<S, T, C>(scene, r, row, line, counters),
+        Kernel::Rows(r) => match rows::plan::<S, T>(scene, r, row) {
+            Some(planned) => return rows_line::<S, T, C>(scene, r, planned, row, line, counters),
+            // A row the level-plane kernel cannot decide once: the fast kernel's.
+            None => Some(&r.primary),
+        },
         Kernel::Reference => None,
     };
     primary_line::<S, T, C>(scene, primary, row, line, counters);
@@ -256,9 +260,14 @@ where
             }
         },
         Kernel::Fast(p) => Some(p),
-        Kernel::Rows(r) => {
-            return sink.fill(rows::scanline::<S, T, C>(scene, r, row, columns, counters));
-        }
+        Kernel::Rows(r) => match rows::plan::<S, T>(scene, r, row) {
+            Some(planned) => {
+                return sink.fill(rows::scanline::<S, T, C>(
+                    scene, r, planned, row, columns, counters,
+                ));
+            }
+            None => Some(&r.primary),
+        },
         Kernel::Reference => None,
     };
     sink.fill(scanline::<S, T, C>(scene, primary, row, columns, counters))
@@ -301,12 +310,13 @@ fn flat_line<S: Scalar, C: From<Rgb888>>(
 fn rows_line<S: Scalar, T: Stages, C: From<Rgb888>>(
     scene: &SceneView<'_, S>,
     rows: &Rows<S>,
+    planned: rows::Planned<S>,
     row: u16,
     line: &mut [C],
     counters: &mut Counters,
 ) {
     let width = u16::try_from(line.len()).unwrap_or(0);
-    let pixels = rows::scanline::<S, T, C>(scene, rows, row, 0..width, counters);
+    let pixels = rows::scanline::<S, T, C>(scene, rows, planned, row, 0..width, counters);
     for (slot, c) in line.iter_mut().zip(pixels) {
         *slot = c;
     }

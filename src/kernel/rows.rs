@@ -80,21 +80,25 @@ struct Memo<S> {
     tol: Option<(S, S, S)>,
 }
 
-/// One of two iterators (a row drawn by this kernel, or handed to the fast kernel).
-enum Either<A, B> {
-    Left(A),
-    Right(B),
+/// A scanline this kernel draws: its plane ([`Level`]; `None`: no plane is accepted) and
+/// the fast kernel's row started at column 0.
+#[derive(Debug, Clone)]
+pub(crate) struct Planned<S: Scalar> {
+    level: Option<Level<S>>,
+    first: Row<S>,
 }
 
-impl<A: Iterator, B: Iterator<Item = A::Item>> Iterator for Either<A, B> {
-    type Item = A::Item;
-    #[inline]
-    fn next(&mut self) -> Option<A::Item> {
-        match self {
-            Either::Left(a) => a.next(),
-            Either::Right(b) => b.next(),
-        }
-    }
+/// Works out scanline `row` once ([`Primary::level_row`]); `None` when this kernel
+/// cannot decide the row once (the fast kernel then draws it, pixel by pixel).
+pub(crate) fn plan<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    rows: &Rows<S>,
+    row: u16,
+) -> Option<Planned<S>> {
+    let p = &rows.primary;
+    let first = p.row(scene, row, 0)?;
+    let level = level::<S, T>(scene, p, &first)?;
+    Some(Planned { level, first })
 }
 
 /// The row's plane, worked out once: `Some(None)` when no plane is accepted, `None` when
@@ -191,29 +195,19 @@ fn level<S: Scalar, T: Stages>(
     }))
 }
 
-/// The pixels of columns `columns` of scanline `row`: the row's plane once, then per
-/// pixel its hit's `x` and light, spheres by the fast kernel's test on their rows. A row
-/// this kernel cannot decide once is the fast kernel's ([`super::reference::scanline`]).
+/// The pixels of columns `columns` of scanline `row` as [`plan`] worked it out: per
+/// pixel its plane's hit `x` and light, spheres by the fast kernel's test inside their
+/// boxes.
 pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
     scene: &'a SceneView<'a, S>,
     rows: &'a Rows<S>,
+    planned: Planned<S>,
     row: u16,
     columns: core::ops::Range<u16>,
     counters: &'a mut Counters,
 ) -> impl Iterator<Item = C> + 'a {
     let p = &rows.primary;
-    let planned = p
-        .row(scene, row, 0)
-        .and_then(|first| Some((level::<S, T>(scene, p, &first)?, first)));
-    let Some((level, first)) = planned else {
-        return Either::Right(super::reference::scanline::<S, T, C>(
-            scene,
-            Some(p),
-            row,
-            columns,
-            counters,
-        ));
-    };
+    let Planned { level, first } = planned;
     let y = scene.camera.screen_y(row);
     let spheres = p.sphere_columns_on_row(row);
     let rules = scene.rules();
@@ -226,7 +220,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
         bound: None,
         tol: None,
     };
-    Either::Left(columns.map(move |column| {
+    columns.map(move |column| {
         count(&mut counters.primary_rays);
         let stepped = if fresh && Primary::column(&state) == column {
             Some(())
@@ -275,7 +269,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
             ),
         };
         C::from(to_pixel(rules, color))
-    }))
+    })
 }
 
 /// The colour of the row's plane at the row's current pixel (the background without

@@ -119,6 +119,7 @@ pub(crate) fn in_own_plane<S: Scalar>(shape: &Shape<S>, light: Vec3<S>, tol: S) 
 /// The material index an object shows at a point: a tiled plane shows its alternate
 /// material on its odd squares, under the course rules on the even squares of the
 /// checkerboard anchored at the world origin (`COURSE-RULES.md` §10; `Tracer::shows_alt`).
+#[inline]
 pub(crate) fn material_at<S: Scalar>(
     object: &Object<S>,
     point: Vec3<S>,
