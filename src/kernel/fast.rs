@@ -88,6 +88,10 @@ pub struct Primary<S: Scalar> {
     cones: Vec<ShadowCone<S>, MAX_CONES>,
     /// Whether a term is a sphere (the scanline then keeps `D·D`).
     spheres: bool,
+    /// The terms whose vector has `x = 0` (a floor's or a back wall's normal), as bits:
+    /// their `N·D` is the same at every pixel of a scanline (its step is `0 × step`), so
+    /// a pixel does not step it and a restart of the same scanline keeps it.
+    still: u8,
     /// Screen x step between pixel centres, `WX / W`.
     step_x: S,
     /// `RESYNC_PIXELS·|step_x|`: how far `|D.x|` can move between two restarts of a
@@ -143,6 +147,9 @@ pub struct Row<S: Scalar> {
     /// fit, `dx_limit` is negative and each pixel computes its own bound.
     eps_l1: S,
     dx_limit: S,
+    /// The terms are those of `row` (the last restart succeeded): a restart of the same
+    /// scanline keeps its still terms ([`Primary::still`]).
+    whole: bool,
 }
 
 /// The plane test of the definition for a primary ray with unnormalised direction `D`:
@@ -343,6 +350,7 @@ impl<S: Scalar> Primary<S> {
         let mut terms = Vec::new();
         let mut steps = Vec::new();
         let mut spheres = false;
+        let mut still = 0u8;
         for (index, object) in scene.objects.iter().enumerate() {
             let all_rows = (0, scene.camera.height.saturating_sub(1));
             let all_columns = (0, scene.camera.width.saturating_sub(1));
@@ -388,6 +396,9 @@ impl<S: Scalar> Primary<S> {
                     columns,
                 })
                 .ok()?;
+            if axis.x == S::ZERO {
+                still |= 1 << (terms.len() - 1);
+            }
             steps.push(S::acc_mul(axis.x, step_x)?).ok()?;
         }
         let mut at_lights = Vec::new();
@@ -429,6 +440,7 @@ impl<S: Scalar> Primary<S> {
             at_lights,
             cones,
             spheres,
+            still,
             step_x,
             resync_span: S::from_i32(i32::from(RESYNC_PIXELS))
                 .and_then(|n| n.checked_mul(step_x.abs())),
@@ -447,6 +459,7 @@ impl<S: Scalar> Primary<S> {
             row,
             eps_l1: S::ZERO,
             dx_limit: S::ZERO,
+            whole: false,
         };
         self.restart(scene, row, column, &mut r)?;
         Some(r)
@@ -461,6 +474,10 @@ impl<S: Scalar> Primary<S> {
         column: u16,
         r: &mut Row<S>,
     ) -> Option<()> {
+        // The same scanline with every term in place: its still terms stay as they are
+        // (bit for bit what they would be recomputed to: `0·D.x` adds nothing).
+        let keep = r.whole && r.row == row && r.nd.len() == self.terms.len();
+        r.whole = false;
         let eye = scene.camera.viewpoint;
         let y = scene.camera.screen_y(row)?;
         let x = scene.camera.screen_x(column)?;
@@ -472,16 +489,29 @@ impl<S: Scalar> Primary<S> {
         let limit = self.resync_span.and_then(|m| m.checked_add(r.dir.x.abs()));
         let bound = limit.and_then(|m| Some((m, eps_l1_of(scene.epsilon, m, r.dir.y, r.dir.z)?)));
         (r.dx_limit, r.eps_l1) = bound.unwrap_or((S::ONE.checked_neg()?, S::ZERO));
-        r.nd.clear();
-        r.acc.clear();
-        if self.spheres {
+        if !keep {
+            r.nd.clear();
+            r.acc.clear();
+        }
+        if self.spheres && !keep {
             r.yz = S::acc_add(S::acc_mul(r.dir.y, r.dir.y)?, S::acc_mul(r.dir.z, r.dir.z)?)?;
         }
-        for term in &self.terms {
+        for (i, term) in self.terms.iter().enumerate() {
+            let still = self.still & (1 << i) != 0;
+            if keep && still {
+                continue;
+            }
             let sum = S::acc_dot3(axis_of(scene, term.index)?.to_array(), r.dir.to_array())?;
-            r.nd.push(S::acc_round(sum)?).ok()?;
-            r.acc.push(sum).ok()?;
+            let nd = S::acc_round(sum)?;
+            match (r.nd.get_mut(i), r.acc.get_mut(i)) {
+                (Some(n), Some(a)) if keep => (*n, *a) = (nd, sum),
+                _ => {
+                    r.nd.push(nd).ok()?;
+                    r.acc.push(sum).ok()?;
+                }
+            }
         }
+        r.whole = true;
         Some(())
     }
 
@@ -503,9 +533,13 @@ impl<S: Scalar> Primary<S> {
     /// point lies on the ray through that screen point), with no product per pixel.
     pub fn advance(&self, row: &mut Row<S>) -> Option<()> {
         row.dir.x = row.dir.x.checked_add(self.step_x)?;
-        for ((nd, acc), step) in row.nd.iter_mut().zip(row.acc.iter_mut()).zip(&self.steps) {
-            *acc = S::acc_add(*acc, *step)?;
-            *nd = S::acc_round(*acc)?;
+        let terms = row.nd.iter_mut().zip(row.acc.iter_mut()).zip(&self.steps);
+        for (i, ((nd, acc), step)) in terms.enumerate() {
+            // A still term's step is zero: it stays as it is.
+            if self.still & (1 << i) == 0 {
+                *acc = S::acc_add(*acc, *step)?;
+                *nd = S::acc_round(*acc)?;
+            }
         }
         row.column = row.column.checked_add(1)?;
         Some(())
