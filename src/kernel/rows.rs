@@ -26,7 +26,9 @@ use crate::geometry::{sides_differ, surface_tolerance};
 use crate::shade::color::{add_sat, term, to_pixel};
 use crate::shade::material_at;
 use crate::shade::stages::Stages;
-use crate::shade::{Incoming, PlaneSides, diffuse_falloff, occludes_segment, shade_with};
+use crate::shade::{
+    Incoming, PlaneSides, channel_max, diffuse_falloff, occludes_segment, shade_with,
+};
 use crate::stats::{Counters, count};
 use crate::{Color, Hit, Rules, Scalar, SceneView, Shape, Vec3};
 
@@ -64,6 +66,24 @@ struct Level<S: Scalar> {
     /// the scene has more than [`ROW_LIGHTS`] lights.
     materials: [u8; 2],
     weights: heapless::Vec<[Option<S>; 3], { 2 * ROW_LIGHTS }>,
+    /// Per light (the first [`ROW_LIGHTS`]), what every hit of the row shares.
+    lights: heapless::Vec<RowLight<S>, ROW_LIGHTS>,
+}
+
+/// A light's terms that are the same at every hit of a row (`N.x = 0` and the hits
+/// share `y` and `z`): bit for bit what a pixel would compute.
+#[derive(Debug, Clone)]
+struct RowLight<S: Scalar> {
+    /// `(L.y, L.z)` of `L = light − hit` (`None`: they do not fit, no hit of the row is
+    /// lit by this light).
+    l: Option<(S, S)>,
+    /// `L.y² + L.z²`, unrounded (used in the fixed formats, whose sums are exact).
+    yz: Option<S::Acc>,
+    /// `N·L` with the facing normal when positive (`None`: the light is behind the
+    /// plane) and `255·N·L` (`None` when it does not fit: `diffuse_falloff` then divides
+    /// first).
+    nl: Option<S>,
+    knl: Option<S>,
 }
 
 /// How many lights a row keeps per-row terms for (a scene with more lights shades every
@@ -182,6 +202,23 @@ fn level<S: Scalar, T: Stages>(
             }
         }
     }
+    let mut row_lights = heapless::Vec::new();
+    if lights <= ROW_LIGHTS {
+        for light in scene.lights {
+            let l = light
+                .location
+                .y
+                .checked_sub(y)
+                .zip(light.location.z.checked_sub(z));
+            let yz = l.and_then(|(ly, lz)| S::acc_add(S::acc_mul(ly, ly)?, S::acc_mul(lz, lz)?));
+            // `L·N` has no `L.x` term (`N.x = 0`): any `L.x` gives the row's value.
+            let nl = l
+                .and_then(|(ly, lz)| Vec3::new(S::ZERO, ly, lz).dot_axis(facing))
+                .filter(|c| *c > S::ZERO);
+            let knl = nl.and_then(|nl| nl.checked_mul(channel_max::<S>()));
+            let _ = row_lights.push(RowLight { l, yz, nl, knl });
+        }
+    }
     Some(Some(Level {
         index,
         t,
@@ -192,6 +229,7 @@ fn level<S: Scalar, T: Stages>(
         occluders,
         materials,
         weights,
+        lights: row_lights,
     }))
 }
 
@@ -374,12 +412,37 @@ fn lit<S: Scalar, T: Stages>(
     };
     let slot = usize::from(m != l.materials[0]) * ROW_LIGHTS;
     for (j, light) in scene.lights.iter().enumerate() {
-        let Some(to_light) = light.location.diff(hit.point) else {
-            continue;
-        };
-        let ll = to_light.dot(to_light).filter(|ll| *ll > S::ZERO)?;
-        let Some(nl) = to_light.dot_axis(l.facing).filter(|c| *c > S::ZERO) else {
-            continue;
+        let (to_light, ll, nl, knl) = match l.lights.get(j) {
+            // The row's terms of this light: `L.y`, `L.z`, `N·L` and `255·N·L`, and in
+            // the fixed formats `L.y² + L.z²`, so that `|L|²` takes one product.
+            Some(rl) => {
+                let (Some(lx), Some((ly, lz))) = (light.location.x.checked_sub(hit.point.x), rl.l)
+                else {
+                    continue;
+                };
+                let to_light = Vec3::new(lx, ly, lz);
+                let ll = match rl.yz {
+                    Some(yz) if S::EXACT_SUMS => S::acc_mul(lx, lx)
+                        .and_then(|xx| S::acc_add(xx, yz))
+                        .and_then(S::acc_round),
+                    _ => to_light.dot(to_light),
+                };
+                let ll = ll.filter(|ll| *ll > S::ZERO)?;
+                let Some(nl) = rl.nl else {
+                    continue;
+                };
+                (to_light, ll, nl, rl.knl)
+            }
+            None => {
+                let Some(to_light) = light.location.diff(hit.point) else {
+                    continue;
+                };
+                let ll = to_light.dot(to_light).filter(|ll| *ll > S::ZERO)?;
+                let Some(nl) = to_light.dot_axis(l.facing).filter(|c| *c > S::ZERO) else {
+                    continue;
+                };
+                (to_light, ll, nl, nl.checked_mul(channel_max::<S>()))
+            }
         };
         if T::SHADOWS {
             count(&mut counters.shadow_rays);
@@ -403,7 +466,7 @@ fn lit<S: Scalar, T: Stages>(
                 continue;
             }
         }
-        let falloff = diffuse_falloff(nl, ll);
+        let falloff = diffuse_falloff(nl, knl, ll);
         count(&mut counters.diffuse);
         match l.weights.get(slot + j) {
             Some(w) => {

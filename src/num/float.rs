@@ -28,6 +28,7 @@ macro_rules! impl_float {
             const ONE: Self = 1.0;
             const MAX: Self = <$t>::MAX;
             const DELTA: Self = <$t>::EPSILON;
+            const EXACT_SUMS: bool = false;
             // EPSILON_DELTAS is a small integer: exact in both float formats.
             const DEFAULT_EPSILON: Self = <$t>::EPSILON * EPSILON_DELTAS as $t;
             const INT_BITS: u32 = 0;

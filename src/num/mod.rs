@@ -114,6 +114,12 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// [`Scalar::dot3`] of the stepped vector.
     type Acc: Copy + Debug + Send + Sync;
 
+    /// Whether sums of [`Scalar::Acc`] are exact (the fixed formats: integers), so that a
+    /// kernel may add a dot product's terms in any order, e.g. a per-row `y² + z²` and a
+    /// per-pixel `x²`, and round to [`Scalar::dot3`]'s value bit for bit. `false` for
+    /// floats (their sums round at each step).
+    const EXACT_SUMS: bool;
+
     /// The exact product `a·b` as an [`Scalar::Acc`] (fixed formats; floats round it);
     /// `None` only for floats, when it is not finite.
     fn acc_mul(a: Self, b: Self) -> Option<Self::Acc>;

@@ -53,6 +53,7 @@ macro_rules! delegate {
             const ONE: Self = Self(<$inner as Scalar>::ONE);
             const MAX: Self = Self(<$inner as Scalar>::MAX);
             const DELTA: Self = Self(<$inner as Scalar>::DELTA);
+            const EXACT_SUMS: bool = <$inner as Scalar>::EXACT_SUMS;
             const DEFAULT_EPSILON: Self = Self(<$inner as Scalar>::DEFAULT_EPSILON);
             const INT_BITS: u32 = <$inner as Scalar>::INT_BITS;
 

@@ -121,19 +121,21 @@ pub(crate) struct Lit<'a, 'b, S> {
 }
 
 /// 255 in the format (or its largest value).
-fn channel_max<S: Scalar>() -> S {
+pub(crate) fn channel_max<S: Scalar>() -> S {
     S::from_i32(255).unwrap_or(S::MAX)
 }
 
 /// A light's diffuse term in channel units, `255·(N·L)/|L|²` (`nl = N·L`, `ll = |L|²`),
 /// scaled to channel units before the division where that fits (the quotient then keeps
 /// the format's relative precision); the largest value when it does not fit.
+/// `knl` is `255·N·L` where it fits (a kernel that knows it for a whole row passes it).
 #[inline]
-pub(crate) fn diffuse_falloff<S: Scalar>(nl: S, ll: S) -> S {
-    let k = channel_max::<S>();
-    match nl.checked_mul(k) {
+pub(crate) fn diffuse_falloff<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
+    match knl {
         Some(knl) => knl.checked_div(ll),
-        None => nl.checked_div(ll).and_then(|q| q.checked_mul(k)),
+        None => nl
+            .checked_div(ll)
+            .and_then(|q| q.checked_mul(channel_max::<S>())),
     }
     .unwrap_or(S::MAX)
 }
@@ -204,7 +206,7 @@ fn segment_terms<S: Scalar, R: Tracer>(
             entered = e;
         }
         let k = channel_max::<S>();
-        let mut diffuse_falloff = diffuse_falloff(nl, ll);
+        let mut diffuse_falloff = diffuse_falloff(nl, nl.checked_mul(k), ll);
         // Through a translucent sphere (the course's, `Passage::lit`): cos/dist' with
         // dist' = (1 − s)|L| from the entry point nearest the light, s its share of L.
         if let Some(e) = entered {

@@ -32,7 +32,7 @@ use rules::{Tracer, with_rules};
 use stages::{Stages, shading_for, with_stages};
 
 pub(crate) use fixray::{occludes_segment, shade as shade_with};
-pub(crate) use light::diffuse_falloff;
+pub(crate) use light::{channel_max, diffuse_falloff};
 
 /// How deep mirror reflections go: a ray reflected this many times sees no further
 /// reflection (its own colour only).
