@@ -120,9 +120,18 @@ fn random_scene(rng: &mut Rng) -> String {
             rng.range(2.0, 12.0)
         );
     }
+    // Tiles along x (their row the scanline's), or turned about y (each pixel looks its
+    // tile up whole).
+    let xdir = if rng.next().is_multiple_of(3) {
+        "1 0 0.3"
+    } else {
+        "1 0 0"
+    };
     s += &format!(
-        "tiled_plane floor {{ material m0 altmaterial m1 normal 0 1 0 point 0 {} 0 xdir 1 0 0 dimension {} {} }}\n",
+        "tiled_plane floor {{ material m0 altmaterial m1 normal 0 1 0 point {} {} {} xdir {xdir} dimension {} {} }}\n",
+        rng.range(-1.0, 1.0),
         rng.range(-1.0, 0.5),
+        rng.range(-1.0, 1.0),
         rng.range(0.5, 2.0),
         rng.range(0.5, 2.0)
     );
@@ -144,12 +153,19 @@ fn random_scene(rng: &mut Rng) -> String {
     } else {
         rng.range(0.0, 6.0)
     };
-    s += &format!(
-        "plane tilt {{ material m2 normal 0 {} {} point 0 {tilt_y} {} }}\n",
+    let (ny, nz, tz) = (
         rng.range(-1.0, 1.0),
         rng.range(0.2, 1.0),
-        rng.range(-14.0, -8.0)
+        rng.range(-14.0, -8.0),
     );
+    if rng.next().is_multiple_of(2) {
+        s += &format!("plane tilt {{ material m2 normal 0 {ny} {nz} point 0 {tilt_y} {tz} }}\n");
+    } else {
+        // Tiled, its v axis in the plane of y and z: a tile row per scanline again.
+        s += &format!(
+            "tiled_plane tilt {{ material m2 altmaterial m0 normal 0 {ny} {nz} point 0.3 {tilt_y} {tz} xdir 1 0 0 dimension 0.7 0.9 }}\n"
+        );
+    }
     for i in 0..rng.next() % 3 {
         s += &format!(
             "sphere s{i} {{ material m{} center {} {} {} radius {} }}\n",

@@ -101,6 +101,29 @@ impl<S: Scalar> PlaneFrame<S> {
         Some((i.wrapping_add(j)) & 1 == 1)
     }
 
+    /// The tile row `floor(b / H)` of every point of the line `(x, y, z)`, any `x` (a
+    /// scanline's hits on a plane with `N.x = 0`), when `v` has no x component, so that
+    /// `b` is the same along the line (bit for bit: `0·q.x` adds nothing); `None`
+    /// otherwise, or when it does not fit.
+    pub(crate) fn tile_row(&self, y: S, z: S) -> Option<i32> {
+        if self.v.x != S::ZERO {
+            return None;
+        }
+        let q = Vec3::new(
+            S::ZERO,
+            y.checked_sub(self.corner.y)?,
+            z.checked_sub(self.corner.z)?,
+        );
+        tile_index(q.dot_axis(self.v)?, self.size[1])
+    }
+
+    /// [`PlaneFrame::odd_tile`] of `p` with its tile row `j` known ([`PlaneFrame::tile_row`]
+    /// of its `y` and `z`): one coordinate per point.
+    pub(crate) fn odd_tile_in_row(&self, p: Vec3<S>, j: i32) -> Option<bool> {
+        let i = tile_index(p.diff(self.corner)?.dot_axis(self.u)?, self.size[0])?;
+        Some((i.wrapping_add(j)) & 1 == 1)
+    }
+
     /// The course's checkerboard of the frame's axes, anchored at the world origin:
     /// `floor(p·u / W) + floor(p·v / H)` odd.
     pub fn odd_tile_from_origin(&self, p: Vec3<S>) -> Option<bool> {

@@ -30,7 +30,7 @@ use crate::shade::{
     Incoming, PlaneSides, channel_max, diffuse_falloff, occludes_segment, shade_with,
 };
 use crate::stats::{Counters, count};
-use crate::{Color, Hit, Rules, Scalar, SceneView, Shape, Vec3};
+use crate::{Color, Hit, Rules, Scalar, SceneView, Shape, Tiling, Vec3};
 
 /// The per-frame part: the fast kernel's (its terms, the lights' sides of every plane,
 /// the spheres' rows and shadow cones).
@@ -68,6 +68,9 @@ struct Level<S: Scalar> {
     weights: heapless::Vec<[Option<S>; 3], { 2 * ROW_LIGHTS }>,
     /// Per light (the first [`ROW_LIGHTS`]), what every hit of the row shares.
     lights: heapless::Vec<RowLight<S>, ROW_LIGHTS>,
+    /// A tiled plane's tile row, the same at every hit of the row
+    /// ([`crate::PlaneFrame::tile_row`]; `None`: each pixel looks its tile up whole).
+    tile_row: Option<i32>,
 }
 
 /// A light's terms that are the same at every hit of a row (`N.x = 0` and the hits
@@ -219,7 +222,16 @@ fn level<S: Scalar, T: Stages>(
             let _ = row_lights.push(RowLight { l, yz, nl, knl });
         }
     }
+    let tile_row = match object.shape {
+        Shape::Tiled {
+            frame,
+            tiling: Tiling::Frame,
+            ..
+        } => frame.tile_row(y, z),
+        _ => None,
+    };
     Some(Some(Level {
+        tile_row,
         index,
         t,
         y,
@@ -386,7 +398,19 @@ fn lit<S: Scalar, T: Stages>(
     counters: &mut Counters,
 ) -> Option<Color<S>> {
     let object = scene.objects.get(l.index)?;
-    let m = material_at(object, hit.point, Rules::Fixray, counters);
+    let m = match (object.shape, l.tile_row) {
+        // A tiled plane's tile row is the row's: one coordinate per pixel.
+        (Shape::Tiled { frame, alt, .. }, Some(j)) => {
+            count(&mut counters.tile_lookups);
+            if frame.odd_tile_in_row(hit.point, j) == Some(true) {
+                alt
+            } else {
+                object.material
+            }
+        }
+        (Shape::Plane(_), _) => object.material,
+        _ => material_at(object, hit.point, Rules::Fixray, counters),
+    };
     let Some(material) = scene.materials.get(usize::from(m)) else {
         return Some([S::ZERO; 3]);
     };
