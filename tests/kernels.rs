@@ -147,9 +147,10 @@ fn agree<S: Scalar>(name: &str, text: &str, mode: PlaneMode) -> (Vec<Rgb888>, us
     {
         KernelKind::Flat
     } else if fixray::internals::Primary::new(&scene.view()).is_some() {
-        // Level planes (`N.x = 0`) and spheres lit by diffuse point lights: the
-        // level-plane kernel; any other scene of the crate's rules: the fast kernel.
+        // Level planes (`N.x = 0`) and spheres lit by diffuse point lights with shadows:
+        // the level-plane kernel; any other scene of the crate's rules: the fast kernel.
         let diffuse = plan.lighting
+            && plan.shadows
             && !(plan.specular
                 || plan.spotlights
                 || plan.reflection

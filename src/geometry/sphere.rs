@@ -290,8 +290,7 @@ pub(crate) struct ShadowCone<S> {
     k: S,
     /// `|u|²/4`, rounded down: the nearest `ll` the shortcut takes.
     near: S,
-    /// `|u|²` and `r²`, for [`ShadowCone::clears_line`].
-    uu: S,
+    /// `r²`, for [`ShadowCone::clears_line`].
     rr: S,
 }
 
@@ -317,7 +316,6 @@ impl<S: Scalar> ShadowCone<S> {
             u,
             k,
             near: uu.mul_ratio(1, 4)?.checked_sub(S::DELTA)?,
-            uu,
             rr,
         })
     }
@@ -339,10 +337,11 @@ impl<S: Scalar> ShadowCone<S> {
     /// the exact test then finds them clear.
     pub(crate) fn clears_line(&self, wy: S, wz: S) -> bool {
         let check = || -> Option<bool> {
+            let uu = self.u.dot(self.u)?;
             let nn = wy.checked_mul(wy)?.checked_add(wz.checked_mul(wz)?)?;
             let far_enough = nn >= S::ONE
-                && self.uu <= S::from_i32(4096)?
-                && nn.checked_mul_int(4)? >= self.uu.checked_add(S::ONE)?;
+                && uu <= S::from_i32(4096)?
+                && nn.checked_mul_int(4)? >= uu.checked_add(S::ONE)?;
             if !far_enough {
                 return Some(false);
             }

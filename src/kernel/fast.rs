@@ -105,10 +105,10 @@ pub struct Primary<S: Scalar> {
 pub const MAX_CONES: usize = 3;
 
 /// How many plane–light sides a frame keeps (objects × lights; beyond, shadow segments
-/// compute their sides themselves): 64 bytes in I16F16, 128 in I32F32, a RAM budget a
+/// compute their sides themselves): 48 bytes in I16F16, 96 in I32F32, a RAM budget a
 /// 16 KB chip affords beside the rest of the frame (the shipped scenes need at most 9;
-/// 32 until issue 25, whose per-frame sphere terms took the difference).
-pub const MAX_SIDES: usize = 16;
+/// 32 until issue 25, whose per-frame sphere terms and screen boxes took the difference).
+pub const MAX_SIDES: usize = 12;
 
 /// The most objects the fast kernel takes: a scene with more is drawn on the reference
 /// path. Its per-frame and per-scanline vectors (terms, steps, `N·D` and its unrounded
@@ -147,9 +147,6 @@ pub struct Row<S: Scalar> {
     /// fit, `dx_limit` is negative and each pixel computes its own bound.
     eps_l1: S,
     dx_limit: S,
-    /// The terms are those of `row` (the last restart succeeded): a restart of the same
-    /// scanline keeps its still terms ([`Primary::still`]).
-    whole: bool,
 }
 
 /// The plane test of the definition for a primary ray with unnormalised direction `D`:
@@ -459,7 +456,6 @@ impl<S: Scalar> Primary<S> {
             row,
             eps_l1: S::ZERO,
             dx_limit: S::ZERO,
-            whole: false,
         };
         self.restart(scene, row, column, &mut r)?;
         Some(r)
@@ -475,9 +471,15 @@ impl<S: Scalar> Primary<S> {
         r: &mut Row<S>,
     ) -> Option<()> {
         // The same scanline with every term in place: its still terms stay as they are
-        // (bit for bit what they would be recomputed to: `0·D.x` adds nothing).
-        let keep = r.whole && r.row == row && r.nd.len() == self.terms.len();
-        r.whole = false;
+        // (bit for bit what they would be recomputed to: `0·D.x` adds nothing). Otherwise
+        // the terms are cleared first, so that a restart that fails leaves fewer of them
+        // (and the next one recomputes them all); a kept restart that fails has left the
+        // still terms as they were.
+        let keep = r.row == row && r.nd.len() == self.terms.len();
+        if !keep {
+            r.nd.clear();
+            r.acc.clear();
+        }
         let eye = scene.camera.viewpoint;
         let y = scene.camera.screen_y(row)?;
         let x = scene.camera.screen_x(column)?;
@@ -489,10 +491,6 @@ impl<S: Scalar> Primary<S> {
         let limit = self.resync_span.and_then(|m| m.checked_add(r.dir.x.abs()));
         let bound = limit.and_then(|m| Some((m, eps_l1_of(scene.epsilon, m, r.dir.y, r.dir.z)?)));
         (r.dx_limit, r.eps_l1) = bound.unwrap_or((S::ONE.checked_neg()?, S::ZERO));
-        if !keep {
-            r.nd.clear();
-            r.acc.clear();
-        }
         if self.spheres && !keep {
             r.yz = S::acc_add(S::acc_mul(r.dir.y, r.dir.y)?, S::acc_mul(r.dir.z, r.dir.z)?)?;
         }
@@ -511,7 +509,6 @@ impl<S: Scalar> Primary<S> {
                 }
             }
         }
-        r.whole = true;
         Some(())
     }
 

@@ -130,11 +130,7 @@ pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan
     // Level planes and spheres lit by diffuse point lights (with or without shadows):
     // each scanline's plane once per row (`rows.rs`, the fast kernel's pixels bit for bit).
     let rows = fast
-        && T::LIGHTING
-        && !T::SPECULAR
-        && !T::CONES
-        && !T::REFLECTION
-        && !T::TRANSPARENCY
+        && rows::draws_with::<T>()
         && plan.lighting
         && !plan.projectors
         && !plan.lights_on_surfaces
@@ -190,11 +186,11 @@ pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
             return fallback_line::<S, T, C>(scene, drawing, row, line, counters);
         }
         Kernel::Fast(p) => Some(p),
-        Kernel::Rows(r) => match rows::plan::<S, T>(scene, r, row) {
-            Some(planned) => return rows_line::<S, T, C>(scene, r, planned, row, line, counters),
-            // A row the level-plane kernel cannot decide once: the fast kernel's.
-            None => Some(&r.primary),
-        },
+        Kernel::Rows(r) if rows::draws_with::<T>() => {
+            return rows_line::<S, T, C>(scene, r, row, line, counters);
+        }
+        // Never chosen for another stage set (`select`): not compiled for it.
+        Kernel::Rows(r) => Some(&r.primary),
         Kernel::Reference => None,
     };
     primary_line::<S, T, C>(scene, primary, row, line, counters);
@@ -242,7 +238,7 @@ where
     K: RowSink<C>,
 {
     let fallback;
-    let primary = match &drawing.kernel {
+    let (primary, counters) = match &drawing.kernel {
         Kernel::Flat(flat) => match flat.row(scene, row) {
             Some(r) => {
                 count_primary(counters, columns.end.saturating_sub(columns.start));
@@ -256,21 +252,46 @@ where
             }
             None => {
                 fallback = drawing.handed_back(scene);
-                fallback.as_ref()
+                (fallback.as_ref(), counters)
             }
         },
-        Kernel::Fast(p) => Some(p),
-        Kernel::Rows(r) => match rows::plan::<S, T>(scene, r, row) {
-            Some(planned) => {
-                return sink.fill(rows::scanline::<S, T, C>(
-                    scene, r, planned, row, columns, counters,
-                ));
+        Kernel::Fast(p) => (Some(p), counters),
+        Kernel::Rows(r) if !rows::draws_with::<T>() => (Some(&r.primary), counters),
+        Kernel::Rows(r) => {
+            match rows_stream::<S, T, C, K>(scene, r, row, columns.clone(), counters, sink) {
+                Ok(done) => return done,
+                // A row the level-plane kernel cannot decide once: the fast kernel's.
+                Err(counters) => (Some(&r.primary), counters),
             }
-            None => Some(&r.primary),
-        },
-        Kernel::Reference => None,
+        }
+        Kernel::Reference => (None, counters),
     };
     sink.fill(scanline::<S, T, C>(scene, primary, row, columns, counters))
+}
+
+/// Streams a scanline of the level-plane kernel to `sink`; `Err` (the counters handed
+/// back) when the kernel cannot decide the row once. Not inlined: its per-row data are
+/// on the stack only while it draws (the caller's frame is under every other path).
+#[inline(never)]
+fn rows_stream<'a, S, T, C, K>(
+    scene: &'a SceneView<'a, S>,
+    rows: &'a Rows<S>,
+    row: u16,
+    columns: core::ops::Range<u16>,
+    counters: &'a mut Counters,
+    sink: &mut K,
+) -> Result<Result<(), K::Error>, &'a mut Counters>
+where
+    S: Scalar,
+    T: Stages,
+    C: From<Rgb888> + Clone,
+    K: RowSink<C>,
+{
+    let mut pixels = rows::scanline::<S, T>(scene, rows, row, columns, counters);
+    match &mut pixels {
+        Ok(pixels) => Ok(sink.fill(pixels.by_ref().map(C::from))),
+        Err(_) => pixels.map(|_| Ok(())),
+    }
 }
 
 /// Fills `line` with columns `0..line.len()` of a pure-geometry scanline; `false` when
@@ -305,20 +326,26 @@ fn flat_line<S: Scalar, C: From<Rgb888>>(
     true
 }
 
-/// A scanline of the level-plane kernel into `line`.
+/// A scanline of the level-plane kernel into `line` (a row it cannot decide once: the
+/// fast kernel's). Not inlined: its per-row data are on the stack only while it draws.
 #[inline(never)]
 fn rows_line<S: Scalar, T: Stages, C: From<Rgb888>>(
     scene: &SceneView<'_, S>,
     rows: &Rows<S>,
-    planned: rows::Planned<S>,
     row: u16,
     line: &mut [C],
     counters: &mut Counters,
 ) {
     let width = u16::try_from(line.len()).unwrap_or(0);
-    let pixels = rows::scanline::<S, T, C>(scene, rows, planned, row, 0..width, counters);
-    for (slot, c) in line.iter_mut().zip(pixels) {
-        *slot = c;
+    // Drawn where `scanline` built it (a move would be a second copy on the stack).
+    let mut pixels = rows::scanline::<S, T>(scene, rows, row, 0..width, counters);
+    match &mut pixels {
+        Ok(pixels) => {
+            for (slot, c) in line.iter_mut().zip(pixels.by_ref()) {
+                *slot = C::from(c);
+            }
+        }
+        Err(counters) => primary_line::<S, T, C>(scene, Some(&rows.primary), row, line, counters),
     }
 }
 

@@ -64,7 +64,6 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
 /// unnormalised direction (see `Incoming`; the fast kernel takes only stage sets that
 /// need no more of it than its side), shadow segments taking the planes' sides from the
 /// kernel's terms (`at_hit`: a buffer the scanline keeps).
-#[inline]
 pub(crate) fn fast_color<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     primary: Option<&Primary<S>>,

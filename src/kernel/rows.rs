@@ -20,7 +20,7 @@
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 
-use super::fast::{self, FAST_OBJECTS, Primary, Row};
+use super::fast::{self, FAST_OBJECTS, FastHit, Primary, Row};
 use super::reference::{fast_color, reference_color};
 use crate::geometry::{sides_differ, surface_tolerance};
 use crate::shade::color::{add_sat, term, to_pixel};
@@ -65,7 +65,9 @@ struct Level<S: Scalar> {
     /// first product of `term([emissivity, diffuse, falloff])`, once per row. Empty when
     /// the scene has more than [`ROW_LIGHTS`] lights.
     materials: [u8; 2],
-    weights: heapless::Vec<[Option<S>; 3], { 2 * ROW_LIGHTS }>,
+    weights: heapless::Vec<[S; 3], { 2 * ROW_LIGHTS }>,
+    /// Which of `weights` did not fit (bit `3 × entry + channel`): such a term saturates.
+    overflow: u16,
     /// Per light (the first [`ROW_LIGHTS`]), what every hit of the row shares.
     lights: heapless::Vec<RowLight<S>, ROW_LIGHTS>,
     /// A tiled plane's tile row, the same at every hit of the row
@@ -103,25 +105,12 @@ struct Memo<S> {
     tol: Option<(S, S, S)>,
 }
 
-/// A scanline this kernel draws: its plane ([`Level`]; `None`: no plane is accepted) and
-/// the fast kernel's row started at column 0.
-#[derive(Debug, Clone)]
-pub(crate) struct Planned<S: Scalar> {
-    level: Option<Level<S>>,
-    first: Row<S>,
-}
-
-/// Works out scanline `row` once ([`Primary::level_row`]); `None` when this kernel
-/// cannot decide the row once (the fast kernel then draws it, pixel by pixel).
-pub(crate) fn plan<S: Scalar, T: Stages>(
-    scene: &SceneView<'_, S>,
-    rows: &Rows<S>,
-    row: u16,
-) -> Option<Planned<S>> {
-    let p = &rows.primary;
-    let first = p.row(scene, row, 0)?;
-    let level = level::<S, T>(scene, p, &first)?;
-    Some(Planned { level, first })
+/// Whether the stage set `T` is the one this kernel draws with (diffuse point lights and
+/// shadows, `DiffuseShadows`): [`super::select`] picks it only then, and the scanline
+/// code is compiled only for that set (flash: a scene lit without shadows, one plane
+/// under a light, is the fast kernel's).
+pub(crate) const fn draws_with<T: Stages>() -> bool {
+    T::LIGHTING && T::SHADOWS && !T::SPECULAR && !T::CONES && !T::REFLECTION && !T::TRANSPARENCY
 }
 
 /// The row's plane, worked out once: `Some(None)` when no plane is accepted, `None` when
@@ -190,17 +179,19 @@ fn level<S: Scalar, T: Stages>(
         _ => [object.material, object.material],
     };
     let mut weights = heapless::Vec::new();
+    let mut overflow = 0u16;
     if lights <= ROW_LIGHTS {
         for m in materials {
             let diffuse = scene.materials.get(usize::from(m)).map(|m| m.diffuse);
             for j in 0..ROW_LIGHTS {
-                let w = match (diffuse, scene.lights.get(j)) {
-                    (Some(d), Some(light)) => {
-                        let e = light.emissivity;
-                        [0, 1, 2].map(|c| e[c].checked_mul(d[c]))
+                let mut w = [S::ZERO; 3];
+                for (c, slot) in w.iter_mut().enumerate() {
+                    let e = scene.lights.get(j).map(|l| l.emissivity[c]);
+                    match e.zip(diffuse).and_then(|(e, d)| e.checked_mul(d[c])) {
+                        Some(v) => *slot = v,
+                        None => overflow |= 1 << (3 * weights.len() + c),
                     }
-                    _ => [None; 3],
-                };
+                }
                 let _ = weights.push(w);
             }
         }
@@ -241,85 +232,158 @@ fn level<S: Scalar, T: Stages>(
         occluders,
         materials,
         weights,
+        overflow,
         lights: row_lights,
     }))
 }
 
-/// The pixels of columns `columns` of scanline `row` as [`plan`] worked it out: per
-/// pixel its plane's hit `x` and light, spheres by the fast kernel's test inside their
-/// boxes.
-pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
+/// The pixels of columns `columns` of scanline `row`: the row's plane worked out once
+/// ([`Primary::level_row`]), then per pixel its hit's `x` and light, spheres by the fast
+/// kernel's test inside their boxes. `Err` (the counters handed back) when this kernel
+/// cannot decide the row once: the fast kernel then draws it, pixel by pixel. One pixel
+/// is one out-of-line call ([`Pixels::pixel`]): the kernel's code is compiled once per
+/// format, not again for every colour type and display driver that takes the pixels
+/// (flash on a small chip). Not inlined: the scanline is built in the caller's slot, not
+/// copied there (stack).
+#[inline(never)]
+pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
     scene: &'a SceneView<'a, S>,
     rows: &'a Rows<S>,
-    planned: Planned<S>,
     row: u16,
     columns: core::ops::Range<u16>,
     counters: &'a mut Counters,
-) -> impl Iterator<Item = C> + 'a {
+) -> Result<Pixels<'a, S, T>, &'a mut Counters> {
     let p = &rows.primary;
-    let Planned { level, first } = planned;
-    let y = scene.camera.screen_y(row);
-    let spheres = p.sphere_columns_on_row(row);
-    let rules = scene.rules();
-    let mut state = first;
-    // `state` is the row at column 0, as the fast kernel starts it; after a pixel whose
-    // step failed, the next one restarts (as `reference::scanline` does).
-    let (mut fresh, mut valid) = (true, true);
-    let mut at_hit = heapless::Vec::new();
-    let mut memo = Memo {
-        bound: None,
-        tol: None,
+    let Some(first) = p.row(scene, row, 0) else {
+        return Err(counters);
     };
-    columns.map(move |column| {
-        count(&mut counters.primary_rays);
-        let stepped = if fresh && Primary::column(&state) == column {
+    let Some(level) = level::<S, T>(scene, p, &first) else {
+        return Err(counters);
+    };
+    Ok(Pixels {
+        scene,
+        p,
+        level,
+        state: first,
+        fresh: true,
+        valid: true,
+        at_hit: heapless::Vec::new(),
+        memo: Memo {
+            bound: None,
+            tol: None,
+        },
+        spheres: p.sphere_columns_on_row(row),
+        y: scene.camera.screen_y(row),
+        row,
+        columns,
+        counters,
+        stages: core::marker::PhantomData,
+    })
+}
+
+/// A scanline of the level-plane kernel, pixel by pixel ([`scanline`]).
+pub(crate) struct Pixels<'a, S: Scalar, T> {
+    scene: &'a SceneView<'a, S>,
+    p: &'a Primary<S>,
+    level: Option<Level<S>>,
+    /// The fast kernel's row at the current pixel: at column 0 as the fast kernel starts
+    /// it (`fresh`); after a pixel whose step failed (`valid` false) the next restarts,
+    /// as `reference::scanline` does.
+    state: Row<S>,
+    fresh: bool,
+    valid: bool,
+    at_hit: heapless::Vec<S, FAST_OBJECTS>,
+    memo: Memo<S>,
+    /// The columns where a sphere can be met on this row.
+    spheres: (u16, u16),
+    y: Option<S>,
+    row: u16,
+    columns: core::ops::Range<u16>,
+    counters: &'a mut Counters,
+    stages: core::marker::PhantomData<T>,
+}
+
+impl<S: Scalar, T: Stages> Iterator for Pixels<'_, S, T> {
+    type Item = Rgb888;
+
+    #[inline]
+    fn next(&mut self) -> Option<Rgb888> {
+        let column = self.columns.next()?;
+        Some(self.pixel(column))
+    }
+}
+
+impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
+    /// The pixel at `column` (the next of the row's columns).
+    #[inline(never)]
+    fn pixel(&mut self, column: u16) -> Rgb888 {
+        let (scene, p) = (self.scene, self.p);
+        count(&mut self.counters.primary_rays);
+        let stepped = if self.fresh && Primary::column(&self.state) == column {
             Some(())
-        } else if valid
-            && Primary::column(&state).checked_add(1) == Some(column)
-            && column % fast::RESYNC_PIXELS != 0
+        } else if self.valid
+            && Primary::column(&self.state).checked_add(1) == Some(column)
+            && !column.is_multiple_of(fast::RESYNC_PIXELS)
         {
-            p.advance(&mut state)
+            p.advance(&mut self.state)
         } else {
-            p.restart(scene, row, column, &mut state)
+            p.restart(scene, self.row, column, &mut self.state)
         };
-        fresh = false;
-        valid = stepped.is_some();
-        let color = match stepped {
-            None => reference_color::<S, T>(scene, y, column, counters),
-            Some(()) if column >= spheres.0 && column <= spheres.1 => {
-                match p.nearest(scene, &state) {
-                    Ok(Some(h)) if level.as_ref().is_some_and(|l| l.index == h.index) => {
-                        plane_color::<S, T>(
-                            scene,
-                            p,
-                            &state,
-                            level.as_ref(),
-                            &mut memo,
-                            y,
-                            column,
-                            counters,
-                        )
+        self.fresh = false;
+        self.valid = stepped.is_some();
+        // What the pixel shows: the row's plane, or what the fast kernel found.
+        let found = match stepped {
+            None => Err(()),
+            Some(()) if column >= self.spheres.0 && column <= self.spheres.1 => {
+                match p.nearest(scene, &self.state) {
+                    Ok(Some(h)) if self.level.as_ref().is_some_and(|l| l.index == h.index) => {
+                        Ok(None)
                     }
-                    Ok(Some(h)) => {
-                        fast_color::<S, T>(scene, Some(p), &state, &h, &mut at_hit, counters)
-                    }
-                    Ok(None) => scene.background,
-                    Err(()) => reference_color::<S, T>(scene, y, column, counters),
+                    Ok(Some(h)) => Ok(Some(h)),
+                    Ok(None) => return to_pixel(scene.rules(), scene.background),
+                    Err(()) => Err(()),
                 }
             }
-            Some(()) => plane_color::<S, T>(
-                scene,
-                p,
-                &state,
-                level.as_ref(),
-                &mut memo,
-                y,
-                column,
-                counters,
-            ),
+            Some(()) => Ok(None),
         };
-        C::from(to_pixel(rules, color))
-    })
+        let color = match found {
+            Ok(None) => self.plane(column),
+            Ok(Some(h)) => self.other(&h),
+            Err(()) => reference_color::<S, T>(scene, self.y, column, self.counters),
+        };
+        to_pixel(scene.rules(), color)
+    }
+
+    /// The row's plane at the current pixel ([`plane_color`]). Out of line, as is
+    /// [`Pixels::other`]: the plane's locals are not on the stack under the general
+    /// shading's deep calls (an I32F32 frame on a 16 KB chip).
+    #[inline(never)]
+    fn plane(&mut self, column: u16) -> Color<S> {
+        plane_color::<S, T>(
+            self.scene,
+            self.p,
+            &self.state,
+            self.level.as_ref(),
+            &mut self.memo,
+            self.y,
+            column,
+            self.counters,
+        )
+    }
+
+    /// Another object the fast kernel found at the current pixel (a sphere), shaded the
+    /// fast kernel's way.
+    #[inline(never)]
+    fn other(&mut self, h: &FastHit<S>) -> Color<S> {
+        fast_color::<S, T>(
+            self.scene,
+            Some(self.p),
+            &self.state,
+            h,
+            &mut self.at_hit,
+            self.counters,
+        )
+    }
 }
 
 /// The colour of the row's plane at the row's current pixel (the background without
@@ -494,9 +558,10 @@ fn lit<S: Scalar, T: Stages>(
         count(&mut counters.diffuse);
         match l.weights.get(slot + j) {
             Some(w) => {
-                for (c, w) in color.iter_mut().zip(w) {
-                    let t = w.and_then(|w| w.checked_mul(falloff)).unwrap_or(S::MAX);
-                    *c = add_sat(*c, t);
+                for (k, (c, w)) in color.iter_mut().zip(w).enumerate() {
+                    let fits = l.overflow & (1 << (3 * (slot + j) + k)) == 0;
+                    let t = if fits { w.checked_mul(falloff) } else { None };
+                    *c = add_sat(*c, t.unwrap_or(S::MAX));
                 }
             }
             None => {
