@@ -97,6 +97,7 @@ pub(crate) fn fast_color<S: Scalar, T: Stages>(
 
 /// The colour of pixel `column` of the scanline at screen `y` on the reference path (the
 /// background when its ray cannot be formed).
+#[inline]
 pub(crate) fn reference_color<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     y: Option<S>,

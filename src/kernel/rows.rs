@@ -24,13 +24,12 @@ use super::fast::{self, FAST_OBJECTS, FastHit, Primary, Row};
 use super::reference::{fast_color, reference_color};
 use crate::geometry::{sides_differ, surface_tolerance};
 use crate::shade::color::{add_sat, term, to_pixel};
-use crate::shade::material_at;
 use crate::shade::stages::Stages;
 use crate::shade::{
-    Incoming, PlaneSides, channel_max, diffuse_falloff, occludes_segment, shade_with,
+    Incoming, PlaneSides, channel_max, diffuse_falloff, occludes_segment, shade_with, surface,
 };
 use crate::stats::{Counters, count};
-use crate::{Color, Hit, Rules, Scalar, SceneView, Shape, Tiling, Vec3};
+use crate::{Color, Hit, Scalar, SceneView, Shape, Tiling, Vec3};
 
 /// The per-frame part: the fast kernel's (its terms, the lights' sides of every plane,
 /// the spheres' rows and shadow cones).
@@ -349,7 +348,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         let color = match found {
             Ok(None) => self.plane(column),
             Ok(Some(h)) => self.other(&h),
-            Err(()) => reference_color::<S, T>(scene, self.y, column, self.counters),
+            Err(()) => self.reference(column),
         };
         to_pixel(scene.rules(), color)
     }
@@ -369,6 +368,12 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             column,
             self.counters,
         )
+    }
+
+    /// The pixel on the reference path (a quantity out of the format's range).
+    #[inline(never)]
+    fn reference(&mut self, column: u16) -> Color<S> {
+        reference_color::<S, T>(self.scene, self.y, column, self.counters)
     }
 
     /// Another object the fast kernel found at the current pixel (a sphere), shaded the
@@ -467,15 +472,21 @@ fn lit<S: Scalar, T: Stages>(
         (Shape::Tiled { frame, alt, .. }, Some(j)) => {
             count(&mut counters.tile_lookups);
             if frame.odd_tile_in_row(hit.point, j) == Some(true) {
-                alt
+                Some(alt)
             } else {
-                object.material
+                Some(object.material)
             }
         }
-        (Shape::Plane(_), _) => object.material,
-        _ => material_at(object, hit.point, Rules::Fixray, counters),
+        (Shape::Plane(_), _) => Some(object.material),
+        // Any other tiling: the general lookup (whose material index this kernel does
+        // not see: its per-row weights are then not used).
+        _ => None,
     };
-    let Some(material) = scene.materials.get(usize::from(m)) else {
+    let material = match m {
+        Some(m) => scene.materials.get(usize::from(m)).copied(),
+        None => surface(scene, l.index, hit.point, counters).map(|(_, m)| m),
+    };
+    let Some(material) = material else {
         return Some([S::ZERO; 3]);
     };
     let mut color = material.ambient;
@@ -498,7 +509,10 @@ fn lit<S: Scalar, T: Stages>(
     } else {
         S::ZERO
     };
-    let slot = usize::from(m != l.materials[0]) * ROW_LIGHTS;
+    // The per-row weights of the material shown (`usize::MAX`: not kept).
+    let slot = m.map_or(usize::MAX, |m| {
+        usize::from(m != l.materials[0]) * ROW_LIGHTS
+    });
     for (j, light) in scene.lights.iter().enumerate() {
         let (to_light, ll, nl, knl) = match l.lights.get(j) {
             // The row's terms of this light: `L.y`, `L.z`, `N·L` and `255·N·L`, and in
@@ -556,7 +570,7 @@ fn lit<S: Scalar, T: Stages>(
         }
         let falloff = diffuse_falloff(nl, knl, ll);
         count(&mut counters.diffuse);
-        match l.weights.get(slot + j) {
+        match l.weights.get(slot.saturating_add(j)) {
             Some(w) => {
                 for (k, (c, w)) in color.iter_mut().zip(w).enumerate() {
                     let fits = l.overflow & (1 << (3 * (slot + j) + k)) == 0;
