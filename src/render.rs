@@ -94,7 +94,9 @@ impl<'a, S: Scalar> Frame<'a, S> {
 
     /// Which kernel draws scanline `row`: [`Frame::kernel`], except for a scanline the
     /// flat kernel hands back (a per-row quantity out of the format's range), which the
-    /// next kernel of the chain draws (fast, or the reference path).
+    /// next kernel of the chain draws (fast, or the reference path), and one the
+    /// level-plane kernel cannot decide once (a plane near edge-on to the row), which the
+    /// fast kernel draws.
     pub fn row_kernel(&self, row: u16) -> KernelKind {
         self.drawing.row_kind(&self.scene, row)
     }
@@ -355,6 +357,26 @@ pub fn render_line_ambient<S: Scalar, C: From<Rgb888>>(
             counters,
         );
     }
+}
+
+/// Streams columns `start..` of scanline `row` (as many as `out` holds, up to the
+/// camera's width) into `out` with the kernel the renderer chooses (`Frame::draw`'s path
+/// onto a target whose area starts at column `start`); `fast`: with the fast kernel
+/// where the renderer would choose a cheaper one. For the tests of the level-plane kernel
+/// against the fast kernel on partial scanlines.
+#[doc(hidden)]
+pub fn render_columns_with<S: Scalar>(
+    scene: &impl AsView<S>,
+    fast: bool,
+    row: u16,
+    start: u16,
+    out: &mut [Rgb888],
+) {
+    let mut frame = Frame::new(scene);
+    if fast {
+        frame.drawing = kernel::fast_only(&frame.scene);
+    }
+    frame.render_columns(row, start, out);
 }
 
 /// Renders scanline `row` with the fast kernel (`kernel/fast.rs`) where the renderer

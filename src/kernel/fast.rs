@@ -116,6 +116,9 @@ pub const MAX_SIDES: usize = 12;
 /// frame and the deepest shading stack must fit beside the scene.
 pub const FAST_OBJECTS: usize = 8;
 
+// A frame's still terms and a row's occluders are bits of a `u8`, one per object.
+const _: () = assert!(FAST_OBJECTS <= 8);
+
 /// What the fast path found at one pixel.
 #[derive(Debug, Clone, Copy)]
 pub struct FastHit<S> {
@@ -627,11 +630,11 @@ impl<S: Scalar> Primary<S> {
     /// plane's test decides the same at each of them: `Some((object, p, q))` with the
     /// winner's `t' = p/q`, `Some` of `None` when no plane is accepted, and `None` when the
     /// row cannot be decided once (a plane with `N.x ≠ 0`, or one within the margin of the
-    /// epsilon at some pixel of the row: [`nearest`](Self::nearest) then decides each
-    /// pixel). `first` is the row started at column 0, `width` its pixels. Spheres are
-    /// left out: the caller tests them on the rows they can be met on
-    /// ([`Self::sphere_on_row`]). The same tests and the same tie rule as `nearest`, so
-    /// that a pixel's plane is `nearest`'s (`kernel/rows.rs`).
+    /// epsilon at some pixel of the row, `N·D = 0` included: [`nearest`](Self::nearest)
+    /// then decides each pixel). `first` is the row started at column 0, `width` its
+    /// pixels. Spheres are left out: the caller tests them inside their screen boxes
+    /// ([`Self::sphere_columns_on_row`]). The same tests and the same tie rule as
+    /// `nearest`, so that a pixel's plane is `nearest`'s (`kernel/rows.rs`).
     pub(crate) fn level_row(
         &self,
         scene: &SceneView<'_, S>,
@@ -657,10 +660,9 @@ impl<S: Scalar> Primary<S> {
                 return None;
             }
             // Accepted at every pixel, or at none (`N·D = 0`); otherwise each pixel decides.
+            // (`N·D = 0` too: a pixel rejects it only after forming `ε·|D|²`, which may
+            // not fit and hand the pixel to the reference path.)
             if nd.abs() < bound {
-                if nd == S::ZERO {
-                    continue;
-                }
                 return None;
             }
             if !ahead(term.num, nd) {
@@ -690,6 +692,7 @@ impl<S: Scalar> Primary<S> {
         self.terms
             .iter()
             .filter(|t| t.sphere && row >= t.rows.0 && row <= t.rows.1)
+            .filter(|t| t.columns.0 <= t.columns.1)
             .fold((1, 0), |(a, b), t| {
                 if a > b {
                     t.columns

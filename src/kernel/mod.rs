@@ -9,12 +9,16 @@
 //!   `N·eye` and `|eye − c|² − r²`,
 //!   unnormalised directions stepped along the scanline, one division per pixel (and a
 //!   square root per sphere the ray meets).
+//! - **rows** (`rows.rs`): lit scenes of level planes (`N.x = 0`) and spheres with
+//!   diffuse lights and shadows: each scanline's plane and its light terms once per row,
+//!   the fast kernel's pixels bit for bit.
 //! - **reference** (`reference.rs`): the definition, one normalised ray per pixel.
 //!
 //! A scanline the flat kernel hands back (a quantity out of the format's range) is drawn
-//! by the fast kernel if it applies, a pixel the fast kernel hands back by the reference
-//! path: every entry point (`render`, `render_line`, `Frame`) takes the same chain, so
-//! they draw the same pixels (`tests/kernels.rs`).
+//! by the fast kernel if it applies, a scanline the level-plane kernel cannot decide once
+//! by the fast kernel, a pixel the fast kernel hands back by the reference path: every
+//! entry point (`render`, `render_line`, `Frame`) takes the same chain, so they draw the
+//! same pixels (`tests/kernels.rs`).
 
 pub(crate) mod fast;
 pub(crate) mod flat;
@@ -102,6 +106,7 @@ impl<S: Scalar> Drawing<S> {
                 Some(_) => KernelKind::Fast,
                 None => KernelKind::Reference,
             },
+            Kernel::Rows(r) if !rows::decides(scene, r, row) => KernelKind::Fast,
             _ => self.kind(),
         }
     }
@@ -127,7 +132,7 @@ pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan
         kernel: Kernel::Reference,
         fast,
     };
-    // Level planes and spheres lit by diffuse point lights (with or without shadows):
+    // Level planes and spheres lit by diffuse point lights with shadows:
     // each scanline's plane once per row (`rows.rs`, the fast kernel's pixels bit for bit).
     let rows = fast
         && rows::draws_with::<T>()

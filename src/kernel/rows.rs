@@ -6,17 +6,23 @@
 //! wall, any plane tilted only about the x axis), `N·D` is therefore the same at every
 //! pixel of the row, and so are its test, its parameter `t' = num/(N·D)` and the hit's
 //! `y` and `z`. When every plane is of that kind, the nearest plane of a row, its
-//! division, the normal facing the ray and every plane's side at the hit (for shadow
-//! segments) are worked out once per row ([`Primary::level_row`]); a pixel computes its
-//! hit's `x` (one product) and lights it: the tile, `L = light − hit`, `|L|²`, the shadow
-//! segment and one division for `255·(N·L)/|L|²`. Spheres are tested only on the rows
-//! they can be met on (the fast kernel's `sphere_rows`), by the fast kernel's own test.
+//! division, the normal facing the ray, its tile row, every plane's side at the hit, the
+//! objects that can shadow the row and each light's terms are worked out once per row
+//! ([`Primary::level_row`], [`level`]); a pixel computes its hit's `x` (one product) and
+//! lights it: the tile column, `L.x`, `|L|²`, the shadow tests the row kept and one
+//! division for `255·(N·L)/|L|²`. Spheres are tested only inside their boxes on the
+//! screen (the fast kernel's `sphere_rows` and `sphere_columns`), by the fast kernel's
+//! own test, and shaded its way.
 //!
-//! Every quantity is the fast kernel's, computed by the same operations in the same
-//! order, so a pixel is the fast kernel's bit for bit (`tests/kernels.rs` compares every
-//! pixel of every scene this kernel draws, in every format). A row that cannot be
-//! decided once (a plane within the epsilon's margin of parallel at some pixel), and any
-//! pixel whose quantity leaves the format, is drawn by the fast kernel itself.
+//! Every quantity has the fast kernel's value (the same operations; `|L|²` adds its
+//! exact terms in another order only where sums are exact, `Scalar::EXACT_SUMS`), so a
+//! pixel is the fast kernel's bit for bit (`tests/rows.rs`: every boing frame, an
+//! unshipped ball scene and seeded random level scenes, whole and partial scanlines, in
+//! every format). A row that cannot be decided once (a plane within the epsilon's margin
+//! of parallel at some pixel) and any pixel whose quantity leaves the format are drawn by
+//! the fast kernel itself. The statistics (`Counters`) of a pixel that this kernel hands
+//! to the general shading midway (a light's `|L|²` out of range) count its tile lookup and
+//! its earlier lights twice; its colour is not affected.
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 
@@ -53,7 +59,7 @@ struct Level<S: Scalar> {
     /// Every object's side at the hit (`Primary::sides_at`), for shadow segments; empty
     /// when not kept.
     sides: heapless::Vec<S, FAST_OBJECTS>,
-    /// Per light (the first [`ROW_LIGHTS`]): the objects that can stand between the
+    /// Per light (empty with more than [`ROW_LIGHTS`] lights): the objects that can stand between the
     /// row's hits and the light, as bits: the spheres, and the planes whose sides at the
     /// hit and at the light differ in sign (a plane with both on one side never crosses
     /// a segment, whatever the tolerance: `sides_differ`). Empty: every light takes the
@@ -67,7 +73,8 @@ struct Level<S: Scalar> {
     weights: heapless::Vec<[S; 3], { 2 * ROW_LIGHTS }>,
     /// Which of `weights` did not fit (bit `3 × entry + channel`): such a term saturates.
     overflow: u16,
-    /// Per light (the first [`ROW_LIGHTS`]), what every hit of the row shares.
+    /// Per light (empty with more than [`ROW_LIGHTS`] lights), what every hit of the row
+    /// shares.
     lights: heapless::Vec<RowLight<S>, ROW_LIGHTS>,
     /// A tiled plane's tile row, the same at every hit of the row
     /// ([`crate::PlaneFrame::tile_row`]; `None`: each pixel looks its tile up whole).
@@ -112,13 +119,14 @@ pub(crate) const fn draws_with<T: Stages>() -> bool {
     T::LIGHTING && T::SHADOWS && !T::SPECULAR && !T::CONES && !T::REFLECTION && !T::TRANSPARENCY
 }
 
-/// The row's plane, worked out once: `Some(None)` when no plane is accepted, `None` when
-/// the fast kernel must decide the row pixel by pixel.
-fn level<S: Scalar, T: Stages>(
+/// The row's nearest plane and what every pixel of the row shares of its hit: the
+/// object, `t'`, the hit's `y` and `z`, and the normal facing the ray; `Some(None)` when
+/// no plane is accepted, `None` when the row cannot be decided once.
+fn row_plane<S: Scalar>(
     scene: &SceneView<'_, S>,
     p: &Primary<S>,
     first: &Row<S>,
-) -> Option<Option<Level<S>>> {
+) -> Option<Option<RowPlane<S>>> {
     let Some((index, num, den)) = p.level_row(scene, first, scene.camera.width)? else {
         return Some(None);
     };
@@ -138,6 +146,49 @@ fn level<S: Scalar, T: Stages>(
         normal.checked_neg().unwrap_or(normal)
     } else {
         normal
+    };
+    Some(Some(RowPlane {
+        index,
+        t,
+        y,
+        z,
+        facing,
+    }))
+}
+
+/// What [`row_plane`] found: the object, `t'`, the hit's `y` and `z`, the facing normal.
+struct RowPlane<S> {
+    index: usize,
+    t: S,
+    y: S,
+    z: S,
+    facing: Vec3<S>,
+}
+
+/// Whether this kernel draws scanline `row` itself (`false`: it hands it to the fast
+/// kernel), for [`crate::Frame::row_kernel`].
+pub(crate) fn decides<S: Scalar>(scene: &SceneView<'_, S>, rows: &Rows<S>, row: u16) -> bool {
+    let p = &rows.primary;
+    p.row(scene, row, 0)
+        .is_some_and(|first| row_plane(scene, p, &first).is_some())
+}
+
+/// The row's plane, worked out once: `Some(None)` when no plane is accepted, `None` when
+/// the fast kernel must decide the row pixel by pixel.
+fn level<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    first: &Row<S>,
+) -> Option<Option<Level<S>>> {
+    let Some(RowPlane {
+        index,
+        t,
+        y,
+        z,
+        facing,
+    }) = row_plane(scene, p, first)?
+    else {
+        return Some(None);
     };
     let mut sides = heapless::Vec::new();
     if T::SHADOWS && !p.at_lights().is_empty() && p.sides_at(first, t, &mut sides).is_none() {
@@ -265,7 +316,9 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         level,
         state: first,
         fresh: true,
-        valid: true,
+        // From another column than 0 the first pixel restarts there, as the fast
+        // kernel's scanline starts its row there.
+        valid: columns.start == 0,
         at_hit: heapless::Vec::new(),
         memo: Memo {
             bound: None,
