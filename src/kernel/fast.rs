@@ -263,9 +263,11 @@ fn sphere_rows<S: Scalar>(scene: &SceneView<'_, S>, oc: Vec3<S>, rr: S, dz: S) -
 /// `x` and `y` exchanged. A column's rays `D = (dx, y − eye.y, dz)` all lie in the plane
 /// through the eye with normal `(dz, 0, −dx)`, and the same test, margin and guard
 /// decide. A pixel's `D.x` is stepped along its scanline, off the column's exact
-/// `dx` by at most `RESYNC_PIXELS / 2` DELTAs: that moves the ray's squared distance
-/// from the centre by about `8 r DELTA |oc|/|dz|`, far inside the `r²/8` margin the
-/// guard leaves (`r ≥ 16 √DELTA (1 + 2|oc|∞/|dz|)`). Bit for bit, as the rows.
+/// `dx` by at most `RESYNC_PIXELS` DELTAs (the step is rounded once per frame): that
+/// moves the ray's squared distance from the centre by about `16 r DELTA |oc|/|dz|`, far
+/// inside the `r²/8` margin the guard leaves (`r ≥ 16 √DELTA (1 + 2|oc|∞/|dz|)`). Bit
+/// for bit, as the rows. (The test is [`sphere_rows`]' own, written out again: a shared
+/// helper made the frames of three-sphere scenes 9 instructions a pixel dearer on the M0.)
 fn sphere_columns<S: Scalar>(scene: &SceneView<'_, S>, oc: Vec3<S>, rr: S, dz: S) -> (u16, u16) {
     let all = (0, scene.camera.width.saturating_sub(1));
     if !bounded(oc, rr, dz) {
