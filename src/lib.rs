@@ -86,5 +86,5 @@ pub use stats::Counters;
 pub mod internals {
     pub use crate::kernel::fast::Primary;
     pub use crate::kernel::flat::Flat;
-    pub use crate::render::{render_columns_with, render_line_ambient, render_line_fast};
+    pub use crate::render::{render_columns_with, render_line_ambient};
 }

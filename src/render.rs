@@ -378,31 +378,3 @@ pub fn render_columns_with<S: Scalar>(
     }
     frame.render_columns(row, start, out);
 }
-
-/// Renders scanline `row` with the fast kernel (`kernel/fast.rs`) where the renderer
-/// would choose a cheaper one, with the stage set the scene's plan picks: what the tests
-/// compare the level-plane kernel with, bit for bit.
-#[doc(hidden)]
-pub fn render_line_fast<S: Scalar, C: From<Rgb888>>(
-    scene: &impl AsView<S>,
-    row: u16,
-    line: &mut [C],
-) {
-    let mut scene = scene.view();
-    let plan = scene.plan();
-    scene.lights_on_surfaces = plan.lights_on_surfaces;
-    if row < scene.camera.height {
-        let drawing = kernel::fast_only(&scene);
-        with_stages!(
-            shading_for(&plan),
-            kernel::line::<S, C>(
-                &scene,
-                &drawing,
-                PlaneMode::PerPixel,
-                row,
-                line,
-                &mut Counters::default()
-            )
-        );
-    }
-}

@@ -7,7 +7,7 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 use fixray::anim::Bounce;
-use fixray::internals::{render_columns_with, render_line_fast};
+use fixray::internals::render_columns_with;
 use fixray::{Frame, KernelKind, Scalar, Scene, render_line};
 
 /// Draws `scene` with the renderer's choice and with the fast kernel; asserts that the
@@ -23,7 +23,7 @@ fn agree<S: Scalar>(name: &str, scene: &Scene<S>, expect_rows: bool) -> usize {
     let mut b = vec![Rgb888::new(1, 2, 3); w];
     for row in 0..scene.camera.height {
         render_line(scene, row, &mut a);
-        render_line_fast(scene, row, &mut b);
+        render_columns_with(scene, true, row, 0, &mut b);
         for (x, (p, q)) in a.iter().zip(&b).enumerate() {
             assert_eq!(p, q, "{name} {} at ({x}, {row})", S::NAME);
         }

@@ -377,6 +377,17 @@ mod tests {
     use super::*;
     use crate::{I16F16, I20F12, I32F32, Shape};
 
+    /// A seeded xorshift stream of values in `[0, 1)` (the same on every run).
+    fn uniform(seed: u64) -> impl FnMut() -> f64 {
+        let mut x = seed;
+        move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     /// `ShadowCone::clears_line` clears only lines whose every point's exact segment
     /// test misses the sphere: on seeded random spheres, lights and lines along x (a third
     /// of them aimed at the sphere's edge as seen from the light, in y and z), for every
@@ -385,13 +396,7 @@ mod tests {
     #[test]
     fn a_cleared_line_misses_the_sphere_at_every_point_in_every_format() {
         fn check<S: Scalar>() {
-            let mut x: u64 = 0x2026_1204;
-            let mut next = move || {
-                x ^= x << 13;
-                x ^= x >> 7;
-                x ^= x << 17;
-                (x >> 11) as f64 / (1u64 << 53) as f64
-            };
+            let mut next = uniform(0x2026_1204);
             let (mut cleared, mut total) = (0u32, 0u32);
             for _ in 0..3_000 {
                 let mut point = || [0; 3].map(|_| 16.0 * next() - 8.0);
@@ -466,13 +471,7 @@ mod tests {
     #[test]
     fn a_cleared_shadow_segment_misses_the_sphere_in_every_format() {
         fn check<S: Scalar>() {
-            let mut x: u64 = 0x2026_1203;
-            let mut next = move || {
-                x ^= x << 13;
-                x ^= x >> 7;
-                x ^= x << 17;
-                (x >> 11) as f64 / (1u64 << 53) as f64
-            };
+            let mut next = uniform(0x2026_1203);
             let (mut cleared, mut total) = (0u32, 0u32);
             for _ in 0..30_000 {
                 let mut point = || [0; 3].map(|_| 20.0 * next() - 10.0);

@@ -653,7 +653,7 @@ fn occluded<S: Scalar>(
     scene: &SceneView<'_, S>,
     sides: PlaneSides<'_, S>,
     j: usize,
-    mut bits: u8,
+    bits: u8,
     from: Vec3<S>,
     l: Vec3<S>,
     ll: S,
@@ -661,8 +661,9 @@ fn occluded<S: Scalar>(
 ) -> Option<bool> {
     let n = sides.at_hit.len();
     let at_light = sides.at_lights.get(j * n..)?.get(..n)?;
+    let mut bits = bits;
     while bits != 0 {
-        let i = bits.trailing_zeros() as usize;
+        let i = usize::try_from(bits.trailing_zeros()).ok()?;
         bits &= bits - 1;
         let (o, &a0, &a1) = (
             scene.objects.get(i)?,
