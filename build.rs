@@ -77,7 +77,10 @@ fn main() {
     }
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     fs::write(out.join("memory.x"), include_bytes!("memory.x")).expect("OUT_DIR is writable");
-    println!("cargo:rustc-link-search={}", out.display());
+    // The search path as a link argument of this package's examples only: a
+    // `rustc-link-search` would reach every binary that depends on fixray (a board crate
+    // with its own `memory.x`, `boards/`) and could shadow that crate's layout.
+    println!("cargo:rustc-link-arg-examples=-L{}", out.display());
     println!("cargo:rustc-link-arg-examples=--nmagic");
     println!("cargo:rustc-link-arg-examples=-Tlink.x");
 
