@@ -49,6 +49,7 @@ fn formats(dir: &str) -> Vec<String> {
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=memory.x");
+    println!("cargo:rerun-if-changed=memory-riscv.x");
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_FORMATS");
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_PPM");
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_SCENES");
@@ -57,6 +58,7 @@ fn main() {
         "fw_microbit",
         "fw_mps2",
         "fw_ppm",
+        "fw_riscv",
         "fw_spans",
         "no_long_multiply",
     ] {
@@ -72,19 +74,34 @@ fn main() {
     if target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base") {
         println!("cargo:rustc-cfg=no_long_multiply");
     }
-    if !target.starts_with("thumb") {
+    let riscv = target.starts_with("riscv32") && target.ends_with("-none-elf");
+    if !target.starts_with("thumb") && !riscv {
         return;
     }
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-    fs::write(out.join("memory.x"), include_bytes!("memory.x")).expect("OUT_DIR is writable");
+    // The board's layout: `memory.x` (cortex-m-rt's `link.x` includes it by that name) or
+    // `memory-riscv.x` (named on the command line before riscv-rt's `link.x`: under its
+    // own name, as the linker looks in the working directory, the crate's root, first).
+    let (name, memory): (&str, &[u8]) = if riscv {
+        ("memory-riscv.x", include_bytes!("memory-riscv.x"))
+    } else {
+        ("memory.x", include_bytes!("memory.x"))
+    };
+    fs::write(out.join(name), memory).expect("OUT_DIR is writable");
     // The search path as a link argument of this package's examples only: a
     // `rustc-link-search` would reach every binary that depends on fixray (a board crate
     // with its own `memory.x`, `boards/`) and could shadow that crate's layout.
     println!("cargo:rustc-link-arg-examples=-L{}", out.display());
     println!("cargo:rustc-link-arg-examples=--nmagic");
+    if riscv {
+        // riscv-rt's `link.x` leaves the regions to a layout read before it.
+        println!("cargo:rustc-link-arg-examples=-Tmemory-riscv.x");
+    }
     println!("cargo:rustc-link-arg-examples=-Tlink.x");
 
-    let board = if target.starts_with("thumbv6m") {
+    let board = if riscv {
+        "fw_riscv"
+    } else if target.starts_with("thumbv6m") {
         "fw_microbit"
     } else {
         "fw_mps2"

@@ -1,4 +1,5 @@
-//! `firmware`: the ray caster on a Cortex-M chip. Parses the default scene and the boing
+//! `firmware`: the ray caster on a microcontroller (Cortex-M0, Cortex-M4F, RISC-V rv32imc).
+//! Parses the default scene and the boing
 //! ball's scene at run time with the library's parser, renders them one scanline at a
 //! time into a line buffer (no framebuffer) in every number format built in (the boing
 //! ball 16 times, its sphere moved along its bounce by `fixray::anim::Bounce`), and
@@ -14,20 +15,28 @@
 //! alone is measured too (`hash_instructions`), so the renderer's share is the difference.
 //! `stack` is the deepest stack use seen during parse + frame (painted stack).
 //!
-//! Run it under QEMU (the runners are in `.cargo/config.toml`; needs `qemu-system-arm`):
+//! Run it under QEMU (the runners are in `.cargo/config.toml`; needs `qemu-system-arm`, and
+//! `qemu-system-misc` for RISC-V):
 //! ```text
 //! cargo run --release --example firmware --target thumbv6m-none-eabi      # Cortex-M0 (micro:bit)
 //! cargo run --release --example firmware --target thumbv7em-none-eabihf  # Cortex-M4F (MPS2 AN386)
+//! cargo run --release --example firmware --target riscv32imc-unknown-none-elf  # RISC-V (QEMU virt)
 //! FIXRAY_FW_FORMATS=i16f16 cargo build ...   # only some formats (to measure flash per format)
 //! FIXRAY_FW_SCENES=default,planes cargo ...  # which scenes/ to embed (default: default,boing)
 //! FIXRAY_FW_SPANS=1 cargo run ...            # pure-geometry plane scenes in span mode
-//! FIXRAY_FW_PPM=1 cargo run ...              # also write fixray-<core>-<scene>[NN]-<format>.ppm
+//! FIXRAY_FW_PPM=1 cargo run ...              # also write fixray-<core>-<scene>[NN]-<format>.ppm (Arm)
 //! ```
 //!
-//! Counting: QEMU does not model the cycle counter, but with `-icount shift=0` each
-//! instruction advances virtual time by 1 ns, so SysTick (at the board's 16 or 25 MHz)
-//! ticks once per 62.5 or 40 instructions. Counts are deterministic; their resolution is
-//! one tick. A calibration line at start-up checks the rate with 4000 `nop`s.
+//! Counting: on the Arm boards QEMU does not model the cycle counter, but with
+//! `-icount shift=0` each instruction advances virtual time by 1 ns, so SysTick (at the
+//! board's 16 or 25 MHz) ticks once per 62.5 or 40 instructions: counts are deterministic,
+//! their resolution one tick. On RISC-V the `minstret` counter counts retired instructions
+//! exactly (with `-icount shift=0`). A calibration line at start-up checks the count with
+//! 4000 instructions of `nop` loop.
+//!
+//! The boards (`board` below, one module per architecture, chosen by `target_arch`): how
+//! instructions are counted, how a line reaches the host, how the program ends, the stack's
+//! bounds. Everything else is the same code on every core.
 //!
 //! Off target (host builds, `cargo test`) this example compiles to an empty `main`.
 
@@ -41,17 +50,12 @@ fn main() {
 
 #[cfg(target_os = "none")]
 mod firmware {
-    use core::sync::atomic::{AtomicU32, Ordering};
-
-    use cortex_m::peripheral::SYST;
-    use cortex_m::peripheral::syst::SystClkSource;
-    use cortex_m_rt::{entry, exception};
-    use cortex_m_semihosting::{debug, hprintln};
     use embedded_graphics::pixelcolor::Rgb888;
     use fixray::anim::Bounce;
     use fixray::hash::FrameHash;
     use fixray::{Frame, PlaneMode, Scalar, Scene};
-    use panic_semihosting as _;
+
+    use board::{BOARD, instructions, paint_stack, say, stack_used};
 
     // The scenes, as text (parsed on the chip): `SCENES`, chosen at build time by
     // FIXRAY_FW_SCENES (default: the default scene and the boing ball).
@@ -62,61 +66,23 @@ mod firmware {
     /// wide, and the 240 bytes keep the deepest I32F32 frame within its budget).
     const MAX_WIDTH: usize = 240;
 
-    /// Board name and SysTick rate: instructions per tick × 2 (62.5 is not an integer).
-    #[cfg(fw_microbit)]
-    const BOARD: (&str, u64) = ("cortex-m0", 125);
-    #[cfg(fw_mps2)]
-    const BOARD: (&str, u64) = ("cortex-m4f", 80);
-
     /// The painted stack's pattern.
     const PAINT: u32 = 0xC0DE_F00D;
 
-    static WRAPS: AtomicU32 = AtomicU32::new(0);
-
-    #[exception]
-    fn SysTick() {
-        // Only this handler writes WRAPS: a load and a store are enough (the M0 has no
-        // atomic read-modify-write).
-        WRAPS.store(WRAPS.load(Ordering::Relaxed) + 1, Ordering::Relaxed);
-    }
-
-    /// Executed instructions since SysTick was started (24-bit counter + wraps).
-    fn instructions() -> u64 {
-        loop {
-            let wraps = WRAPS.load(Ordering::Relaxed);
-            let current = SYST::get_current();
-            if WRAPS.load(Ordering::Relaxed) == wraps {
-                let ticks = (u64::from(wraps) << 24) + u64::from(0x00FF_FFFF - current);
-                return ticks * BOARD.1 / 2;
-            }
-        }
-    }
-
-    unsafe extern "C" {
-        /// End of .bss (cortex-m-rt): the lowest address the stack may grow to.
-        static mut __sheap: u32;
-        /// Top of the stack (cortex-m-rt).
-        static _stack_start: u32;
-    }
-
-    /// Fills the free stack below the current stack pointer with `PAINT`.
-    fn paint_stack() {
-        let bottom = (&raw mut __sheap).cast::<u32>();
-        // Leave 64 bytes under the current frame untouched.
-        let top = (cortex_m::register::msp::read() as usize - 64) as *mut u32;
+    /// Fills `[bottom, top)` (word addresses: the free stack below the current frame)
+    /// with `PAINT`.
+    fn paint(bottom: *mut u32, top: *mut u32) {
         let mut p = bottom;
         while p < top {
-            // SAFETY: [__sheap, msp − 64) is unused stack: nothing lives there now.
+            // SAFETY: the caller hands over unused stack: nothing lives there now.
             unsafe { p.write_volatile(PAINT) };
             p = p.wrapping_add(1);
         }
     }
 
-    /// Bytes of stack used since `paint_stack`: from the top down to the lowest word that
-    /// no longer holds the pattern.
-    fn stack_used() -> usize {
-        let bottom = (&raw mut __sheap).cast::<u32>();
-        let top = (&raw const _stack_start) as usize;
+    /// Bytes of stack used since `paint`: from `top` down to the lowest word above
+    /// `bottom` that no longer holds the pattern.
+    fn painted_use(bottom: *const u32, top: usize) -> usize {
         let mut p = bottom;
         // SAFETY: reading the stack region between the end of .bss and its top.
         while (p as usize) < top && unsafe { p.read_volatile() } == PAINT {
@@ -125,10 +91,244 @@ mod firmware {
         top - p as usize
     }
 
+    /// The Arm boards under QEMU: BBC micro:bit (Cortex-M0) and MPS2 AN386 (Cortex-M4F).
+    /// Instructions are counted by SysTick (`-icount shift=0`), lines and the exit go over
+    /// semihosting.
+    #[cfg(target_arch = "arm")]
+    mod board {
+        use core::sync::atomic::{AtomicU32, Ordering};
+
+        use cortex_m::peripheral::SYST;
+        use cortex_m::peripheral::syst::SystClkSource;
+        use cortex_m_rt::exception;
+        use cortex_m_semihosting::{debug, hprintln};
+        use panic_semihosting as _;
+
+        /// Board name and SysTick rate: instructions per tick × 2 (62.5 is not an integer).
+        #[cfg(fw_microbit)]
+        pub const BOARD: (&str, u64) = ("cortex-m0", 125);
+        #[cfg(fw_mps2)]
+        pub const BOARD: (&str, u64) = ("cortex-m4f", 80);
+
+        static WRAPS: AtomicU32 = AtomicU32::new(0);
+
+        #[exception]
+        fn SysTick() {
+            // Only this handler writes WRAPS: a load and a store are enough (the M0 has no
+            // atomic read-modify-write).
+            WRAPS.store(WRAPS.load(Ordering::Relaxed) + 1, Ordering::Relaxed);
+        }
+
+        /// Starts SysTick from a full period.
+        pub fn start() {
+            let Some(mut core) = cortex_m::Peripherals::take() else {
+                say(format_args!("error=\"core peripherals taken\""));
+                exit();
+            };
+            let syst = &mut core.SYST;
+            syst.set_clock_source(SystClkSource::Core);
+            syst.set_reload(0x00FF_FFFF);
+            syst.clear_current();
+            syst.enable_interrupt();
+            syst.enable_counter();
+            // The counter starts at 0 and loads the reload value on its first tick; wait
+            // for that, so that counting starts from a full period.
+            while SYST::get_current() == 0 {}
+        }
+
+        /// Executed instructions since SysTick was started (24-bit counter + wraps).
+        pub fn instructions() -> u64 {
+            loop {
+                let wraps = WRAPS.load(Ordering::Relaxed);
+                let current = SYST::get_current();
+                if WRAPS.load(Ordering::Relaxed) == wraps {
+                    let ticks = (u64::from(wraps) << 24) + u64::from(0x00FF_FFFF - current);
+                    return ticks * BOARD.1 / 2;
+                }
+            }
+        }
+
+        /// One line to the host.
+        pub fn say(line: core::fmt::Arguments<'_>) {
+            hprintln!("{}", line);
+        }
+
+        /// Ends the program (QEMU exits with status 0).
+        pub fn exit() -> ! {
+            debug::exit(debug::EXIT_SUCCESS);
+            // Only reached without a semihosting host: sleep.
+            loop {
+                cortex_m::asm::wfi();
+            }
+        }
+
+        unsafe extern "C" {
+            /// End of .bss (cortex-m-rt): the lowest address the stack may grow to.
+            static mut __sheap: u32;
+            /// Top of the stack (cortex-m-rt).
+            static _stack_start: u32;
+        }
+
+        /// Fills the free stack below the current stack pointer with the pattern.
+        pub fn paint_stack() {
+            // Leave 64 bytes under the current frame untouched.
+            let top = (cortex_m::register::msp::read() as usize - 64) as *mut u32;
+            super::paint((&raw mut __sheap).cast::<u32>(), top);
+        }
+
+        /// Bytes of stack used since `paint_stack`.
+        pub fn stack_used() -> usize {
+            super::painted_use(
+                (&raw mut __sheap).cast::<u32>(),
+                (&raw const _stack_start) as usize,
+            )
+        }
+
+        /// Exactly 4000 instructions: 1000 rounds of two `nop`s, a subtract and a branch.
+        #[inline(never)]
+        pub fn nops() {
+            // SAFETY: nops and a counted loop on a scratch register.
+            unsafe {
+                core::arch::asm!(
+                    "2:", "nop", "nop", "subs {n}, #1", "bne 2b",
+                    n = inout(reg) 1000u32 => _,
+                    options(nomem, nostack),
+                );
+            }
+        }
+
+        #[cortex_m_rt::entry]
+        fn main() -> ! {
+            super::main()
+        }
+    }
+
+    /// RISC-V (rv32imc, no FPU) on QEMU's `virt` board (`-bios none`; program at
+    /// 0x8000_0000, `memory-riscv.x`): instructions are counted by `minstret` (exact with
+    /// `-icount shift=0`), lines go to the 16550 UART at 0x1000_0000, the program ends by
+    /// writing to the test device at 0x10_0000.
+    #[cfg(target_arch = "riscv32")]
+    mod board {
+        use core::fmt::Write;
+
+        /// Board name; instructions are counted one by one.
+        pub const BOARD: (&str, u64) = ("riscv32imc", 2);
+
+        /// The 16550 UART's transmit register and line status register.
+        const UART_THR: *mut u8 = 0x1000_0000 as *mut u8;
+        const UART_LSR: *const u8 = 0x1000_0005 as *const u8;
+        /// The `sifive_test` device: 0x5555 ends QEMU with status 0, `code << 16 | 0x3333`
+        /// with status `code`.
+        const FINISHER: *mut u32 = 0x0010_0000 as *mut u32;
+
+        /// Nothing to start: `minstret` runs from reset.
+        pub fn start() {}
+
+        /// Instructions retired since reset.
+        pub fn instructions() -> u64 {
+            riscv::register::minstret::read64()
+        }
+
+        struct Uart;
+
+        impl Write for Uart {
+            fn write_str(&mut self, s: &str) -> core::fmt::Result {
+                for b in s.bytes() {
+                    // SAFETY: the virt board's UART registers; wait until the transmit
+                    // holding register is empty (LSR bit 5), then write the byte.
+                    unsafe {
+                        while UART_LSR.read_volatile() & 0x20 == 0 {}
+                        UART_THR.write_volatile(b);
+                    }
+                }
+                Ok(())
+            }
+        }
+
+        /// One line to the host.
+        pub fn say(line: core::fmt::Arguments<'_>) {
+            let _ = Uart.write_fmt(line);
+            let _ = Uart.write_str("\n");
+        }
+
+        /// Ends QEMU with `status`.
+        fn finish(status: u32) -> ! {
+            let word = if status == 0 {
+                0x5555
+            } else {
+                (status << 16) | 0x3333
+            };
+            // SAFETY: the virt board's test device; the write ends the emulation.
+            unsafe { FINISHER.write_volatile(word) };
+            loop {
+                riscv::asm::wfi();
+            }
+        }
+
+        /// Ends the program (QEMU exits with status 0).
+        pub fn exit() -> ! {
+            finish(0)
+        }
+
+        #[panic_handler]
+        fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
+            say(format_args!("panic: {info}"));
+            finish(1)
+        }
+
+        unsafe extern "C" {
+            /// End of .bss (riscv-rt): the lowest address the stack may grow to.
+            static mut __sheap: u32;
+            /// Top of the stack (riscv-rt).
+            static _stack_start: u32;
+        }
+
+        /// The stack pointer.
+        fn sp() -> usize {
+            let sp: usize;
+            // SAFETY: reads a register.
+            unsafe { core::arch::asm!("mv {}, sp", out(reg) sp, options(nomem, nostack)) };
+            sp
+        }
+
+        /// Fills the free stack below the current stack pointer with the pattern.
+        pub fn paint_stack() {
+            // Leave 64 bytes under the current frame untouched.
+            let top = (sp() - 64) as *mut u32;
+            super::paint((&raw mut __sheap).cast::<u32>(), top);
+        }
+
+        /// Bytes of stack used since `paint_stack`.
+        pub fn stack_used() -> usize {
+            super::painted_use(
+                (&raw mut __sheap).cast::<u32>(),
+                (&raw const _stack_start) as usize,
+            )
+        }
+
+        /// Exactly 4000 instructions: 1000 rounds of two `nop`s, a decrement and a branch.
+        #[inline(never)]
+        pub fn nops() {
+            // SAFETY: nops and a counted loop on a scratch register.
+            unsafe {
+                core::arch::asm!(
+                    "2:", "nop", "nop", "addi {n}, {n}, -1", "bnez {n}, 2b",
+                    n = inout(reg) 1000u32 => _,
+                    options(nomem, nostack),
+                );
+            }
+        }
+
+        #[riscv_rt::entry]
+        fn main() -> ! {
+            super::main()
+        }
+    }
+
     /// Writes one frame to the host as `fixray-<core>-<scene>[NN]-<format>.ppm` (`NN`:
     /// an animation's frame number, e.g. `fixray-cortex-m0-boing07-i16f16.ppm`; semihosting
     /// file I/O).
-    #[cfg(fw_ppm)]
+    #[cfg(all(fw_ppm, target_arch = "arm"))]
     fn write_ppm<S: Scalar>(
         name: &str,
         frame_no: Option<u16>,
@@ -155,7 +355,7 @@ mod firmware {
             )
         };
         if fd as isize == -1 {
-            hprintln!("format={} ppm=failed", S::NAME);
+            say(format_args!("format={} ppm=failed", S::NAME));
             return;
         }
         let write = |bytes: &[u8]| {
@@ -181,7 +381,11 @@ mod firmware {
         }
         // SAFETY: semihosting CLOSE of the descriptor opened above.
         unsafe { syscall!(CLOSE, fd) };
-        hprintln!("format={} ppm={}", S::NAME, name.trim_end_matches('\0'));
+        say(format_args!(
+            "format={} ppm={}",
+            S::NAME,
+            name.trim_end_matches('\0')
+        ));
     }
 
     /// How pure-geometry plane scenes are drawn (`FIXRAY_FW_SPANS=1`: in spans).
@@ -236,25 +440,25 @@ mod firmware {
         let mut scene = Scene::<S>::empty();
         let mut files = |name: &str| TEXTURES.iter().find(|t| t.0 == name).map(|t| t.1);
         if let Err(e) = scene.read_with(text, None, &mut files) {
-            hprintln!(
+            say(format_args!(
                 "format={} scene={} error=\"scenes/{}.scene:{}\"",
                 S::NAME,
                 name,
                 name,
                 e
-            );
+            ));
             return;
         }
         let parsed = instructions();
         let w = usize::from(scene.camera.width);
         if w > MAX_WIDTH {
-            hprintln!(
+            say(format_args!(
                 "format={} scene={} error=\"width {} > line buffer {}\"",
                 S::NAME,
                 name,
                 w,
                 MAX_WIDTH
-            );
+            ));
             return;
         }
         frames_of(name, &mut scene, parsed - start, line);
@@ -274,7 +478,12 @@ mod firmware {
             match Bounce::boing(&scene.objects) {
                 Ok(b) => Some(b),
                 Err(e) => {
-                    hprintln!("format={} scene={} error=\"{}\"", S::NAME, name, e);
+                    say(format_args!(
+                        "format={} scene={} error=\"{}\"",
+                        S::NAME,
+                        name,
+                        e
+                    ));
                     return;
                 }
             }
@@ -284,7 +493,12 @@ mod firmware {
         for k in 0..bounce.map_or(1, |b| b.frames()) {
             if let Some(b) = bounce {
                 if let Err(e) = b.apply(scene, k) {
-                    hprintln!("format={} scene={} error=\"{}\"", S::NAME, name, e);
+                    say(format_args!(
+                        "format={} scene={} error=\"{}\"",
+                        S::NAME,
+                        name,
+                        e
+                    ));
                     return;
                 }
                 if k > 0 {
@@ -337,7 +551,7 @@ mod firmware {
         let pixels = (w as u64) * u64::from(h);
         let frame = after - before;
         let tenths = frame * 10 / pixels;
-        hprintln!(
+        say(format_args!(
             "format={} size={}x{} hash=0x{:08x} instructions={} per_pixel={}.{} stack={} parse_instructions={} hash_instructions={} core={} scene={} mode={:?}{}",
             S::NAME,
             w,
@@ -353,8 +567,8 @@ mod firmware {
             name,
             MODE,
             FrameNo(frame_no)
-        );
-        #[cfg(fw_ppm)]
+        ));
+        #[cfg(all(fw_ppm, target_arch = "arm"))]
         write_ppm(name, frame_no, scene, line);
     }
 
@@ -370,46 +584,23 @@ mod firmware {
         }
     }
 
-    /// Exactly 4000 instructions: 1000 rounds of two `nop`s, a subtract and a branch.
-    #[inline(never)]
-    fn nops() {
-        // SAFETY: nops and a counted loop on a scratch register.
-        unsafe {
-            core::arch::asm!(
-                "2:", "nop", "nop", "subs {n}, #1", "bne 2b",
-                n = inout(reg) 1000u32 => _,
-                options(nomem, nostack),
-            );
-        }
-    }
-
-    #[entry]
+    /// Calibrates the count, then renders every scene in every format built in.
     fn main() -> ! {
-        let mut core = cortex_m::Peripherals::take().unwrap();
-        let syst = &mut core.SYST;
-        syst.set_clock_source(SystClkSource::Core);
-        syst.set_reload(0x00FF_FFFF);
-        syst.clear_current();
-        syst.enable_interrupt();
-        syst.enable_counter();
-        // The counter starts at 0 and loads the reload value on its first tick; wait for
-        // that, so that counting starts from a full period.
-        while SYST::get_current() == 0 {}
-
-        // Calibration: 4000 nops must count as 4000 instructions (± one tick), plus the
-        // few instructions of the two reads.
+        board::start();
+        // Calibration: 4000 instructions must count as 4000 (± one tick on the Arm
+        // boards), plus the few instructions of the two reads.
         let a = instructions();
-        nops();
+        board::nops();
         let b = instructions();
-        hprintln!("calibration nops=4000 counted={} core={}", b - a, BOARD.0);
+        say(format_args!(
+            "calibration nops=4000 counted={} core={}",
+            b - a,
+            BOARD.0
+        ));
 
         let mut line = [Rgb888::new(0, 0, 0); MAX_WIDTH];
         // Every format of the one list, in its order; `frames` skips those not built in.
         fixray::for_each_format!(all: frames(&mut line));
-        debug::exit(debug::EXIT_SUCCESS);
-        // Only reached without a semihosting host: sleep.
-        loop {
-            cortex_m::asm::wfi();
-        }
+        board::exit()
     }
 }

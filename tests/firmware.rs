@@ -1,9 +1,9 @@
-//! Bit-exact determinism: the firmware's frame hash under QEMU (Cortex-M0 and Cortex-M4F)
-//! equals the host's hash of the same scene in the same format, for every fixed format.
-//! For f32 the result is reported (and explained in the README), not asserted.
+//! Bit-exact determinism: the firmware's frame hash under QEMU (Cortex-M0, Cortex-M4F and
+//! RISC-V rv32imc) equals the host's hash of the same scene in the same format, for every
+//! fixed format. For f32 the result is reported (and explained in the README), not asserted.
 //!
-//! Needs `qemu-system-arm` and the thumb targets, so it is ignored by a plain `cargo test`;
-//! `.ci/run` installs both and runs it:
+//! Needs `qemu-system-arm`, `qemu-system-riscv32` and the three targets, so it is ignored by
+//! a plain `cargo test`; `.ci/run` installs them and runs it:
 //! ```text
 //! cargo test --release --test firmware -- --ignored --nocapture
 //! ```
@@ -60,9 +60,12 @@ fn a_missing_report_field_is_not_a_zero() {
 }
 
 #[test]
-#[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
+#[ignore = "needs QEMU (arm, riscv32) and the firmware targets; run by .ci/run"]
 fn firmware_frames_match_the_host_bit_for_bit() {
-    assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
+    assert!(
+        qemu::qemu_available(),
+        "qemu-system-arm or qemu-system-riscv32 is not installed"
+    );
     // Every format of the one list but the f64 reference (soft float on both cores).
     let host: Vec<(&str, [u32; 2])> = fixray::num::formats::FORMATS
         .into_iter()
@@ -130,9 +133,12 @@ fn firmware_frames_match_the_host_bit_for_bit() {
 /// the full renderer against the same scene with every other stage compiled out: at most
 /// 5 % more instructions (instruction counts are deterministic).
 #[test]
-#[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
+#[ignore = "needs QEMU (arm, riscv32) and the firmware targets; run by .ci/run"]
 fn absent_effects_cost_nothing_on_the_chip() {
-    assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
+    assert!(
+        qemu::qemu_available(),
+        "qemu-system-arm or qemu-system-riscv32 is not installed"
+    );
     let target = "thumbv7em-none-eabihf";
     let scenes = "default,planes,horizon,spheres,tiles,specular,spotlight,mirror";
     let mut report = String::from(
@@ -216,12 +222,15 @@ fn absent_effects_cost_nothing_on_the_chip() {
 
 /// The course's entities on the chips (issue 15): one shipped scene each (translucency,
 /// a textured plane, a projector, surfaces of revolution), built with the `textures`
-/// feature (its texture, 32×32, in flash), in I16F16 and f32 on both cores: instructions
+/// feature (its texture, 32×32, in flash), in I16F16 and f32 on the three cores: instructions
 /// per pixel, flash, and the frame hash against the host's (equal in I16F16, asserted).
 #[test]
-#[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
+#[ignore = "needs QEMU (arm, riscv32) and the firmware targets; run by .ci/run"]
 fn course_entities_on_the_chips() {
-    assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
+    assert!(
+        qemu::qemu_available(),
+        "qemu-system-arm or qemu-system-riscv32 is not installed"
+    );
     let scenes = [
         ("translucent", include_str!("../scenes/translucent.scene")),
         ("texplane", include_str!("../scenes/texplane.scene")),
@@ -300,11 +309,14 @@ fn course_entities_on_the_chips() {
 /// frame that outgrows 16 KB is a HardFault under QEMU (QEMU then exits with an error),
 /// one that eats the headroom a report above the budget: either fails here.
 #[test]
-#[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
+#[ignore = "needs QEMU (arm, riscv32) and the firmware targets; run by .ci/run"]
 fn i32f32_fits_the_cortex_m0_in_every_shipped_scene() {
     /// 16 KB of RAM on the micro:bit's Cortex-M0, less 2 KB of headroom.
     const M0_RAM_BUDGET: u64 = 14 * 1024;
-    assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
+    assert!(
+        qemu::qemu_available(),
+        "qemu-system-arm or qemu-system-riscv32 is not installed"
+    );
     let names = [
         "default",
         "planes",
@@ -362,12 +374,16 @@ fn boing_hash<S: Scalar>(k: u16) -> u32 {
 /// The boing ball (issue 25) as the README's plain firmware commands build it (default
 /// features and formats, I16F16 and f32): 16 frames on each core, every frame's hash
 /// equal to the host's (asserted for both formats: f32 is correctly rounded everywhere),
-/// and the animation's table (instructions per pixel, frames per second at 133 and 168
-/// MHz if an instruction took a cycle) to stdout and `target/boing-report.md`.
+/// and the animation's table (instructions per pixel per core, frames per second at 133
+/// MHz on the M0 and 168 MHz on the M4F if an instruction took a cycle) to stdout and
+/// `target/boing-report.md`.
 #[test]
-#[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
-fn the_boing_ball_bounces_bit_for_bit_on_both_cores() {
-    assert!(qemu::qemu_available(), "qemu-system-arm is not installed");
+#[ignore = "needs QEMU (arm, riscv32) and the firmware targets; run by .ci/run"]
+fn the_boing_ball_bounces_bit_for_bit_on_every_core() {
+    assert!(
+        qemu::qemu_available(),
+        "qemu-system-arm or qemu-system-riscv32 is not installed"
+    );
     let mut per_pixel = std::collections::BTreeMap::new();
     let mut mismatches = Vec::new();
     for (target, core) in qemu::CORES {
@@ -385,28 +401,29 @@ fn the_boing_ball_bounces_bit_for_bit_on_both_cores() {
         }
     }
     let mut report = String::from(
-        "| format | frame | M0 instructions/pixel | M4F instructions/pixel | fps at 133 MHz (M0) | fps at 168 MHz (M4F) |\n|---|---|---|---|---|---|\n",
+        "| format | frame | M0 instructions/pixel | M4F instructions/pixel | RISC-V instructions/pixel | fps at 133 MHz (M0) | fps at 168 MHz (M4F) |\n|---|---|---|---|---|---|---|\n",
     );
     let pixels = 128.0 * 64.0;
     for format in ["i16f16", "f32"] {
-        let (mut m0_sum, mut m4_sum) = (0.0, 0.0);
+        let mut sums = [0.0; 3];
         for k in 0..16u16 {
-            let m0 = per_pixel[&(format.to_string(), k, "cortex-m0")];
-            let m4 = per_pixel[&(format.to_string(), k, "cortex-m4f")];
-            m0_sum += m0;
-            m4_sum += m4;
+            let costs = qemu::CORES.map(|(_, core)| per_pixel[&(format.to_string(), k, core)]);
+            for (sum, c) in sums.iter_mut().zip(costs) {
+                *sum += c;
+            }
+            let [m0, m4, rv] = costs;
             writeln!(
                 report,
-                "| {format} | {k} | {m0:.1} | {m4:.1} | {:.1} | {:.1} |",
+                "| {format} | {k} | {m0:.1} | {m4:.1} | {rv:.1} | {:.1} | {:.1} |",
                 133e6 / (m0 * pixels),
                 168e6 / (m4 * pixels)
             )
             .unwrap();
         }
-        let (m0, m4) = (m0_sum / 16.0, m4_sum / 16.0);
+        let [m0, m4, rv] = sums.map(|s| s / 16.0);
         writeln!(
             report,
-            "| {format} | **mean** | **{m0:.1}** | **{m4:.1}** | **{:.1}** | **{:.1}** |",
+            "| {format} | **mean** | **{m0:.1}** | **{m4:.1}** | **{rv:.1}** | **{:.1}** | **{:.1}** |",
             133e6 / (m0 * pixels),
             168e6 / (m4 * pixels)
         )

@@ -1,4 +1,4 @@
-//! Builds `examples/firmware.rs` for a Cortex-M target, runs it under QEMU through the
+//! Builds `examples/firmware.rs` for a Cortex-M or RISC-V target, runs it under QEMU through the
 //! cargo runner (`.cargo/config.toml`), and reads what it reports. Part of the
 //! test-support module (`tests/firmware.rs`), shared with `xtask` (the accuracy report
 //! and `cargo xtask firmware`).
@@ -8,10 +8,11 @@ use std::process::Command;
 
 use object::{Object as _, ObjectSection as _};
 
-/// The two cores: Rust target and the name the firmware reports.
-pub const CORES: [(&str, &str); 2] = [
+/// The three cores: Rust target and the name the firmware reports.
+pub const CORES: [(&str, &str); 3] = [
     ("thumbv6m-none-eabi", "cortex-m0"),
     ("thumbv7em-none-eabihf", "cortex-m4f"),
+    ("riscv32imc-unknown-none-elf", "riscv32imc"),
 ];
 
 /// One `format=...` line of the firmware: its `key=value` fields.
@@ -63,12 +64,14 @@ pub fn root() -> std::path::PathBuf {
     }
 }
 
-/// Whether `qemu-system-arm` can be started.
+/// Whether `qemu-system-arm` and `qemu-system-riscv32` can be started.
 pub fn qemu_available() -> bool {
-    Command::new("qemu-system-arm")
-        .arg("--version")
-        .output()
-        .is_ok_and(|o| o.status.success())
+    ["qemu-system-arm", "qemu-system-riscv32"].iter().all(|q| {
+        Command::new(q)
+            .arg("--version")
+            .output()
+            .is_ok_and(|o| o.status.success())
+    })
 }
 
 /// Builds and runs the firmware for `target` with the given formats and scenes (comma
@@ -166,7 +169,16 @@ fn run_with(
     };
     Ok(Run {
         frames,
-        flash: size(&[".vector_table", ".text", ".rodata", ".data"]),
+        // What the image holds: cortex-m-rt's sections, and riscv-rt's (`.init.rust`, the
+        // unwind tables it keeps).
+        flash: size(&[
+            ".vector_table",
+            ".text",
+            ".init.rust",
+            ".rodata",
+            ".eh_frame",
+            ".data",
+        ]),
         static_ram: size(&[".data", ".bss", ".uninit"]),
     })
 }

@@ -24,7 +24,7 @@ pub(super) fn per_pixel(run: &qemu::Run) -> BTreeMap<String, f64> {
 pub(super) fn measure_firmware(log: &mut String) -> BTreeMap<(String, String), Firmware> {
     let mut out = BTreeMap::new();
     if !qemu::qemu_available() {
-        log.push_str("qemu-system-arm not found: no firmware figures.\n");
+        log.push_str("qemu-system-arm or qemu-system-riscv32 not found: no firmware figures.\n");
         return out;
     }
     let scenes: Vec<&str> = SCENES.iter().map(|s| s.0).collect();

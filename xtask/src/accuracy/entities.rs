@@ -100,7 +100,10 @@ pub(super) fn entities_section(quick: bool) -> String {
         return r;
     }
     if !qemu::qemu_available() {
-        let _ = writeln!(r, "qemu-system-arm not found: no firmware figures.");
+        let _ = writeln!(
+            r,
+            "qemu-system-arm or qemu-system-riscv32 not found: no firmware figures."
+        );
         return r;
     }
     let names = ENTITY_SCENES.map(|s| s.0).join(",");

@@ -1,6 +1,6 @@
 //! `accuracy`: what each bit of accuracy costs in time. Measures every number format on
 //! every shipped scene against the f64 reference (accuracy), on the host (criterion
-//! medians) and on Cortex-M0 and Cortex-M4F under QEMU (instructions, flash), sweeps the
+//! medians) and on Cortex-M0, Cortex-M4F and RISC-V rv32imc under QEMU (instructions, flash), sweeps the
 //! precision epsilon on the grazing scene, and writes `docs/accuracy.md` and
 //! `docs/accuracy.png`. Never edit those by hand: run
 //!
@@ -34,7 +34,7 @@ use criterion::Criterion;
 use embedded_graphics::mono_font::{MonoTextStyle, ascii::FONT_6X10};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
-use embedded_graphics::primitives::{Circle, Line, PrimitiveStyle, Rectangle};
+use embedded_graphics::primitives::{Circle, Line, PrimitiveStyle, Rectangle, Triangle};
 use embedded_graphics::text::{Alignment, Text};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use fixray::compare::{Comparison, compare};

@@ -43,7 +43,7 @@ pub(super) fn plot(
     let _ = d.clear(Rgb888::WHITE);
     let text = MonoTextStyle::new(&FONT_6X10, Rgb888::BLACK);
     let title = if use_fw {
-        "What accuracy costs (default scene). x: instructions per pixel under QEMU; circle: Cortex-M0, square: Cortex-M4F; lines: Pareto fronts"
+        "What accuracy costs (default scene). x: instructions per pixel under QEMU; circle: Cortex-M0, square: Cortex-M4F, triangle: RISC-V rv32imc; lines: Pareto fronts"
     } else {
         "What accuracy costs (default scene). x: host ns per pixel; lines: Pareto front"
     };
@@ -174,7 +174,7 @@ pub(super) fn panel(
     )
     .draw(d);
     let _ = Text::new(ylabel, origin + Point::new(left, top - 8), text).draw(d);
-    for core in ["cortex-m0", "cortex-m4f", "host"] {
+    for core in ["cortex-m0", "cortex-m4f", "riscv32imc", "host"] {
         let mut pts: Vec<&(f64, f64, &str, &str, &str)> =
             points.iter().filter(|p| p.3 == core).collect();
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -188,10 +188,10 @@ pub(super) fn panel(
             })
             .map(|p| Point::new(px(p.0), py(p.1)))
             .collect();
-        let colour = if core == "cortex-m0" {
-            Rgb888::new(150, 150, 150)
-        } else {
-            Rgb888::BLACK
+        let colour = match core {
+            "cortex-m0" => Rgb888::new(150, 150, 150),
+            "riscv32imc" => Rgb888::new(90, 120, 200),
+            _ => Rgb888::BLACK,
         };
         for pair in front.windows(2) {
             let _ = Line::new(pair[0], pair[1])
@@ -206,6 +206,14 @@ pub(super) fn panel(
             let _ = Rectangle::with_center(c, Size::new(11, 11))
                 .into_styled(style)
                 .draw(d);
+        } else if *core == "riscv32imc" {
+            let _ = Triangle::new(
+                c + Point::new(0, -7),
+                c + Point::new(-7, 6),
+                c + Point::new(7, 6),
+            )
+            .into_styled(style)
+            .draw(d);
         } else {
             let _ = Circle::with_center(c, 12).into_styled(style).draw(d);
         }

@@ -215,7 +215,7 @@ pub(super) fn write_report(
             "## Scene `{scene}`: {what}\n\n\
              | format | max \\|Δt\\| | max \\|Δt\\| (DELTAs) | mean \\|Δt\\| | max hit error | \
              objects | differ | PSNR dB | SSIM | host ms/frame | × f64 | M0 instr/px | \
-             M4F instr/px |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+             M4F instr/px | RISC-V instr/px |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
         );
         for (format, _) in FORMATS {
             let a = &accuracy[&(scene, format)];
@@ -223,7 +223,7 @@ pub(super) fn write_report(
             let ns = host.get(&(scene, format)).copied();
             let _ = writeln!(
                 r,
-                "| {format} | {} | {} | {} | {} | {:.3} % | {:.3} % | {} | {:.4} | {} | {} | {} | {} |",
+                "| {format} | {} | {} | {} | {} | {:.3} % | {:.3} % | {} | {:.4} | {} | {} | {} | {} | {} |",
                 fmt_sci(c.max_dt),
                 if c.max_dt == 0.0 {
                     "0".into()
@@ -247,6 +247,7 @@ pub(super) fn write_report(
                 },
                 firmware_cell(fw, "cortex-m0", format, scene),
                 firmware_cell(fw, "cortex-m4f", format, scene),
+                firmware_cell(fw, "riscv32imc", format, scene),
             );
         }
         r.push('\n');
@@ -256,7 +257,7 @@ pub(super) fn write_report(
     if !fw.is_empty() {
         let _ = writeln!(
             r,
-            "## Flash and RAM per format\n\n| format | M0 flash | M0 RAM | M4F flash | M4F RAM |\n|---|---|---|---|---|"
+            "## Flash and RAM per format\n\n| format | M0 flash | M0 RAM | M4F flash | M4F RAM | RISC-V flash | RISC-V RAM |\n|---|---|---|---|---|---|---|"
         );
         for (format, _) in FORMATS.iter().filter(|(f, _)| *f != "f64") {
             let cell = |core: &str| {
@@ -267,7 +268,11 @@ pub(super) fn write_report(
             };
             let (m0f, m0r) = cell("cortex-m0");
             let (m4f, m4r) = cell("cortex-m4f");
-            let _ = writeln!(r, "| {format} | {m0f} | {m0r} | {m4f} | {m4r} |");
+            let (rvf, rvr) = cell("riscv32imc");
+            let _ = writeln!(
+                r,
+                "| {format} | {m0f} | {m0r} | {m4f} | {m4r} | {rvf} | {rvr} |"
+            );
         }
         r.push('\n');
     }
