@@ -79,6 +79,10 @@ struct Level<S: Scalar> {
     /// A tiled plane's tile row, the same at every hit of the row
     /// ([`crate::PlaneFrame::tile_row`]; `None`: each pixel looks its tile up whole).
     tile_row: Option<i32>,
+    /// Whether [`lean_color`] may draw the row's pixels: every light has its row terms
+    /// and weights, the sums are exact, the sides are kept and no plane can shadow the
+    /// row (a plane's shadow test needs the segments' tolerance at each pixel).
+    lean: bool,
 }
 
 /// A light's terms that are the same at every hit of a row (`N.x = 0` and the hits
@@ -271,7 +275,29 @@ fn level<S: Scalar, T: Stages>(
         } => frame.tile_row(y, z),
         _ => None,
     };
+    let spheres_only = occluders.iter().all(|&bits| {
+        scene
+            .objects
+            .iter()
+            .enumerate()
+            .all(|(i, o)| bits & (1 << i) == 0 || matches!(o.shape, Shape::Sphere(_)))
+    });
+    let lean = S::EXACT_SUMS
+        && !sides.is_empty()
+        && occluders.len() == lights
+        && row_lights.len() == lights
+        && weights.len() == 2 * ROW_LIGHTS
+        && spheres_only
+        && row_lights
+            .iter()
+            .all(|rl| rl.l.is_none() || rl.yz.is_some())
+        && match object.shape {
+            Shape::Tiled { .. } => tile_row.is_some(),
+            Shape::Plane(_) => true,
+            _ => false,
+        };
     Some(Some(Level {
+        lean,
         tile_row,
         index,
         t,
@@ -399,7 +425,10 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             Some(()) => Ok(None),
         };
         let color = match found {
-            Ok(None) => self.plane(column),
+            Ok(None) => match self.lean() {
+                Some(c) => c,
+                None => self.plane(column),
+            },
             Ok(Some(h)) => self.other(&h),
             Err(()) => self.reference(column),
         };
@@ -419,6 +448,26 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             &mut self.memo,
             self.y,
             column,
+            self.counters,
+        )
+    }
+
+    /// The row's plane at the current pixel by [`lean_color`] (`None`: [`Pixels::plane`]
+    /// draws it).
+    #[inline(never)]
+    fn lean(&mut self) -> Option<Color<S>> {
+        // Only formats with exact sums have lean rows: in the others (floats) this is
+        // all there is of it (flash).
+        if !S::EXACT_SUMS {
+            return None;
+        }
+        let l = self.level.as_ref().filter(|l| l.lean)?;
+        lean_color(
+            self.scene,
+            self.p,
+            &self.state,
+            l,
+            &mut self.memo,
             self.counters,
         )
     }
@@ -471,15 +520,7 @@ fn plane_color<S: Scalar, T: Stages>(
             .and_then(|tx| eye.x.checked_add(tx))
             .map(|x| Vec3::new(x, l.y, l.z))
             .and_then(|point| {
-                let twice = d.max_abs().checked_add(d.max_abs())?;
-                let t_bound = match memo.bound {
-                    Some((k, b)) if k == twice => b,
-                    _ => {
-                        let b = l.t.checked_mul(twice)?;
-                        memo.bound = Some((twice, b));
-                        b
-                    }
-                };
+                let t_bound = hit_bound(l, d, memo)?;
                 Some(Hit { t: t_bound, point })
             });
     let Some(hit) = hit else {
@@ -548,17 +589,7 @@ fn lit<S: Scalar, T: Stages>(
     }
     let eye = scene.camera.viewpoint;
     let tol = if T::SHADOWS {
-        // `surface_tolerance(t, m)` is `(t + c)·ulp(max(1, t, m))`.
-        let m = eye.max_abs().max(hit.point.max_abs());
-        let ulp = S::ONE.max(hit.t).max(m).ulp();
-        match memo.tol {
-            Some((t, u, tol)) if t == hit.t && u == ulp => tol,
-            _ => {
-                let tol = surface_tolerance(hit.t, m)?;
-                memo.tol = Some((hit.t, ulp, tol));
-                tol
-            }
-        }
+        segment_tolerance(eye, hit.point, hit.t, memo)?
     } else {
         S::ZERO
     };
@@ -640,6 +671,150 @@ fn lit<S: Scalar, T: Stages>(
         }
     }
     Some(color)
+}
+
+/// [`plane_color`] for the rows it draws most (a [`Level::lean`] row): the same
+/// operations in the same order, bit for bit, without its general cases. `None` (and
+/// nothing counted) where a pixel needs one of them: the caller then draws it with
+/// [`plane_color`]. Those cases: a quantity out of the format's range (the hit, its
+/// distance bound or the segments' tolerance: `plane_color` takes the reference path or
+/// the general shading there), a material missing, a light whose `|L|²` does not fit
+/// or is not positive, and a sphere whose shadow cone does not clear the pixel (its exact
+/// segment test needs the tolerance, [`occluded`]).
+#[inline(always)]
+fn lean_color<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    state: &Row<S>,
+    l: &Level<S>,
+    memo: &mut Memo<S>,
+    counters: &mut Counters,
+) -> Option<Color<S>> {
+    let d = Primary::dir(state);
+    let eye = scene.camera.viewpoint;
+    let x = eye.x.checked_add(l.t.checked_mul(d.x)?)?;
+    let point = Vec3::new(x, l.y, l.z);
+    let t_bound = hit_bound(l, d, memo)?;
+    let object = scene.objects.get(l.index)?;
+    let m = match (object.shape, l.tile_row) {
+        (Shape::Tiled { frame, alt, .. }, Some(j)) => {
+            if frame.odd_tile_in_row(point, j) == Some(true) {
+                alt
+            } else {
+                object.material
+            }
+        }
+        (Shape::Plane(_), _) => object.material,
+        _ => return None,
+    };
+    let material = scene.materials.get(usize::from(m))?;
+    let tiled = u32::from(l.tile_row.is_some() && matches!(object.shape, Shape::Tiled { .. }));
+    let mut color = material.ambient;
+    if material.diffuse == [S::ZERO; 3] {
+        counters_add(&mut counters.tile_lookups, tiled);
+        return Some(color);
+    }
+    // The tolerance is not used here (no segment test), but where it does not fit,
+    // `plane_color` shades the pixel the general way.
+    segment_tolerance(eye, point, t_bound, memo)?;
+    let slot = usize::from(m != l.materials[0]) * ROW_LIGHTS;
+    let n = l.sides.len();
+    let (mut shadow_rays, mut diffuse) = (0u32, 0u32);
+    for (j, (light, rl)) in scene.lights.iter().zip(&l.lights).enumerate() {
+        let (Some(lx), Some((ly, lz))) = (light.location.x.checked_sub(x), rl.l) else {
+            continue;
+        };
+        let ll = S::acc_round(S::acc_add(S::acc_mul(lx, lx)?, rl.yz?)?)?;
+        if ll <= S::ZERO {
+            return None;
+        }
+        let Some(nl) = rl.nl else {
+            continue;
+        };
+        shadow_rays += 1;
+        let to_light = Vec3::new(lx, ly, lz);
+        let mut bits = *l.occluders.get(j)?;
+        // As `occluded`: the slice of this light's sides must be there.
+        p.at_lights().get(j * n..)?.get(..n)?;
+        while bits != 0 {
+            let i = usize::try_from(bits.trailing_zeros()).ok()?;
+            bits &= bits - 1;
+            // Only spheres (`Level::lean`): cleared by their cone, or the exact test.
+            let cleared = p.cones().iter().any(|c| {
+                usize::from(c.light) == j && usize::from(c.object) == i && c.clears(to_light, ll)
+            });
+            if !cleared {
+                return None;
+            }
+        }
+        let falloff = diffuse_falloff(nl, rl.knl, ll);
+        diffuse += 1;
+        let w = *l.weights.get(slot + j)?;
+        // The three channels written out (as `lit`'s loop over them): the entry's
+        // overflow bits, then `w·falloff` added, saturating.
+        let overflow = l.overflow >> (3 * (slot + j));
+        let add = |c: S, w: S, bit: u16| {
+            let t = if overflow & bit == 0 {
+                w.checked_mul(falloff)
+            } else {
+                None
+            };
+            add_sat(c, t.unwrap_or(S::MAX))
+        };
+        color = [
+            add(color[0], w[0], 1),
+            add(color[1], w[1], 2),
+            add(color[2], w[2], 4),
+        ];
+    }
+    counters_add(&mut counters.tile_lookups, tiled);
+    counters_add(&mut counters.shadow_rays, shadow_rays);
+    counters_add(&mut counters.diffuse, diffuse);
+    Some(color)
+}
+
+/// `count` `n` times.
+#[inline(always)]
+fn counters_add(counter: &mut u32, n: u32) {
+    for _ in 0..n {
+        count(counter);
+    }
+}
+
+/// As `Primary::point`: the bound `t'·2|D|∞` on the hit's world distance, remembered
+/// for the last `2|D|∞` (`None`: it does not fit).
+#[inline(always)]
+fn hit_bound<S: Scalar>(l: &Level<S>, d: Vec3<S>, memo: &mut Memo<S>) -> Option<S> {
+    let twice = d.max_abs().checked_add(d.max_abs())?;
+    match memo.bound {
+        Some((k, b)) if k == twice => Some(b),
+        _ => {
+            let b = l.t.checked_mul(twice)?;
+            memo.bound = Some((twice, b));
+            Some(b)
+        }
+    }
+}
+
+/// The segments' tolerance at a hit (`surface_tolerance(t, m)`: `(t + c)·ulp(max(1, t,
+/// m))`), remembered for the last `(t, ulp)` (`None`: it does not fit).
+#[inline(always)]
+fn segment_tolerance<S: Scalar>(
+    eye: Vec3<S>,
+    point: Vec3<S>,
+    t: S,
+    memo: &mut Memo<S>,
+) -> Option<S> {
+    let m = eye.max_abs().max(point.max_abs());
+    let ulp = S::ONE.max(t).max(m).ulp();
+    match memo.tol {
+        Some((k, u, tol)) if k == t && u == ulp => Some(tol),
+        _ => {
+            let tol = surface_tolerance(t, m)?;
+            memo.tol = Some((t, ulp, tol));
+            Some(tol)
+        }
+    }
 }
 
 /// `occludes_segment` for a row's hit with the planes' sides known and no light on a

@@ -46,8 +46,8 @@
 //!   `cargo install probe-rs-tools` (once):
 //!   `probe-rs run --chip RP2040 target/thumbv6m-none-eabi/release/fixray-rp2040-st7789`.
 //!
-//! Uncommenting one of the `runner` lines in `.cargo/config.toml` makes
-//! `cargo run --release` do the same.
+//! `cargo run --release` runs `elf2uf2-rs -d` (the `runner` in `.cargo/config.toml`; the
+//! probe-rs line beside it is the other way).
 //!
 //! # What you should see
 //!
