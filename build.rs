@@ -4,11 +4,13 @@
 //! `no_long_multiply` is set for cores without a 32 × 32 → 64 multiply (ARMv6-M, ARMv8-M
 //! Baseline): see `src/num/wide.rs`.
 //!
-//! For Cortex-M targets (`thumb*`):
-//! - puts `memory.x` on the linker's search path and links the examples with
-//!   `cortex-m-rt`'s `link.x`;
+//! For the firmware targets (Cortex-M `thumb*`, and RISC-V `riscv32*-none-elf`):
+//! - hands the board's layout to this package's examples only (`memory.x`, included by
+//!   `cortex-m-rt`'s `link.x`; `memory-riscv.x`, read before `riscv-rt`'s `link.x`): a
+//!   crate that depends on fixray links with its own;
 //! - `fw_microbit` (thumbv6m: the BBC micro:bit, SysTick at 16 MHz) or `fw_mps2`
-//!   (otherwise: MPS2 AN386, SysTick at 25 MHz) tell `examples/firmware.rs` its board;
+//!   (other thumb targets: MPS2 AN386, SysTick at 25 MHz) tell `examples/firmware.rs` its
+//!   Arm board (on RISC-V it has one board, QEMU's virt, by `target_arch`);
 //! - `FIXRAY_FW_FORMATS` (default `i16f16,f32`: more formats beside them do not fit
 //!   256 KB of flash, build them on their own) chooses which number formats the firmware
 //!   renders (checked against the one list, `src/num/formats.rs`, and handed to the
@@ -58,7 +60,6 @@ fn main() {
         "fw_microbit",
         "fw_mps2",
         "fw_ppm",
-        "fw_riscv",
         "fw_spans",
         "no_long_multiply",
     ] {
@@ -99,14 +100,14 @@ fn main() {
     }
     println!("cargo:rustc-link-arg-examples=-Tlink.x");
 
-    let board = if riscv {
-        "fw_riscv"
-    } else if target.starts_with("thumbv6m") {
-        "fw_microbit"
-    } else {
-        "fw_mps2"
-    };
-    println!("cargo:rustc-cfg={board}");
+    if !riscv {
+        let board = if target.starts_with("thumbv6m") {
+            "fw_microbit"
+        } else {
+            "fw_mps2"
+        };
+        println!("cargo:rustc-cfg={board}");
+    }
     // The default is one fixed and one float format: with the course's tracer and every
     // effect built in, I16F16 and f32 take 219 KB of the 256 KB of flash in `memory.x` on
     // either core (issue 25; with I20F12 beside them it overflowed). Others build on

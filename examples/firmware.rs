@@ -45,7 +45,8 @@
 
 #[cfg(not(target_os = "none"))]
 fn main() {
-    // Firmware: build it for thumbv6m-none-eabi or thumbv7em-none-eabihf (see above).
+    // Firmware: build it for thumbv6m-none-eabi, thumbv7em-none-eabihf or
+    // riscv32imc-unknown-none-elf (see above).
 }
 
 #[cfg(target_os = "none")]
@@ -213,7 +214,8 @@ mod firmware {
     mod board {
         use core::fmt::Write;
 
-        /// Board name; instructions are counted one by one.
+        /// Board name (the Arm boards' second field, their SysTick rate, has no use
+        /// here: `minstret` counts instructions one by one).
         pub const BOARD: (&str, u64) = ("riscv32imc", 2);
 
         /// The 16550 UART's transmit register and line status register.
@@ -279,8 +281,21 @@ mod firmware {
             finish(1)
         }
 
+        /// Any exception (riscv-rt's default spins forever, until the runner's
+        /// `timeout`): its cause and address, then QEMU ends with status 3.
+        #[unsafe(export_name = "ExceptionHandler")]
+        fn exception(_frame: &riscv_rt::TrapFrame) -> ! {
+            let (cause, pc) = (
+                riscv::register::mcause::read().bits(),
+                riscv::register::mepc::read(),
+            );
+            say(format_args!("exception: mcause={cause:#x} mepc={pc:#x}"));
+            finish(3)
+        }
+
         unsafe extern "C" {
-            /// End of .bss (riscv-rt): the lowest address the stack may grow to.
+            /// End of .bss and of the (empty: `_heap_size` is 0) heap (riscv-rt): the
+            /// lowest address the stack may grow to.
             static mut __sheap: u32;
             /// Top of the stack (riscv-rt).
             static _stack_start: u32;

@@ -66,7 +66,7 @@ fn firmware_frames_match_the_host_bit_for_bit() {
         qemu::qemu_available(),
         "qemu-system-arm or qemu-system-riscv32 is not installed"
     );
-    // Every format of the one list but the f64 reference (soft float on both cores).
+    // Every format of the one list but the f64 reference (soft float on every core).
     let host: Vec<(&str, [u32; 2])> = fixray::num::formats::FORMATS
         .into_iter()
         .filter(|f| *f != fixray::num::formats::REFERENCE)
@@ -133,13 +133,14 @@ fn firmware_frames_match_the_host_bit_for_bit() {
 /// the full renderer against the same scene with every other stage compiled out: at most
 /// 5 % more instructions (instruction counts are deterministic).
 #[test]
-#[ignore = "needs QEMU (arm, riscv32) and the firmware targets; run by .ci/run"]
+#[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
 fn absent_effects_cost_nothing_on_the_chip() {
-    assert!(
-        qemu::qemu_available(),
-        "qemu-system-arm or qemu-system-riscv32 is not installed"
-    );
     let target = "thumbv7em-none-eabihf";
+    assert!(
+        qemu::qemu_available_for(target),
+        "{} is not installed",
+        qemu::qemu_for(target)
+    );
     let scenes = "default,planes,horizon,spheres,tiles,specular,spotlight,mirror";
     let mut report = String::from(
         "| scene (Cortex-M4F) | i16f16 instructions/pixel | f32 instructions/pixel |\n|---|---|---|\n",
@@ -309,13 +310,13 @@ fn course_entities_on_the_chips() {
 /// frame that outgrows 16 KB is a HardFault under QEMU (QEMU then exits with an error),
 /// one that eats the headroom a report above the budget: either fails here.
 #[test]
-#[ignore = "needs QEMU (arm, riscv32) and the firmware targets; run by .ci/run"]
+#[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
 fn i32f32_fits_the_cortex_m0_in_every_shipped_scene() {
     /// 16 KB of RAM on the micro:bit's Cortex-M0, less 2 KB of headroom.
     const M0_RAM_BUDGET: u64 = 14 * 1024;
     assert!(
-        qemu::qemu_available(),
-        "qemu-system-arm or qemu-system-riscv32 is not installed"
+        qemu::qemu_available_for("thumbv6m-none-eabi"),
+        "qemu-system-arm is not installed"
     );
     let names = [
         "default",

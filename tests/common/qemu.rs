@@ -64,14 +64,26 @@ pub fn root() -> std::path::PathBuf {
     }
 }
 
-/// Whether `qemu-system-arm` and `qemu-system-riscv32` can be started.
+/// The QEMU that runs a target's firmware (the runners in `.cargo/config.toml`).
+pub fn qemu_for(target: &str) -> &'static str {
+    if target.starts_with("riscv") {
+        "qemu-system-riscv32"
+    } else {
+        "qemu-system-arm"
+    }
+}
+
+/// Whether the QEMU for `target` can be started.
+pub fn qemu_available_for(target: &str) -> bool {
+    Command::new(qemu_for(target))
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+/// Whether the QEMU of every core in [`CORES`] can be started.
 pub fn qemu_available() -> bool {
-    ["qemu-system-arm", "qemu-system-riscv32"].iter().all(|q| {
-        Command::new(q)
-            .arg("--version")
-            .output()
-            .is_ok_and(|o| o.status.success())
-    })
+    CORES.iter().all(|(target, _)| qemu_available_for(target))
 }
 
 /// Builds and runs the firmware for `target` with the given formats and scenes (comma
@@ -169,8 +181,8 @@ fn run_with(
     };
     Ok(Run {
         frames,
-        // What the image holds: cortex-m-rt's sections, and riscv-rt's (`.init.rust`, the
-        // unwind tables it keeps).
+        // What the image holds: cortex-m-rt's sections, and riscv-rt's (`.init.rust`;
+        // `.eh_frame` only if a layout kept unwind tables: `memory-riscv.x` drops them).
         flash: size(&[
             ".vector_table",
             ".text",

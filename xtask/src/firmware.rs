@@ -7,7 +7,7 @@ use crate::qemu;
 
 pub fn main(args: &[String]) {
     if !qemu::qemu_available() {
-        eprintln!("qemu-system-arm is not installed");
+        eprintln!("qemu-system-arm or qemu-system-riscv32 is not installed (both are needed)");
         std::process::exit(1);
     }
     let all = fixray::num::formats::FORMATS

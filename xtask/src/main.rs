@@ -2,7 +2,7 @@
 //! `.cargo/config.toml`). They run on the host, never on a chip:
 //!
 //! ```text
-//! cargo xtask accuracy [--quick]   # docs/accuracy.md and docs/accuracy.png (needs qemu-system-arm)
+//! cargo xtask accuracy [--quick]   # docs/accuracy.md and docs/accuracy.png (needs qemu-system-arm, qemu-system-riscv32)
 //! cargo xtask numerics             # docs/numerics.md
 //! cargo xtask firmware [FORMATS]   # every core × format under QEMU: instructions, flash, hash
 //! ```

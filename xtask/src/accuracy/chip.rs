@@ -23,13 +23,17 @@ pub(super) fn per_pixel(run: &qemu::Run) -> BTreeMap<String, f64> {
 
 pub(super) fn measure_firmware(log: &mut String) -> BTreeMap<(String, String), Firmware> {
     let mut out = BTreeMap::new();
-    if !qemu::qemu_available() {
-        log.push_str("qemu-system-arm or qemu-system-riscv32 not found: no firmware figures.\n");
-        return out;
-    }
     let scenes: Vec<&str> = SCENES.iter().map(|s| s.0).collect();
     let scenes = scenes.join(",");
     for (target, core) in qemu::CORES {
+        if !qemu::qemu_available_for(target) {
+            let _ = writeln!(
+                log,
+                "{} not found: no {core} figures.",
+                qemu::qemu_for(target)
+            );
+            continue;
+        }
         for (format, _) in FORMATS.iter().filter(|(f, _)| *f != "f64") {
             eprintln!("firmware: {core} {format}");
             match qemu::run(target, format, &scenes) {
@@ -69,13 +73,13 @@ pub(super) fn measure_firmware(log: &mut String) -> BTreeMap<(String, String), F
     out
 }
 
-/// I16F16 firmware in span mode on both cores (instructions per pixel per scene).
+/// I16F16 firmware in span mode on every core (instructions per pixel per scene).
 pub(super) fn measure_spans(log: &mut String) -> BTreeMap<String, Firmware> {
     let mut out = BTreeMap::new();
-    if !qemu::qemu_available() {
-        return out;
-    }
     for (target, core) in qemu::CORES {
+        if !qemu::qemu_available_for(target) {
+            continue;
+        }
         eprintln!("firmware: {core} i16f16 spans");
         match qemu::run_spans(target, "i16f16", &FAST_SCENES.join(",")) {
             Ok(run) => {

@@ -1,7 +1,7 @@
 //! The course's entities (issue 15): one shipped scene each for translucency, a textured
 //! plane, a projector and surfaces of revolution, read with their texture files (the
 //! `textures` feature): error against f64 and host time per format, and instructions per
-//! pixel on both cores (I16F16 and f32, the firmware built with `textures`).
+//! pixel on the three cores (I16F16 and f32, the firmware built with `textures`).
 
 use super::*;
 
@@ -102,7 +102,7 @@ pub(super) fn entities_section(quick: bool) -> String {
     if !qemu::qemu_available() {
         let _ = writeln!(
             r,
-            "qemu-system-arm or qemu-system-riscv32 not found: no firmware figures."
+            "qemu-system-arm or qemu-system-riscv32 not found: no firmware figures (every core's is needed)."
         );
         return r;
     }

@@ -8,9 +8,10 @@
 //! cargo xtask accuracy
 //! ```
 //!
-//! The firmware columns need `qemu-system-arm` and the thumb targets (`.ci/run` installs
-//! both); without them the report says so and leaves those columns empty. `--quick` skips
-//! the firmware and shortens the host timing (for CI, which checks the command runs).
+//! The firmware columns need `qemu-system-arm`, `qemu-system-riscv32` and the firmware
+//! targets (`.ci/run` installs them); a core whose QEMU is missing is left out, and the
+//! report says so. `--quick` skips the firmware and shortens the host timing (to check
+//! the command runs).
 
 mod chip;
 mod entities;
