@@ -425,10 +425,13 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             Some(()) => Ok(None),
         };
         let color = match found {
-            Ok(None) => match self.lean() {
+            // The lean path exists only where sums are exact (fixed formats): elsewhere
+            // not even its call is made.
+            Ok(None) if S::EXACT_SUMS => match self.lean() {
                 Some(c) => c,
                 None => self.plane(column),
             },
+            Ok(None) => self.plane(column),
             Ok(Some(h)) => self.other(&h),
             Err(()) => self.reference(column),
         };
@@ -457,7 +460,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
     #[inline(never)]
     fn lean(&mut self) -> Option<Color<S>> {
         // Only formats with exact sums have lean rows: in the others (floats) this is
-        // all there is of it (flash).
+        // all there is of it (flash), and `pixel` does not call it.
         if !S::EXACT_SUMS {
             return None;
         }
