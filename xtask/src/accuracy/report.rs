@@ -32,8 +32,8 @@ pub(super) fn fast_section(
          - The reference path is the renderer as it was before the fast paths (one \
          normalised ray and one division per plane per pixel): *× reference* is the \
          speed-up over it, measured in the same run.\n\n\
-         | scene | format | path | differ vs reference | differ vs f64 | host ms/frame | host frames/s | × reference | M0 instr/px | M4F instr/px |\n\
-         |---|---|---|---|---|---|---|---|---|---|\n",
+         | scene | format | path | differ vs reference | differ vs f64 | host ms/frame | host frames/s | × reference | M0 instr/px | M4F instr/px | RISC-V instr/px |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for row in rows {
         let chip = |core: &str| -> String {
@@ -55,7 +55,7 @@ pub(super) fn fast_section(
         };
         let _ = writeln!(
             r,
-            "| {} | {} | {} | {:.3} % | {:.3} % | {:.3} | {:.0} | {:.1} | {} | {} |",
+            "| {} | {} | {} | {:.3} % | {:.3} % | {:.3} | {:.0} | {:.1} | {} | {} | {} |",
             row.scene,
             row.format,
             row.path,
@@ -66,6 +66,7 @@ pub(super) fn fast_section(
             row.ratio,
             chip("cortex-m0"),
             chip("cortex-m4f"),
+            chip("riscv32imc"),
         );
     }
     r
