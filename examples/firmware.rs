@@ -56,7 +56,7 @@ mod firmware {
     use fixray::hash::FrameHash;
     use fixray::{Frame, PlaneMode, Scalar, Scene};
 
-    use board::{BOARD, instructions, paint_stack, say, stack_used};
+    use board::{BOARD, instructions, say};
 
     // The scenes, as text (parsed on the chip): `SCENES`, chosen at build time by
     // FIXRAY_FW_SCENES (default: the default scene and the boing ball).
@@ -70,20 +70,33 @@ mod firmware {
     /// The painted stack's pattern.
     const PAINT: u32 = 0xC0DE_F00D;
 
-    /// Fills `[bottom, top)` (word addresses: the free stack below the current frame)
-    /// with `PAINT`.
-    fn paint(bottom: *mut u32, top: *mut u32) {
+    unsafe extern "C" {
+        /// End of .bss (and of the heap, empty: both runtimes' `_heap_size` is 0 here):
+        /// the lowest address the stack may grow to. cortex-m-rt and riscv-rt both
+        /// define it.
+        static mut __sheap: u32;
+        /// Top of the stack (both runtimes).
+        static _stack_start: u32;
+    }
+
+    /// Fills the free stack below the current stack pointer with `PAINT`.
+    fn paint_stack() {
+        let bottom = (&raw mut __sheap).cast::<u32>();
+        // Leave 64 bytes under the current frame untouched.
+        let top = (board::sp() - 64) as *mut u32;
         let mut p = bottom;
         while p < top {
-            // SAFETY: the caller hands over unused stack: nothing lives there now.
+            // SAFETY: [__sheap, sp − 64) is unused stack: nothing lives there now.
             unsafe { p.write_volatile(PAINT) };
             p = p.wrapping_add(1);
         }
     }
 
-    /// Bytes of stack used since `paint`: from `top` down to the lowest word above
-    /// `bottom` that no longer holds the pattern.
-    fn painted_use(bottom: *const u32, top: usize) -> usize {
+    /// Bytes of stack used since `paint_stack`: from the top down to the lowest word that
+    /// no longer holds the pattern.
+    fn stack_used() -> usize {
+        let bottom = (&raw mut __sheap).cast::<u32>();
+        let top = (&raw const _stack_start) as usize;
         let mut p = bottom;
         // SAFETY: reading the stack region between the end of .bss and its top.
         while (p as usize) < top && unsafe { p.read_volatile() } == PAINT {
@@ -165,26 +178,9 @@ mod firmware {
             }
         }
 
-        unsafe extern "C" {
-            /// End of .bss (cortex-m-rt): the lowest address the stack may grow to.
-            static mut __sheap: u32;
-            /// Top of the stack (cortex-m-rt).
-            static _stack_start: u32;
-        }
-
-        /// Fills the free stack below the current stack pointer with the pattern.
-        pub fn paint_stack() {
-            // Leave 64 bytes under the current frame untouched.
-            let top = (cortex_m::register::msp::read() as usize - 64) as *mut u32;
-            super::paint((&raw mut __sheap).cast::<u32>(), top);
-        }
-
-        /// Bytes of stack used since `paint_stack`.
-        pub fn stack_used() -> usize {
-            super::painted_use(
-                (&raw mut __sheap).cast::<u32>(),
-                (&raw const _stack_start) as usize,
-            )
+        /// The stack pointer (main stack).
+        pub fn sp() -> usize {
+            cortex_m::register::msp::read() as usize
         }
 
         /// Exactly 4000 instructions: 1000 rounds of two `nop`s, a subtract and a branch.
@@ -293,35 +289,12 @@ mod firmware {
             finish(3)
         }
 
-        unsafe extern "C" {
-            /// End of .bss and of the (empty: `_heap_size` is 0) heap (riscv-rt): the
-            /// lowest address the stack may grow to.
-            static mut __sheap: u32;
-            /// Top of the stack (riscv-rt).
-            static _stack_start: u32;
-        }
-
         /// The stack pointer.
-        fn sp() -> usize {
+        pub fn sp() -> usize {
             let sp: usize;
             // SAFETY: reads a register.
             unsafe { core::arch::asm!("mv {}, sp", out(reg) sp, options(nomem, nostack)) };
             sp
-        }
-
-        /// Fills the free stack below the current stack pointer with the pattern.
-        pub fn paint_stack() {
-            // Leave 64 bytes under the current frame untouched.
-            let top = (sp() - 64) as *mut u32;
-            super::paint((&raw mut __sheap).cast::<u32>(), top);
-        }
-
-        /// Bytes of stack used since `paint_stack`.
-        pub fn stack_used() -> usize {
-            super::painted_use(
-                (&raw mut __sheap).cast::<u32>(),
-                (&raw const _stack_start) as usize,
-            )
         }
 
         /// Exactly 4000 instructions: 1000 rounds of two `nop`s, a decrement and a branch.
