@@ -564,21 +564,10 @@ fn lit<S: Scalar, T: Stages>(
     counters: &mut Counters,
 ) -> Option<Color<S>> {
     let object = scene.objects.get(l.index)?;
-    let m = match (object.shape, l.tile_row) {
-        // A tiled plane's tile row is the row's: one coordinate per pixel.
-        (Shape::Tiled { frame, alt, .. }, Some(j)) => {
-            count(&mut counters.tile_lookups);
-            if frame.odd_tile_in_row(hit.point, j) == Some(true) {
-                Some(alt)
-            } else {
-                Some(object.material)
-            }
-        }
-        (Shape::Plane(_), _) => Some(object.material),
-        // Any other tiling: the general lookup (whose material index this kernel does
-        // not see: its per-row weights are then not used).
-        _ => None,
-    };
+    let m = row_material(object, l.tile_row, hit.point);
+    if l.tile_row.is_some() && matches!(object.shape, Shape::Tiled { .. }) {
+        count(&mut counters.tile_lookups);
+    }
     let material = match m {
         Some(m) => scene.materials.get(usize::from(m)).copied(),
         None => surface(scene, l.index, hit.point, counters).map(|(_, m)| m),
@@ -658,13 +647,7 @@ fn lit<S: Scalar, T: Stages>(
         let falloff = diffuse_falloff(nl, knl, ll);
         count(&mut counters.diffuse);
         match l.weights.get(slot.saturating_add(j)) {
-            Some(w) => {
-                for (k, (c, w)) in color.iter_mut().zip(w).enumerate() {
-                    let fits = l.overflow & (1 << (3 * (slot + j) + k)) == 0;
-                    let t = if fits { w.checked_mul(falloff) } else { None };
-                    *c = add_sat(*c, t.unwrap_or(S::MAX));
-                }
-            }
+            Some(w) => color = add_weighted(color, *w, l.overflow >> (3 * (slot + j)), falloff),
             None => {
                 let e = light.emissivity;
                 for ((c, diffuse), emissivity) in color.iter_mut().zip(material.diffuse).zip(e) {
@@ -699,17 +682,7 @@ fn lean_color<S: Scalar>(
     let point = Vec3::new(x, l.y, l.z);
     let t_bound = hit_bound(l, d, memo)?;
     let object = scene.objects.get(l.index)?;
-    let m = match (object.shape, l.tile_row) {
-        (Shape::Tiled { frame, alt, .. }, Some(j)) => {
-            if frame.odd_tile_in_row(point, j) == Some(true) {
-                alt
-            } else {
-                object.material
-            }
-        }
-        (Shape::Plane(_), _) => object.material,
-        _ => return None,
-    };
+    let m = row_material(object, l.tile_row, point)?;
     let material = scene.materials.get(usize::from(m))?;
     let tiled = u32::from(l.tile_row.is_some() && matches!(object.shape, Shape::Tiled { .. }));
     let mut color = material.ambient;
@@ -721,7 +694,6 @@ fn lean_color<S: Scalar>(
     // `plane_color` shades the pixel the general way.
     segment_tolerance(eye, point, t_bound, memo)?;
     let slot = usize::from(m != l.materials[0]) * ROW_LIGHTS;
-    let n = l.sides.len();
     let (mut shadow_rays, mut diffuse) = (0u32, 0u32);
     for (j, (light, rl)) in scene.lights.iter().zip(&l.lights).enumerate() {
         let (Some(lx), Some((ly, lz))) = (light.location.x.checked_sub(x), rl.l) else {
@@ -736,9 +708,9 @@ fn lean_color<S: Scalar>(
         };
         shadow_rays += 1;
         let to_light = Vec3::new(lx, ly, lz);
+        // (`occluded` also needs this light's slice of the sides at the lights: `level`
+        // kept the row's occluders only where it found every slice.)
         let mut bits = *l.occluders.get(j)?;
-        // As `occluded`: the slice of this light's sides must be there.
-        p.at_lights().get(j * n..)?.get(..n)?;
         while bits != 0 {
             let i = usize::try_from(bits.trailing_zeros()).ok()?;
             bits &= bits - 1;
@@ -753,22 +725,7 @@ fn lean_color<S: Scalar>(
         let falloff = diffuse_falloff(nl, rl.knl, ll);
         diffuse += 1;
         let w = *l.weights.get(slot + j)?;
-        // The three channels written out (as `lit`'s loop over them): the entry's
-        // overflow bits, then `w·falloff` added, saturating.
-        let overflow = l.overflow >> (3 * (slot + j));
-        let add = |c: S, w: S, bit: u16| {
-            let t = if overflow & bit == 0 {
-                w.checked_mul(falloff)
-            } else {
-                None
-            };
-            add_sat(c, t.unwrap_or(S::MAX))
-        };
-        color = [
-            add(color[0], w[0], 1),
-            add(color[1], w[1], 2),
-            add(color[2], w[2], 4),
-        ];
+        color = add_weighted(color, w, l.overflow >> (3 * (slot + j)), falloff);
     }
     counters_add(&mut counters.tile_lookups, tiled);
     counters_add(&mut counters.shadow_rays, shadow_rays);
@@ -782,6 +739,49 @@ fn counters_add(counter: &mut u32, n: u32) {
     for _ in 0..n {
         count(counter);
     }
+}
+
+/// The material of the row's plane at `point`: a tiled plane's by its tile (the row's
+/// tile row `j` and the point's column), a plane's own; `None` for any other tiling (the
+/// general lookup, `surface`, whose material index this kernel does not see: its per-row
+/// weights are then not used).
+#[inline(always)]
+fn row_material<S: Scalar>(
+    object: &crate::Object<S>,
+    tile_row: Option<i32>,
+    point: Vec3<S>,
+) -> Option<u8> {
+    match (object.shape, tile_row) {
+        (Shape::Tiled { frame, alt, .. }, Some(j)) => {
+            if frame.odd_tile_in_row(point, j) == Some(true) {
+                Some(alt)
+            } else {
+                Some(object.material)
+            }
+        }
+        (Shape::Plane(_), _) => Some(object.material),
+        _ => None,
+    }
+}
+
+/// `color + w·falloff` per channel, saturating: the light's term with the row's
+/// `emissivity × diffuse` weights `w` (`overflow`: the entry's three overflow bits, a
+/// weight that did not fit saturates the channel).
+#[inline(always)]
+fn add_weighted<S: Scalar>(color: Color<S>, w: [S; 3], overflow: u16, falloff: S) -> Color<S> {
+    let add = |c: S, w: S, bit: u16| {
+        let t = if overflow & bit == 0 {
+            w.checked_mul(falloff)
+        } else {
+            None
+        };
+        add_sat(c, t.unwrap_or(S::MAX))
+    };
+    [
+        add(color[0], w[0], 1),
+        add(color[1], w[1], 2),
+        add(color[2], w[2], 4),
+    ]
 }
 
 /// As `Primary::point`: the bound `t'·2|D|∞` on the hit's world distance, remembered
