@@ -222,6 +222,182 @@ impl Decimal {
     }
 }
 
+impl Decimal {
+    /// The nearest `f32` (ties to even), `None` when it is infinite: the decimal's exact
+    /// value divided out bit by bit in integer arithmetic (a 256-bit quotient, its
+    /// remainder as the sticky bit) and rounded once, subnormals included. What `core`'s
+    /// parser gives, without its tables and code in flash (14 KB on the Cortex-M0); a
+    /// scene's numbers are converted once, at parse time.
+    ///
+    /// ```
+    /// use fixray::num::Decimal;
+    ///
+    /// let d = Decimal::parse("0.1").unwrap();
+    /// assert_eq!(d.to_f32(), Some(0.1f32));
+    /// assert_eq!(Decimal::parse("1e39").unwrap().to_f32(), None);
+    /// ```
+    pub fn to_f32(&self) -> Option<f32> {
+        let magnitude = if self.mantissa == 0 {
+            0.0
+        } else {
+            f32_of_ratio(self.mantissa, self.exponent)?
+        };
+        Some(if self.negative { -magnitude } else { magnitude })
+    }
+}
+
+/// `m × 10^e` (`m > 0`) rounded to the nearest `f32`: `n/d` with `n = m·10^max(e,0)`,
+/// `d = 10^max(−e,0)`, aligned so that `1 ≤ n/d < 2`, then 63 more quotient bits.
+fn f32_of_ratio(m: u64, e: i32) -> Option<f32> {
+    // 10^39 > f32::MAX; m·10^e < 2^64·10^−65 < 2^−150 rounds to zero.
+    if e > 38 {
+        return None;
+    }
+    if e < -64 {
+        return Some(0.0);
+    }
+    let mut n = Big::from(m);
+    let mut d = Big::from(1);
+    for _ in 0..e.unsigned_abs() {
+        if e > 0 {
+            n.times10();
+        } else {
+            d.times10();
+        }
+    }
+    // n < 2^192, d < 2^213: aligned and doubled, both stay below 2^256.
+    let a = i32::try_from(n.bits()).ok()? - i32::try_from(d.bits()).ok()?;
+    if a >= 0 {
+        d.shl(a.unsigned_abs());
+    } else {
+        n.shl(a.unsigned_abs());
+    }
+    let mut exp = a;
+    if !n.at_least(&d) {
+        n.shl(1);
+        exp -= 1;
+    }
+    n.sub(&d);
+    let mut q: u64 = 1;
+    for _ in 0..63 {
+        n.shl(1);
+        q <<= 1;
+        if n.at_least(&d) {
+            n.sub(&d);
+            q |= 1;
+        }
+    }
+    round_f32(q, exp - 63, !n.is_zero())
+}
+
+/// `q·2^e2` (`q`'s top bit set), `sticky` when the exact value is a little more: the
+/// nearest `f32`, ties to even, `None` when infinite.
+fn round_f32(q: u64, e2: i32, sticky: bool) -> Option<f32> {
+    // The exponent of the top bit, and of the result's last bit (subnormals: 2^−149).
+    let top = 63 + e2;
+    if top > 127 {
+        return None;
+    }
+    let last = (top - 23).max(-149);
+    let shift = (last - e2).unsigned_abs();
+    let wide = u128::from(q);
+    let (kept, rest, half) = if shift >= 128 {
+        (0, wide, u128::MAX)
+    } else {
+        (
+            wide >> shift,
+            wide & ((1u128 << shift) - 1),
+            1u128 << (shift - 1),
+        )
+    };
+    let up = rest > half || (rest == half && (sticky || kept & 1 == 1));
+    let r = u32::try_from(kept + u128::from(up)).ok()?;
+    let v = if top < -126 {
+        // Subnormal: the bits are the value in units of 2^−149 (2^23 is the least normal).
+        f32::from_bits(r)
+    } else {
+        #[allow(clippy::cast_precision_loss)] // r ≤ 2^24: exact.
+        let r = r as f32;
+        let scale = if last >= -126 {
+            f32::from_bits(((last + 127).unsigned_abs()) << 23)
+        } else {
+            f32::from_bits(1 << (last + 149).unsigned_abs())
+        };
+        // Exact: r·2^last is an f32 (or infinite at the top).
+        r * scale
+    };
+    v.is_finite().then_some(v)
+}
+
+/// A 256-bit unsigned integer (eight 32-bit limbs, least significant first): what
+/// [`f32_of_ratio`] divides with.
+#[derive(Clone, Copy)]
+struct Big([u32; 8]);
+
+impl Big {
+    fn from(v: u64) -> Self {
+        let mut b = [0u32; 8];
+        b[0] = v as u32;
+        b[1] = (v >> 32) as u32;
+        Self(b)
+    }
+
+    fn times10(&mut self) {
+        let mut carry = 0u64;
+        for limb in &mut self.0 {
+            let v = u64::from(*limb) * 10 + carry;
+            *limb = v as u32;
+            carry = v >> 32;
+        }
+    }
+
+    fn bits(&self) -> u32 {
+        let mut bits = 0;
+        for (i, &limb) in self.0.iter().enumerate() {
+            if limb != 0 {
+                bits = 32 * (i as u32) + (32 - limb.leading_zeros());
+            }
+        }
+        bits
+    }
+
+    fn shl(&mut self, by: u32) {
+        let (words, bits) = ((by / 32) as usize, by % 32);
+        for i in (0..8usize).rev() {
+            let lo = i.checked_sub(words).map_or(0, |j| self.0[j]);
+            let below = i.checked_sub(words + 1).map_or(0, |j| self.0[j]);
+            self.0[i] = if bits == 0 {
+                lo
+            } else {
+                (lo << bits) | (below >> (32 - bits))
+            };
+        }
+    }
+
+    fn at_least(&self, other: &Self) -> bool {
+        for (a, b) in self.0.iter().zip(&other.0).rev() {
+            if a != b {
+                return a > b;
+            }
+        }
+        true
+    }
+
+    fn sub(&mut self, other: &Self) {
+        let mut borrow = false;
+        for (a, &b) in self.0.iter_mut().zip(&other.0) {
+            let (v, b1) = a.overflowing_sub(b);
+            let (v, b2) = v.overflowing_sub(u32::from(borrow));
+            *a = v;
+            borrow = b1 || b2;
+        }
+    }
+
+    fn is_zero(&self) -> bool {
+        self.0.iter().all(|&l| l == 0)
+    }
+}
+
 /// 10^|e| for |e| ≤ 19 (the powers that fit a `u64`); callers pick the direction.
 fn pow10_u64(e: i32) -> Option<u64> {
     10u64.checked_pow(e.unsigned_abs())
@@ -286,6 +462,69 @@ mod tests {
         assert_eq!((d.mantissa, d.exponent), (1_844_674_407_370_955_161, 0));
     }
 
+    /// `to_f32` is `core`'s correctly rounded parser, on seeded random decimals across
+    /// the whole range (overflow, subnormals, zero), on halfway cases and on long
+    /// mantissas.
+    #[test]
+    fn to_f32_rounds_as_core_does() {
+        let check = |m: u64, e: i32, negative: bool| {
+            let d = Decimal {
+                negative,
+                mantissa: m,
+                exponent: e,
+            };
+            let sign = if negative { "-" } else { "" };
+            let want: f32 = format!("{sign}{m}e{e}").parse().unwrap();
+            let want = want.is_finite().then_some(want);
+            assert_eq!(
+                d.to_f32().map(f32::to_bits),
+                want.map(f32::to_bits),
+                "{sign}{m}e{e}"
+            );
+        };
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for i in 0..40_000u32 {
+            let digits = next() % 20 + 1;
+            let m = next() % 10u64.pow(u32::try_from(digits.min(19)).unwrap()) + 1;
+            let e = i32::try_from(next() % 120).unwrap() - 80;
+            check(m, e, i % 2 == 0);
+        }
+        // Halfway between two f32s (ties to even both ways), a hair above and below, the
+        // extremes, and the last values before zero.
+        for (m, e) in [
+            (16_777_217, 0),
+            (16_777_219, 0),
+            (33_554_434, 0),
+            (33_554_438, 0),
+            (1_000_000_059_604_644_775, -18),
+            (1_000_000_059_604_644_776, -18),
+            (3_402_823_567_797_336_616, 20),
+            (3_402_823_466, 29),
+            (3_402_823_467, 29),
+            (u64::MAX, 19),
+            (u64::MAX, -64),
+            (701, -48),
+            (700_649_232_162_408_535, -63),
+            (1_401_298_464_324_817, -60),
+            (1, -38),
+            (11_754_942, -45),
+            (1, 38),
+            (1, -64),
+        ] {
+            check(m, e, false);
+        }
+        assert_eq!(
+            Decimal::parse("-0").unwrap().to_f32().map(f32::to_bits),
+            Some((-0.0f32).to_bits())
+        );
+    }
+
     /// The fields are public: extreme values must not overflow any method.
     #[test]
     fn extreme_fields_do_not_overflow() {
@@ -297,7 +536,12 @@ mod tests {
                         mantissa,
                         exponent,
                     };
-                    let _ = (d.cmp_int(0), d.cmp_int(i64::MIN), d.to_integer());
+                    let _ = (
+                        d.cmp_int(0),
+                        d.cmp_int(i64::MIN),
+                        d.to_integer(),
+                        d.to_f32(),
+                    );
                     let _ = (d.to_fixed_bits(16), d.to_fixed_bits(64), d.times(255));
                 }
             }

@@ -20,8 +20,25 @@ macro_rules! integral_to_i32 {
     }};
 }
 
+/// A scene number as an `f32`: correctly rounded by integer arithmetic
+/// ([`Decimal::to_f32`], no float-parsing tables in a chip's flash).
+fn f32_of_decimal(value: Decimal) -> Option<f32> {
+    value.to_f32()
+}
+
+/// A scene number as an `f64` (the host's reference): `core`'s correctly rounded parser
+/// (straight to this width, no double rounding), the decimal written back out digit for
+/// digit to use it.
+fn f64_of_decimal(value: Decimal) -> Option<f64> {
+    use core::fmt::Write;
+    let mut text: heapless::String<40> = heapless::String::new();
+    let sign = if value.negative { "-" } else { "" };
+    write!(text, "{sign}{}e{}", value.mantissa, value.exponent).ok()?;
+    text.parse::<f64>().ok().filter(|v| v.is_finite())
+}
+
 macro_rules! impl_float {
-    ($t:ty, $name:literal, $sqrt:path, $round:path, $floor:path, $tie:path) => {
+    ($t:ty, $name:literal, $sqrt:path, $round:path, $floor:path, $tie:path, $decimal:path) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
             const ZERO: Self = 0.0;
@@ -29,6 +46,7 @@ macro_rules! impl_float {
             const MAX: Self = <$t>::MAX;
             const DELTA: Self = <$t>::EPSILON;
             const EXACT_SUMS: bool = false;
+            const EXACT_PRODUCTS: bool = false;
             // EPSILON_DELTAS is a small integer: exact in both float formats.
             const DEFAULT_EPSILON: Self = <$t>::EPSILON * EPSILON_DELTAS as $t;
             const INT_BITS: u32 = 0;
@@ -46,13 +64,7 @@ macro_rules! impl_float {
                 v.is_finite().then_some(v)
             }
             fn from_decimal(value: Decimal) -> Option<Self> {
-                // core's parser rounds correctly (straight to this width, no double
-                // rounding); the decimal is written back out digit for digit to use it.
-                use core::fmt::Write;
-                let mut text: heapless::String<40> = heapless::String::new();
-                let sign = if value.negative { "-" } else { "" };
-                write!(text, "{sign}{}e{}", value.mantissa, value.exponent).ok()?;
-                text.parse::<$t>().ok().filter(|v| v.is_finite())
+                $decimal(value)
             }
             #[inline]
             fn from_i32(value: i32) -> Option<Self> {
@@ -149,8 +161,24 @@ macro_rules! impl_float {
     };
 }
 
-impl_float!(f32, "f32", libm::sqrtf, libm::roundf, libm::floorf, tie_f32);
-impl_float!(f64, "f64", libm::sqrt, libm::round, libm::floor, tie_f64);
+impl_float!(
+    f32,
+    "f32",
+    libm::sqrtf,
+    libm::roundf,
+    libm::floorf,
+    tie_f32,
+    f32_of_decimal
+);
+impl_float!(
+    f64,
+    "f64",
+    libm::sqrt,
+    libm::round,
+    libm::floor,
+    tie_f64,
+    f64_of_decimal
+);
 
 /// `a·b` and `c·d` compared neither less nor greater in `f32`: equal when that is a
 /// finite value, otherwise decided exactly.
