@@ -485,6 +485,25 @@ impl<S: Scalar> Primary<S> {
             r.nd.clear();
             r.acc.clear();
         }
+        self.restart_dir(scene, row, column, r)?;
+        if self.spheres && !keep {
+            r.yz = S::acc_add(S::acc_mul(r.dir.y, r.dir.y)?, S::acc_mul(r.dir.z, r.dir.z)?)?;
+        }
+        self.terms_at(scene, r, keep)
+    }
+
+    /// The part of [`Primary::restart`] that is not the terms: `D` from the exact screen
+    /// point, the column and row, the epsilon bound. A scanline whose terms are not
+    /// needed at this pixel (`kernel/rows.rs`, outside the spheres' columns) restarts
+    /// with this alone and brings its terms up to date with [`Primary::refresh`] where
+    /// it needs them.
+    pub(crate) fn restart_dir(
+        &self,
+        scene: &SceneView<'_, S>,
+        row: u16,
+        column: u16,
+        r: &mut Row<S>,
+    ) -> Option<()> {
         let eye = scene.camera.viewpoint;
         let y = scene.camera.screen_y(row)?;
         let x = scene.camera.screen_x(column)?;
@@ -496,9 +515,12 @@ impl<S: Scalar> Primary<S> {
         let limit = self.resync_span.and_then(|m| m.checked_add(r.dir.x.abs()));
         let bound = limit.and_then(|m| Some((m, eps_l1_of(scene.epsilon, m, r.dir.y, r.dir.z)?)));
         (r.dx_limit, r.eps_l1) = bound.unwrap_or((S::ONE.checked_neg()?, S::ZERO));
-        if self.spheres && !keep {
-            r.yz = S::acc_add(S::acc_mul(r.dir.y, r.dir.y)?, S::acc_mul(r.dir.z, r.dir.z)?)?;
-        }
+        Some(())
+    }
+
+    /// Every term's `N·D` (and its unrounded sum) for the row's current `D`, the still
+    /// ones only when not `keep`.
+    fn terms_at(&self, scene: &SceneView<'_, S>, r: &mut Row<S>, keep: bool) -> Option<()> {
         for (i, term) in self.terms.iter().enumerate() {
             let still = self.still & (1 << i) != 0;
             if keep && still {
@@ -515,6 +537,66 @@ impl<S: Scalar> Primary<S> {
             }
         }
         Some(())
+    }
+
+    /// Brings a scanline's terms up to date with its `D` after [`Primary::advance_dir`]
+    /// or [`Primary::restart_dir`]: in the formats whose products are exact
+    /// ([`Scalar::EXACT_PRODUCTS`]) bit for bit what [`Primary::advance`] would have stepped
+    /// them to (both are the exact `N·D` of the same `D`). `None` where a term does not
+    /// fit, or the row does not hold every term (it must be restarted whole).
+    pub(crate) fn refresh(&self, scene: &SceneView<'_, S>, r: &mut Row<S>) -> Option<()> {
+        if r.nd.len() != self.terms.len() {
+            return None;
+        }
+        self.terms_at(scene, r, true)
+    }
+
+    /// [`Primary::advance`] without the terms: `D.x` and the column only (the terms are
+    /// then stale until [`Primary::refresh`]).
+    pub(crate) fn advance_dir(&self, row: &mut Row<S>) -> Option<()> {
+        row.dir.x = row.dir.x.checked_add(self.step_x)?;
+        row.column = row.column.checked_add(1)?;
+        Some(())
+    }
+
+    /// Whether every term of scanline `first` (started at column 0, holding every term)
+    /// fits the format at every `D.x` its pixels can take (the first and last column's,
+    /// widened by the drift of the stepped coordinate): a term is linear in `D.x`, so it
+    /// fits between two values that fit. Then a pixel whose terms are skipped
+    /// ([`Primary::advance_dir`]) is one where [`Primary::advance`] would not have failed.
+    pub(crate) fn terms_fit_row(
+        &self,
+        scene: &SceneView<'_, S>,
+        first: &Row<S>,
+        width: u16,
+    ) -> bool {
+        let fits = || -> Option<()> {
+            if first.nd.len() != self.terms.len() {
+                return None;
+            }
+            let eye_x = scene.camera.viewpoint.x;
+            let last = scene
+                .camera
+                .screen_x(width.checked_sub(1)?)?
+                .checked_sub(eye_x)?;
+            let span = self.resync_span?;
+            let (lo, hi) = if first.dir.x <= last {
+                (first.dir.x, last)
+            } else {
+                (last, first.dir.x)
+            };
+            for x in [lo.checked_sub(span)?, hi.checked_add(span)?] {
+                let d = Vec3::new(x, first.dir.y, first.dir.z);
+                for (i, term) in self.terms.iter().enumerate() {
+                    if self.still & (1 << i) == 0 {
+                        let axis = axis_of(scene, term.index)?;
+                        S::acc_round(S::acc_dot3(axis.to_array(), d.to_array())?)?;
+                    }
+                }
+            }
+            Some(())
+        };
+        fits().is_some()
     }
 
     /// The column the row is at.

@@ -336,10 +336,13 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
     let Some(level) = level::<S, T>(scene, p, &first) else {
         return Err(counters);
     };
+    let lazy = S::EXACT_PRODUCTS && p.terms_fit_row(scene, &first, scene.camera.width);
     Ok(Pixels {
         scene,
         p,
         level,
+        lazy,
+        stale: false,
         state: first,
         fresh: true,
         // From another column than 0 the first pixel restarts there, as the fast
@@ -370,6 +373,11 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     state: Row<S>,
     fresh: bool,
     valid: bool,
+    /// Whether the row steps only `D` outside the spheres' columns (the formats whose
+    /// products and sums are exact, and every term fits along the whole row:
+    /// [`Primary::terms_fit_row`]), and whether its terms are behind its `D` now.
+    lazy: bool,
+    stale: bool,
     at_hit: heapless::Vec<S, FAST_OBJECTS>,
     memo: Memo<S>,
     /// The columns where a sphere can be met on this row.
@@ -397,31 +405,49 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
     fn pixel(&mut self, column: u16) -> Rgb888 {
         let (scene, p) = (self.scene, self.p);
         count(&mut self.counters.primary_rays);
+        let in_spheres = column >= self.spheres.0 && column <= self.spheres.1;
+        // Outside the spheres' columns a lazy row steps `D` alone (the pixel's plane
+        // needs nothing else); its terms are brought up to date where a sphere can be met.
+        // (Only where products are exact: elsewhere none of it is compiled, flash.)
+        let lazy = S::EXACT_PRODUCTS && self.lazy;
+        let skip = lazy && !in_spheres;
+        let stale = S::EXACT_PRODUCTS && self.stale;
         let stepped = if self.fresh && Primary::column(&self.state) == column {
             Some(())
         } else if self.valid
             && Primary::column(&self.state).checked_add(1) == Some(column)
             && !column.is_multiple_of(fast::RESYNC_PIXELS)
         {
-            p.advance(&mut self.state)
+            if skip || stale {
+                p.advance_dir(&mut self.state)
+            } else {
+                p.advance(&mut self.state)
+            }
+        } else if skip {
+            p.restart_dir(scene, self.row, column, &mut self.state)
         } else {
+            self.stale = false;
             p.restart(scene, self.row, column, &mut self.state)
         };
         self.fresh = false;
+        self.stale |= skip;
+        let stepped = match stepped {
+            Some(()) if S::EXACT_PRODUCTS && self.stale && !skip => {
+                self.stale = false;
+                p.refresh(scene, &mut self.state)
+            }
+            s => s,
+        };
         self.valid = stepped.is_some();
         // What the pixel shows: the row's plane, or what the fast kernel found.
         let found = match stepped {
             None => Err(()),
-            Some(()) if column >= self.spheres.0 && column <= self.spheres.1 => {
-                match p.nearest(scene, &self.state) {
-                    Ok(Some(h)) if self.level.as_ref().is_some_and(|l| l.index == h.index) => {
-                        Ok(None)
-                    }
-                    Ok(Some(h)) => Ok(Some(h)),
-                    Ok(None) => return to_pixel(scene.rules(), scene.background),
-                    Err(()) => Err(()),
-                }
-            }
+            Some(()) if in_spheres => match p.nearest(scene, &self.state) {
+                Ok(Some(h)) if self.level.as_ref().is_some_and(|l| l.index == h.index) => Ok(None),
+                Ok(Some(h)) => Ok(Some(h)),
+                Ok(None) => return to_pixel(scene.rules(), scene.background),
+                Err(()) => Err(()),
+            },
             Some(()) => Ok(None),
         };
         let color = match found {

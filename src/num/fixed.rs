@@ -57,6 +57,7 @@ macro_rules! impl_fixed {
             const MAX: Self = <$t>::MAX;
             const DELTA: Self = <$t>::DELTA;
             const EXACT_SUMS: bool = true;
+            const EXACT_PRODUCTS: bool = true;
             const DEFAULT_EPSILON: Self = <$t>::from_bits(EPSILON_DELTAS as $bits);
             const INT_BITS: u32 = <$t>::INT_NBITS;
 

@@ -120,6 +120,13 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// floats (their sums round at each step).
     const EXACT_SUMS: bool;
 
+    /// Whether [`Scalar::acc_mul`] is exact as well (the fixed formats' double-width
+    /// products; not `i16f16n`, whose products round one by one): a dot product is
+    /// then linear in [`Scalar::Acc`], so one stepped along a scanline by a per-frame
+    /// product equals, bit for bit, the one formed afresh from the stepped vector, and a
+    /// kernel may skip its steps and form it again where it needs it.
+    const EXACT_PRODUCTS: bool;
+
     /// The exact product `a·b` as an [`Scalar::Acc`] (fixed formats; floats round it);
     /// `None` only for floats, when it is not finite.
     fn acc_mul(a: Self, b: Self) -> Option<Self::Acc>;

@@ -46,7 +46,7 @@ pub struct I16F16Recip(pub I16F16);
 
 /// Implements every `Scalar` method but the ones given by delegating to the wrapped type.
 macro_rules! delegate {
-    ($t:ident, $inner:ty, $name:literal, { $($own:item)* }) => {
+    ($t:ident, $inner:ty, $name:literal, exact_products: $exact:expr, { $($own:item)* }) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
             const ZERO: Self = Self(<$inner as Scalar>::ZERO);
@@ -54,6 +54,7 @@ macro_rules! delegate {
             const MAX: Self = Self(<$inner as Scalar>::MAX);
             const DELTA: Self = Self(<$inner as Scalar>::DELTA);
             const EXACT_SUMS: bool = <$inner as Scalar>::EXACT_SUMS;
+            const EXACT_PRODUCTS: bool = $exact;
             const DEFAULT_EPSILON: Self = Self(<$inner as Scalar>::DEFAULT_EPSILON);
             const INT_BITS: u32 = <$inner as Scalar>::INT_BITS;
 
@@ -115,7 +116,7 @@ macro_rules! delegate {
     };
 }
 
-delegate!(F32Micro, f32, "f32m", {
+delegate!(F32Micro, f32, "f32m", exact_products: false, {
     type Acc = f32;
     #[inline]
     fn acc_mul(a: Self, b: Self) -> Option<f32> {
@@ -155,7 +156,7 @@ delegate!(F32Micro, f32, "f32m", {
     }
 });
 
-delegate!(I16F16Narrow, I16F16, "i16f16n", {
+delegate!(I16F16Narrow, I16F16, "i16f16n", exact_products: false, {
     // Narrow: every product rounded on its own, as its dot products.
     type Acc = I16F16;
     #[inline]
@@ -189,7 +190,7 @@ delegate!(I16F16Narrow, I16F16, "i16f16n", {
     }
 });
 
-delegate!(I16F16Recip, I16F16, "i16f16r", {
+delegate!(I16F16Recip, I16F16, "i16f16r", exact_products: <I16F16 as Scalar>::EXACT_PRODUCTS, {
     type Acc = <I16F16 as Scalar>::Acc;
     #[inline]
     fn acc_mul(a: Self, b: Self) -> Option<Self::Acc> {
