@@ -320,6 +320,35 @@ impl<S: Scalar> ShadowCone<S> {
         })
     }
 
+    /// [`ShadowCone::clears`] for a point of a scanline whose hits share `y` and `z`:
+    /// `l·u` from `l.x` and the row's unrounded `u.y·l.y + u.z·l.z` (`yz`,
+    /// [`ShadowCone::row_part`]), one product. The same answer bit for bit in the formats
+    /// whose sums are exact, for `|l.x|` and the row's `|l.y|`, `|l.z|` at most half the
+    /// format's range (no partial sum of `l·u` then leaves the double width, in any
+    /// order; callers check).
+    pub(crate) fn clears_in_row(&self, lx: S, yz: S::Acc, ll: S) -> bool {
+        if ll < self.near {
+            return false;
+        }
+        let Some(lu) = S::acc_mul(lx, self.u.x)
+            .and_then(|xx| S::acc_add(xx, yz))
+            .and_then(S::acc_round)
+        else {
+            return false;
+        };
+        lu >= S::ZERO || S::cmp_products(lu, lu, ll, self.k) == Some(core::cmp::Ordering::Less)
+    }
+
+    /// The row's part of `l·u` for [`ShadowCone::clears_in_row`]: `u.y·ly + u.z·lz`
+    /// unrounded; `None` when it does not fit, or when a component of `u` is beyond half
+    /// the format's range.
+    pub(crate) fn row_part(&self, ly: S, lz: S) -> Option<S::Acc> {
+        let half = S::MAX.mul_ratio(1, 2)?;
+        let u = self.u;
+        (u.x.abs() <= half && u.y.abs() <= half && u.z.abs() <= half).then_some(())?;
+        S::acc_add(S::acc_mul(u.y, ly)?, S::acc_mul(u.z, lz)?)
+    }
+
     /// Whether every point `P` of the line `P = light + (s, wy, wz)` (any `s`: a
     /// scanline's hits on a plane with `N.x = 0` have one `y` and one `z`) is one whose
     /// exact segment test finds the sphere clear, so that a row of such points skips the

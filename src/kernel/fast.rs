@@ -574,18 +574,8 @@ impl<S: Scalar> Primary<S> {
             if first.nd.len() != self.terms.len() {
                 return None;
             }
-            let eye_x = scene.camera.viewpoint.x;
-            let last = scene
-                .camera
-                .screen_x(width.checked_sub(1)?)?
-                .checked_sub(eye_x)?;
-            let span = self.resync_span?;
-            let (lo, hi) = if first.dir.x <= last {
-                (first.dir.x, last)
-            } else {
-                (last, first.dir.x)
-            };
-            for x in [lo.checked_sub(span)?, hi.checked_add(span)?] {
+            let (lo, hi) = self.dx_range(scene, first, width)?;
+            for x in [lo, hi] {
                 let d = Vec3::new(x, first.dir.y, first.dir.z);
                 for (i, term) in self.terms.iter().enumerate() {
                     if self.still & (1 << i) == 0 {
@@ -597,6 +587,28 @@ impl<S: Scalar> Primary<S> {
             Some(())
         };
         fits().is_some()
+    }
+
+    /// The least and greatest `D.x` scanline `first` (started at column 0) can take at
+    /// its `width` pixels: the first and last column's, widened by the drift of the
+    /// stepped coordinate (`RESYNC_PIXELS·|step_x|`). `None` when that does not fit.
+    pub(crate) fn dx_range(
+        &self,
+        scene: &SceneView<'_, S>,
+        first: &Row<S>,
+        width: u16,
+    ) -> Option<(S, S)> {
+        let last = scene
+            .camera
+            .screen_x(width.checked_sub(1)?)?
+            .checked_sub(scene.camera.viewpoint.x)?;
+        let span = self.resync_span?;
+        let (lo, hi) = if first.dir.x <= last {
+            (first.dir.x, last)
+        } else {
+            (last, first.dir.x)
+        };
+        Some((lo.checked_sub(span)?, hi.checked_add(span)?))
     }
 
     /// The column the row is at.

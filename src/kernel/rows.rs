@@ -28,7 +28,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::fast::{self, FAST_OBJECTS, FastHit, Primary, Row};
 use super::reference::{fast_color, reference_color};
-use crate::geometry::{sides_differ, surface_tolerance};
+use crate::geometry::{ShadowCone, sides_differ, surface_tolerance};
 use crate::shade::color::{add_sat, term, to_pixel};
 use crate::shade::stages::Stages;
 use crate::shade::{
@@ -79,10 +79,31 @@ struct Level<S: Scalar> {
     /// A tiled plane's tile row, the same at every hit of the row
     /// ([`crate::PlaneFrame::tile_row`]; `None`: each pixel looks its tile up whole).
     tile_row: Option<i32>,
-    /// Whether [`lean_color`] may draw the row's pixels: every light has its row terms
-    /// and weights, the sums are exact, the sides are kept and no plane can shadow the
-    /// row (a plane's shadow test needs the segments' tolerance at each pixel).
-    lean: bool,
+    /// What [`lean_color`] needs to draw the row's pixels, where it may: every light has
+    /// its row terms and weights, the sums are exact, the sides are kept, no plane can
+    /// shadow the row (a plane's shadow test needs the segments' tolerance at each
+    /// pixel) and every quantity fits at every pixel of the row ([`lean_row`]).
+    lean: Option<LeanRow<S>>,
+}
+
+/// A lean row's per-row part ([`lean_row`]): what [`lean_color`] would otherwise look up
+/// or check at each pixel.
+#[derive(Debug, Clone)]
+struct LeanRow<S: Scalar> {
+    /// A tiled plane's frame and tile row (`None`: a plain plane).
+    tiles: Option<(crate::PlaneFrame<S>, i32)>,
+    /// Per tile parity (0: the plane's own material, 1: a tiled plane's odd tiles): the
+    /// ambient colour, whether the diffuse colour is not black, and the slot of the
+    /// material's weights in [`Level::weights`].
+    ambient: [Color<S>; 2],
+    lit: [bool; 2],
+    slot: [usize; 2],
+    /// Per light, the shadow cones of the spheres that can shadow the row (each must
+    /// clear the pixel), with their row part of `l·u` ([`ShadowCone::row_part`]).
+    cones: heapless::Vec<heapless::Vec<(ShadowCone<S>, S::Acc), { fast::MAX_CONES }>, ROW_LIGHTS>,
+    /// Half the format's range: a pixel's `|L.x|` beyond takes [`plane_color`]
+    /// ([`ShadowCone::clears_in_row`]).
+    half: S,
 }
 
 /// A light's terms that are the same at every hit of a row (`N.x = 0` and the hits
@@ -290,12 +311,22 @@ fn level<S: Scalar, T: Stages>(
         && spheres_only
         && row_lights
             .iter()
-            .all(|rl| rl.l.is_none() || rl.yz.is_some())
-        && match object.shape {
-            Shape::Tiled { .. } => tile_row.is_some(),
-            Shape::Plane(_) => true,
-            _ => false,
-        };
+            .all(|rl| rl.l.is_none() || rl.yz.is_some());
+    let lean = if lean {
+        lean_row(
+            scene,
+            p,
+            first,
+            object,
+            t,
+            (y, z),
+            tile_row,
+            &occluders,
+            &row_lights,
+        )
+    } else {
+        None
+    };
     Some(Some(Level {
         lean,
         tile_row,
@@ -311,6 +342,84 @@ fn level<S: Scalar, T: Stages>(
         overflow,
         lights: row_lights,
     }))
+}
+
+/// The per-row part of a lean row ([`LeanRow`]), `None` where the row is not one: the
+/// plane is a plain plane or a tiled one with its tile row, its materials are there,
+/// each sphere that can shadow the row has exactly one shadow cone from that light, and
+/// at every `D.x` of the row ([`Primary::dx_range`]) the hit's distance bound and the
+/// segments' tolerance fit the format (both grow with `|D.x|` and the hit's `|x|`, so
+/// checking the row's extremes checks every pixel; `lean_color` then skips them).
+#[allow(clippy::too_many_arguments)]
+fn lean_row<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    first: &Row<S>,
+    object: &crate::Object<S>,
+    t: S,
+    (y, z): (S, S),
+    tile_row: Option<i32>,
+    occluders: &[u8],
+    row_lights: &[RowLight<S>],
+) -> Option<LeanRow<S>> {
+    let (tiles, alt) = match (object.shape, tile_row) {
+        (Shape::Tiled { frame, alt, .. }, Some(j)) => (Some((frame, j)), alt),
+        (Shape::Plane(_), _) => (None, object.material),
+        _ => return None,
+    };
+    // The tolerance at the row's extremes (t' > 0: the bound and `|x|` grow with `|D.x|`).
+    (t > S::ZERO).then_some(())?;
+    let eye = scene.camera.viewpoint;
+    let d = Primary::dir(first);
+    let (lo, hi) = p.dx_range(scene, first, scene.camera.width)?;
+    let widest = lo.abs().max(hi.abs()).max(d.y.abs()).max(d.z.abs());
+    let t_bound = t.checked_mul(widest.checked_add(widest)?)?;
+    let x_lo = eye.x.checked_add(t.checked_mul(lo)?)?;
+    let x_hi = eye.x.checked_add(t.checked_mul(hi)?)?;
+    let m = eye
+        .max_abs()
+        .max(Vec3::new(x_lo, y, z).max_abs())
+        .max(x_hi.abs());
+    surface_tolerance(t_bound, m)?;
+    let mut ambient = [[S::ZERO; 3]; 2];
+    let mut lit = [false; 2];
+    let mut slot = [0; 2];
+    for (k, m) in [object.material, alt].into_iter().enumerate() {
+        let material = scene.materials.get(usize::from(m))?;
+        ambient[k] = material.ambient;
+        lit[k] = material.diffuse != [S::ZERO; 3];
+        slot[k] = usize::from(m != object.material) * ROW_LIGHTS;
+    }
+    let half = S::MAX.mul_ratio(1, 2)?;
+    let mut cones = heapless::Vec::new();
+    for (j, (&bits, rl)) in occluders.iter().zip(row_lights).enumerate() {
+        let mut list = heapless::Vec::new();
+        for i in (0..fast::FAST_OBJECTS).filter(|i| bits & (1 << i) != 0) {
+            let mut matching = p
+                .cones()
+                .iter()
+                .filter(|c| usize::from(c.light) == j && usize::from(c.object) == i);
+            let (Some(cone), None) = (matching.next(), matching.next()) else {
+                return None;
+            };
+            let part = match rl.l {
+                Some((ly, lz)) if ly.abs() <= half && lz.abs() <= half => cone.row_part(ly, lz)?,
+                // No pixel of the row reaches this light's cones.
+                None => continue,
+                Some(_) => return None,
+            };
+            list.push((*cone, part)).ok()?;
+        }
+        cones.push(list).ok()?;
+    }
+    Some(LeanRow {
+        tiles,
+        ambient,
+        lit,
+        slot,
+        cones,
+        half,
+    })
 }
 
 /// The pixels of columns `columns` of scanline `row`: the row's plane worked out once
@@ -490,15 +599,8 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         if !S::EXACT_SUMS {
             return None;
         }
-        let l = self.level.as_ref().filter(|l| l.lean)?;
-        lean_color(
-            self.scene,
-            self.p,
-            &self.state,
-            l,
-            &mut self.memo,
-            self.counters,
-        )
+        let l = self.level.as_ref()?;
+        lean_color(self.scene, &self.state, l, l.lean.as_ref()?, self.counters)
     }
 
     /// The pixel on the reference path (a quantity out of the format's range).
@@ -696,33 +798,34 @@ fn lit<S: Scalar, T: Stages>(
 #[inline(always)]
 fn lean_color<S: Scalar>(
     scene: &SceneView<'_, S>,
-    p: &Primary<S>,
     state: &Row<S>,
     l: &Level<S>,
-    memo: &mut Memo<S>,
+    f: &LeanRow<S>,
     counters: &mut Counters,
 ) -> Option<Color<S>> {
     let d = Primary::dir(state);
-    let eye = scene.camera.viewpoint;
-    let x = eye.x.checked_add(l.t.checked_mul(d.x)?)?;
-    let point = Vec3::new(x, l.y, l.z);
-    let t_bound = hit_bound(l, d, memo)?;
-    let object = scene.objects.get(l.index)?;
-    let m = row_material(object, l.tile_row, point)?;
-    let material = scene.materials.get(usize::from(m))?;
-    let tiled = u32::from(l.tile_row.is_some() && matches!(object.shape, Shape::Tiled { .. }));
-    let mut color = material.ambient;
-    if material.diffuse == [S::ZERO; 3] {
+    let x = scene
+        .camera
+        .viewpoint
+        .x
+        .checked_add(l.t.checked_mul(d.x)?)?;
+    // The material by the tile's parity (`row_material`); the hit's distance bound and
+    // the segments' tolerance fit at every pixel of a lean row (`lean_row`).
+    let odd = match &f.tiles {
+        Some((frame, j)) => frame.odd_tile_in_row(Vec3::new(x, l.y, l.z), *j) == Some(true),
+        None => false,
+    };
+    let parity = usize::from(odd);
+    let tiled = u32::from(f.tiles.is_some());
+    let mut color = *f.ambient.get(parity)?;
+    if !*f.lit.get(parity)? {
         counters_add(&mut counters.tile_lookups, tiled);
         return Some(color);
     }
-    // The tolerance is not used here (no segment test), but where it does not fit,
-    // `plane_color` shades the pixel the general way.
-    segment_tolerance(eye, point, t_bound, memo)?;
-    let slot = usize::from(m != l.materials[0]) * ROW_LIGHTS;
+    let slot = *f.slot.get(parity)?;
     let (mut shadow_rays, mut diffuse) = (0u32, 0u32);
     for (j, (light, rl)) in scene.lights.iter().zip(&l.lights).enumerate() {
-        let (Some(lx), Some((ly, lz))) = (light.location.x.checked_sub(x), rl.l) else {
+        let (Some(lx), Some(_)) = (light.location.x.checked_sub(x), rl.l) else {
             continue;
         };
         let ll = S::acc_round(S::acc_add(S::acc_mul(lx, lx)?, rl.yz?)?)?;
@@ -733,18 +836,14 @@ fn lean_color<S: Scalar>(
             continue;
         };
         shadow_rays += 1;
-        let to_light = Vec3::new(lx, ly, lz);
-        // (`occluded` also needs this light's slice of the sides at the lights: `level`
-        // kept the row's occluders only where it found every slice.)
-        let mut bits = *l.occluders.get(j)?;
-        while bits != 0 {
-            let i = usize::try_from(bits.trailing_zeros()).ok()?;
-            bits &= bits - 1;
-            // Only spheres (`Level::lean`): cleared by their cone, or the exact test.
-            let cleared = p.cones().iter().any(|c| {
-                usize::from(c.light) == j && usize::from(c.object) == i && c.clears(to_light, ll)
-            });
-            if !cleared {
+        // Only spheres can shadow a lean row: each cleared by its cone, or the pixel
+        // takes the exact test (`plane_color`).
+        let cones = f.cones.get(j)?;
+        if !cones.is_empty() && lx.abs() > f.half {
+            return None;
+        }
+        for (cone, part) in cones {
+            if !cone.clears_in_row(lx, *part, ll) {
                 return None;
             }
         }
