@@ -97,13 +97,27 @@ struct LeanRow<S: Scalar> {
     /// material's weights in [`Level::weights`].
     ambient: [Color<S>; 2],
     lit: [bool; 2],
-    slot: [usize; 2],
-    /// Per light, the shadow cones of the spheres that can shadow the row (each must
-    /// clear the pixel), with their row part of `l·u` ([`ShadowCone::row_part`]).
-    cones: heapless::Vec<heapless::Vec<(ShadowCone<S>, S::Acc), { fast::MAX_CONES }>, ROW_LIGHTS>,
+    /// Per light, everything its term needs.
+    lights: heapless::Vec<LeanLight<S>, ROW_LIGHTS>,
     /// Half the format's range: a pixel's `|L.x|` beyond takes [`plane_color`]
     /// ([`ShadowCone::clears_in_row`]).
     half: S,
+}
+
+/// One light of a lean row: [`RowLight`]'s terms, the light's `x`, its weights per tile
+/// parity (with their overflow bits) and the shadow cones of the spheres that can shadow
+/// the row from it (each must clear the pixel), with their row part of `l·u`
+/// ([`ShadowCone::row_part`]).
+#[derive(Debug, Clone)]
+struct LeanLight<S: Scalar> {
+    x: S,
+    /// `L.y² + L.z²` (`None`: `L.y`, `L.z` do not fit, no hit of the row is lit).
+    yz: Option<S::Acc>,
+    nl: Option<S>,
+    knl: Option<S>,
+    weights: [[S; 3]; 2],
+    overflow: [u16; 2],
+    cones: heapless::Vec<(ShadowCone<S>, S::Acc), { fast::MAX_CONES }>,
 }
 
 /// A light's terms that are the same at every hit of a row (`N.x = 0` and the hits
@@ -323,6 +337,7 @@ fn level<S: Scalar, T: Stages>(
             tile_row,
             &occluders,
             &row_lights,
+            (&weights, overflow),
         )
     } else {
         None
@@ -361,6 +376,7 @@ fn lean_row<S: Scalar>(
     tile_row: Option<i32>,
     occluders: &[u8],
     row_lights: &[RowLight<S>],
+    (weights, overflow): (&[[S; 3]], u16),
 ) -> Option<LeanRow<S>> {
     let (tiles, alt) = match (object.shape, tile_row) {
         (Shape::Tiled { frame, alt, .. }, Some(j)) => (Some((frame, j)), alt),
@@ -391,8 +407,18 @@ fn lean_row<S: Scalar>(
         slot[k] = usize::from(m != object.material) * ROW_LIGHTS;
     }
     let half = S::MAX.mul_ratio(1, 2)?;
-    let mut cones = heapless::Vec::new();
-    for (j, (&bits, rl)) in occluders.iter().zip(row_lights).enumerate() {
+    let mut lights = heapless::Vec::new();
+    for (j, ((&bits, rl), light)) in occluders
+        .iter()
+        .zip(row_lights)
+        .zip(scene.lights)
+        .enumerate()
+    {
+        let entry = |k: usize| -> Option<([S; 3], u16)> {
+            let e = slot[k] + j;
+            Some((*weights.get(e)?, (overflow >> (3 * e)) & 7))
+        };
+        let ((w0, o0), (w1, o1)) = (entry(0)?, entry(1)?);
         let mut list = heapless::Vec::new();
         for i in (0..fast::FAST_OBJECTS).filter(|i| bits & (1 << i) != 0) {
             let mut matching = p
@@ -410,14 +436,22 @@ fn lean_row<S: Scalar>(
             };
             list.push((*cone, part)).ok()?;
         }
-        cones.push(list).ok()?;
+        let lean = LeanLight {
+            x: light.location.x,
+            yz: rl.l.and(rl.yz),
+            nl: rl.nl,
+            knl: rl.knl,
+            weights: [w0, w1],
+            overflow: [o0, o1],
+            cones: list,
+        };
+        lights.push(lean).ok()?;
     }
     Some(LeanRow {
         tiles,
         ambient,
         lit,
-        slot,
-        cones,
+        lights,
         half,
     })
 }
@@ -822,35 +856,33 @@ fn lean_color<S: Scalar>(
         counters_add(&mut counters.tile_lookups, tiled);
         return Some(color);
     }
-    let slot = *f.slot.get(parity)?;
     let (mut shadow_rays, mut diffuse) = (0u32, 0u32);
-    for (j, (light, rl)) in scene.lights.iter().zip(&l.lights).enumerate() {
-        let (Some(lx), Some(_)) = (light.location.x.checked_sub(x), rl.l) else {
+    for light in &f.lights {
+        let (Some(lx), Some(yz)) = (light.x.checked_sub(x), light.yz) else {
             continue;
         };
-        let ll = S::acc_round(S::acc_add(S::acc_mul(lx, lx)?, rl.yz?)?)?;
+        let ll = S::acc_round(S::acc_add(S::acc_mul(lx, lx)?, yz)?)?;
         if ll <= S::ZERO {
             return None;
         }
-        let Some(nl) = rl.nl else {
+        let Some(nl) = light.nl else {
             continue;
         };
         shadow_rays += 1;
         // Only spheres can shadow a lean row: each cleared by its cone, or the pixel
         // takes the exact test (`plane_color`).
-        let cones = f.cones.get(j)?;
-        if !cones.is_empty() && lx.abs() > f.half {
+        if !light.cones.is_empty() && lx.abs() > f.half {
             return None;
         }
-        for (cone, part) in cones {
+        for (cone, part) in &light.cones {
             if !cone.clears_in_row(lx, *part, ll) {
                 return None;
             }
         }
-        let falloff = diffuse_falloff(nl, rl.knl, ll);
+        let falloff = diffuse_falloff(nl, light.knl, ll);
         diffuse += 1;
-        let w = *l.weights.get(slot + j)?;
-        color = add_weighted(color, w, l.overflow >> (3 * (slot + j)), falloff);
+        let (w, overflow) = (light.weights.get(parity)?, light.overflow.get(parity)?);
+        color = add_weighted(color, *w, *overflow, falloff);
     }
     counters_add(&mut counters.tile_lookups, tiled);
     counters_add(&mut counters.shadow_rays, shadow_rays);
