@@ -321,32 +321,20 @@ impl<S: Scalar> ShadowCone<S> {
     }
 
     /// [`ShadowCone::clears`] for a point of a scanline whose hits share `y` and `z`:
-    /// `l·u` from `l.x` and the row's unrounded `u.y·l.y + u.z·l.z` (`yz`,
-    /// [`ShadowCone::row_part`]), one product. The same answer bit for bit in the formats
-    /// whose sums are exact, for `|l.x|` and the row's `|l.y|`, `|l.z|` at most half the
-    /// format's range (no partial sum of `l·u` then leaves the double width, in any
-    /// order; callers check).
-    pub(crate) fn clears_in_row(&self, lx: S, yz: S::Acc, ll: S) -> bool {
-        if ll < self.near {
-            return false;
-        }
-        let Some(lu) = S::acc_mul(lx, self.u.x)
-            .and_then(|xx| S::acc_add(xx, yz))
-            .and_then(S::acc_round)
-        else {
-            return false;
-        };
-        lu >= S::ZERO || S::cmp_products(lu, lu, ll, self.k) == Some(core::cmp::Ordering::Less)
-    }
-
-    /// The row's part of `l·u` for [`ShadowCone::clears_in_row`]: `u.y·ly + u.z·lz`
-    /// unrounded; `None` when it does not fit, or when a component of `u` is beyond half
-    /// the format's range.
-    pub(crate) fn row_part(&self, ly: S, lz: S) -> Option<S::Acc> {
+    /// The cone's part for one scanline whose hits share `l.y = ly` and `l.z = lz`
+    /// ([`RowCone`]): `None` when `u.y·ly + u.z·lz` does not fit, or when a component of
+    /// `u` is beyond half the format's range.
+    pub(crate) fn in_row(&self, ly: S, lz: S) -> Option<RowCone<S>> {
         let half = S::MAX.mul_ratio(1, 2)?;
         let u = self.u;
         (u.x.abs() <= half && u.y.abs() <= half && u.z.abs() <= half).then_some(())?;
-        S::acc_add(S::acc_mul(u.y, ly)?, S::acc_mul(u.z, lz)?)
+        let yz = S::acc_add(S::acc_mul(u.y, ly)?, S::acc_mul(u.z, lz)?)?;
+        Some(RowCone {
+            near: self.near,
+            ux: u.x,
+            k: self.k,
+            yz,
+        })
     }
 
     /// Whether every point `P` of the line `P = light + (s, wy, wz)` (any `s`: a
@@ -397,6 +385,39 @@ impl<S: Scalar> ShadowCone<S> {
             return false;
         };
         // s = −l·u ≤ 0: the nearest point of the segment to the centre is the light.
+        lu >= S::ZERO || S::cmp_products(lu, lu, ll, self.k) == Some(core::cmp::Ordering::Less)
+    }
+}
+
+/// A [`ShadowCone`] on one scanline whose hits share `l.y` and `l.z`
+/// ([`ShadowCone::in_row`]): what [`RowCone::clears`] needs, the row's part of `l·u`
+/// unrounded (`u.y·l.y + u.z·l.z`) included, and nothing else (a lean row keeps one per
+/// cone: an I32F32 scanline's frame on a 16 KB chip).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RowCone<S: Scalar> {
+    near: S,
+    ux: S,
+    k: S,
+    yz: S::Acc,
+}
+
+impl<S: Scalar> RowCone<S> {
+    /// [`ShadowCone::clears`] at the row's hit with `l.x = lx` and `|l|² = ll`: `l·u`
+    /// from `l.x` and the row's part, one product. The same answer bit for bit in the
+    /// formats whose sums are exact, for `|l.x|` and the row's `|l.y|`, `|l.z|` at most
+    /// half the format's range (no partial sum of `l·u` then leaves the double width, in
+    /// any order; callers check).
+    #[inline(always)]
+    pub(crate) fn clears(&self, lx: S, ll: S) -> bool {
+        if ll < self.near {
+            return false;
+        }
+        let Some(lu) = S::acc_mul(lx, self.ux)
+            .and_then(|xx| S::acc_add(xx, self.yz))
+            .and_then(S::acc_round)
+        else {
+            return false;
+        };
         lu >= S::ZERO || S::cmp_products(lu, lu, ll, self.k) == Some(core::cmp::Ordering::Less)
     }
 }

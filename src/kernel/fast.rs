@@ -574,7 +574,7 @@ impl<S: Scalar> Primary<S> {
             if first.nd.len() != self.terms.len() {
                 return None;
             }
-            let (lo, hi) = self.dx_range(scene, first, width)?;
+            let (lo, hi) = self.dx_range(scene, first.dir.x, width)?;
             for x in [lo, hi] {
                 let d = Vec3::new(x, first.dir.y, first.dir.z);
                 for (i, term) in self.terms.iter().enumerate() {
@@ -589,24 +589,19 @@ impl<S: Scalar> Primary<S> {
         fits().is_some()
     }
 
-    /// The least and greatest `D.x` scanline `first` (started at column 0) can take at
-    /// its `width` pixels: the first and last column's, widened by the drift of the
+    /// The least and greatest `D.x` a scanline whose column 0 has `D.x = dx0` can take
+    /// at its `width` pixels: the first and last column's, widened by the drift of the
     /// stepped coordinate (`RESYNC_PIXELS·|step_x|`). `None` when that does not fit.
-    pub(crate) fn dx_range(
-        &self,
-        scene: &SceneView<'_, S>,
-        first: &Row<S>,
-        width: u16,
-    ) -> Option<(S, S)> {
+    pub(crate) fn dx_range(&self, scene: &SceneView<'_, S>, dx0: S, width: u16) -> Option<(S, S)> {
         let last = scene
             .camera
             .screen_x(width.checked_sub(1)?)?
             .checked_sub(scene.camera.viewpoint.x)?;
         let span = self.resync_span?;
-        let (lo, hi) = if first.dir.x <= last {
-            (first.dir.x, last)
+        let (lo, hi) = if dx0 <= last {
+            (dx0, last)
         } else {
-            (last, first.dir.x)
+            (last, dx0)
         };
         Some((lo.checked_sub(span)?, hi.checked_add(span)?))
     }

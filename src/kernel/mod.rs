@@ -192,7 +192,14 @@ pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
         }
         Kernel::Fast(p) => Some(p),
         Kernel::Rows(r) if rows::draws_with::<T>() => {
-            return rows_line::<S, T, C>(scene, r, row, line, counters);
+            match rows_line::<S, T, C>(scene, r, row, line, counters) {
+                Ok(()) => return,
+                // A row the level-plane kernel cannot decide once: the fast kernel's,
+                // drawn from here (the level-plane kernel's frame is gone by then).
+                Err(counters) => {
+                    return primary_line::<S, T, C>(scene, Some(&r.primary), row, line, counters);
+                }
+            }
         }
         // Never chosen for another stage set (`select`): not compiled for it.
         Kernel::Rows(r) => Some(&r.primary),
@@ -331,16 +338,18 @@ fn flat_line<S: Scalar, C: From<Rgb888>>(
     true
 }
 
-/// A scanline of the level-plane kernel into `line` (a row it cannot decide once: the
-/// fast kernel's). Not inlined: its per-row data are on the stack only while it draws.
+/// A scanline of the level-plane kernel into `line`; `Err` (the counters handed back)
+/// for a row it cannot decide once, which the caller hands to the fast kernel. Not
+/// inlined: its per-row data are on the stack only while it draws, never under the fast
+/// kernel's scanline.
 #[inline(never)]
-fn rows_line<S: Scalar, T: Stages, C: From<Rgb888>>(
-    scene: &SceneView<'_, S>,
-    rows: &Rows<S>,
+fn rows_line<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
+    scene: &'a SceneView<'a, S>,
+    rows: &'a Rows<S>,
     row: u16,
     line: &mut [C],
-    counters: &mut Counters,
-) {
+    counters: &'a mut Counters,
+) -> Result<(), &'a mut Counters> {
     let width = u16::try_from(line.len()).unwrap_or(0);
     // Drawn where `scanline` built it (a move would be a second copy on the stack).
     let mut pixels = rows::scanline::<S, T>(scene, rows, row, 0..width, counters);
@@ -349,8 +358,9 @@ fn rows_line<S: Scalar, T: Stages, C: From<Rgb888>>(
             for (slot, c) in line.iter_mut().zip(pixels.by_ref()) {
                 *slot = C::from(c);
             }
+            Ok(())
         }
-        Err(counters) => primary_line::<S, T, C>(scene, Some(&rows.primary), row, line, counters),
+        Err(_) => pixels.map(|_| ()),
     }
 }
 

@@ -28,7 +28,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::fast::{self, FAST_OBJECTS, FastHit, Primary, Row};
 use super::reference::{fast_color, reference_color};
-use crate::geometry::{ShadowCone, sides_differ, surface_tolerance};
+use crate::geometry::{RowCone, sides_differ, surface_tolerance};
 use crate::shade::color::{add_sat, term, to_pixel};
 use crate::shade::stages::Stages;
 use crate::shade::{
@@ -79,15 +79,11 @@ struct Level<S: Scalar> {
     /// A tiled plane's tile row, the same at every hit of the row
     /// ([`crate::PlaneFrame::tile_row`]; `None`: each pixel looks its tile up whole).
     tile_row: Option<i32>,
-    /// What [`lean_color`] needs to draw the row's pixels, where it may: every light has
-    /// its row terms and weights, the sums are exact, the sides are kept, no plane can
-    /// shadow the row (a plane's shadow test needs the segments' tolerance at each
-    /// pixel) and every quantity fits at every pixel of the row ([`lean_row`]).
-    lean: Option<LeanRow<S>>,
 }
 
 /// A lean row's per-row part ([`lean_row`]): what [`lean_color`] would otherwise look up
-/// or check at each pixel.
+/// or check at each pixel. Built in place, in the scanline's [`Pixels`], at the row's
+/// first pixel that needs it (an I32F32 scanline on a 16 KB chip has no room for copies).
 #[derive(Debug, Clone)]
 struct LeanRow<S: Scalar> {
     /// A tiled plane's frame and tile row (`None`: a plain plane).
@@ -99,15 +95,17 @@ struct LeanRow<S: Scalar> {
     lit: [bool; 2],
     /// Per light, everything its term needs.
     lights: heapless::Vec<LeanLight<S>, ROW_LIGHTS>,
+    /// The shadow cones of the spheres that can shadow the row, light by light
+    /// ([`LeanLight::cones`]).
+    cones: heapless::Vec<RowCone<S>, { fast::MAX_CONES }>,
     /// Half the format's range: a pixel's `|L.x|` beyond takes [`plane_color`]
-    /// ([`ShadowCone::clears_in_row`]).
+    /// ([`RowCone::clears`]).
     half: S,
 }
 
 /// One light of a lean row: [`RowLight`]'s terms, the light's `x`, its weights per tile
-/// parity (with their overflow bits) and the shadow cones of the spheres that can shadow
-/// the row from it (each must clear the pixel), with their row part of `l·u`
-/// ([`ShadowCone::row_part`]).
+/// parity (with their overflow bits) and where in [`LeanRow::cones`] the shadow cones of
+/// the spheres that can shadow the row from it are (each must clear the pixel).
 #[derive(Debug, Clone)]
 struct LeanLight<S: Scalar> {
     x: S,
@@ -117,7 +115,8 @@ struct LeanLight<S: Scalar> {
     knl: Option<S>,
     weights: [[S; 3]; 2],
     overflow: [u16; 2],
-    cones: heapless::Vec<(ShadowCone<S>, S::Acc), { fast::MAX_CONES }>,
+    /// The light's cones: `cones.0..cones.1` in [`LeanRow::cones`].
+    cones: (u8, u8),
 }
 
 /// A light's terms that are the same at every hit of a row (`N.x = 0` and the hits
@@ -247,7 +246,7 @@ fn level<S: Scalar, T: Stages>(
             for (i, ((o, &a0), &a1)) in scene.objects.iter().zip(&sides).zip(at_light).enumerate() {
                 let may = match o.shape {
                     // A sphere whose shadow cone from this light misses the whole row
-                    // (`ShadowCone::clears_line`) is left out.
+                    // (`crate::geometry::ShadowCone::clears_line`) is left out.
                     Shape::Sphere(_) => !p.cones().iter().any(|c| {
                         usize::from(c.light) == j
                             && usize::from(c.object) == i
@@ -310,40 +309,7 @@ fn level<S: Scalar, T: Stages>(
         } => frame.tile_row(y, z),
         _ => None,
     };
-    let spheres_only = occluders.iter().all(|&bits| {
-        scene
-            .objects
-            .iter()
-            .enumerate()
-            .all(|(i, o)| bits & (1 << i) == 0 || matches!(o.shape, Shape::Sphere(_)))
-    });
-    let lean = S::EXACT_SUMS
-        && !sides.is_empty()
-        && occluders.len() == lights
-        && row_lights.len() == lights
-        && weights.len() == 2 * ROW_LIGHTS
-        && spheres_only
-        && row_lights
-            .iter()
-            .all(|rl| rl.l.is_none() || rl.yz.is_some());
-    let lean = if lean {
-        lean_row(
-            scene,
-            p,
-            first,
-            object,
-            t,
-            (y, z),
-            tile_row,
-            &occluders,
-            &row_lights,
-            (&weights, overflow),
-        )
-    } else {
-        None
-    };
     Some(Some(Level {
-        lean,
         tile_row,
         index,
         t,
@@ -359,25 +325,43 @@ fn level<S: Scalar, T: Stages>(
     }))
 }
 
-/// The per-row part of a lean row ([`LeanRow`]), `None` where the row is not one: the
-/// plane is a plain plane or a tiled one with its tile row, its materials are there,
+/// Fills `out` with the per-row part of a lean row ([`LeanRow`]) of the row's plane `l`
+/// (`first`: the row's `D` at column 0); `None` where the row is not one: the plane is a plain plane or a tiled one with its tile row, its materials are there,
 /// each sphere that can shadow the row has exactly one shadow cone from that light, and
 /// at every `D.x` of the row ([`Primary::dx_range`]) the hit's distance bound and the
 /// segments' tolerance fit the format (both grow with `|D.x|` and the hit's `|x|`, so
 /// checking the row's extremes checks every pixel; `lean_color` then skips them).
-#[allow(clippy::too_many_arguments)]
 fn lean_row<S: Scalar>(
     scene: &SceneView<'_, S>,
     p: &Primary<S>,
-    first: &Row<S>,
-    object: &crate::Object<S>,
-    t: S,
-    (y, z): (S, S),
-    tile_row: Option<i32>,
-    occluders: &[u8],
-    row_lights: &[RowLight<S>],
-    (weights, overflow): (&[[S; 3]], u16),
-) -> Option<LeanRow<S>> {
+    l: &Level<S>,
+    first: Vec3<S>,
+    out: &mut LeanRow<S>,
+) -> Option<()> {
+    out.lights.clear();
+    out.cones.clear();
+    let lights = scene.lights.len();
+    // Every light has its row terms and weights, the sums are exact, the sides are
+    // kept, and no plane can shadow the row (a plane's shadow test needs the segments'
+    // tolerance at each pixel).
+    let spheres_only = l.occluders.iter().all(|&bits| {
+        scene
+            .objects
+            .iter()
+            .enumerate()
+            .all(|(i, o)| bits & (1 << i) == 0 || matches!(o.shape, Shape::Sphere(_)))
+    });
+    (S::EXACT_SUMS
+        && !l.sides.is_empty()
+        && l.occluders.len() == lights
+        && l.lights.len() == lights
+        && l.weights.len() == 2 * ROW_LIGHTS
+        && spheres_only
+        && l.lights.iter().all(|rl| rl.l.is_none() || rl.yz.is_some()))
+    .then_some(())?;
+    let object = scene.objects.get(l.index)?;
+    let (t, y, z, tile_row) = (l.t, l.y, l.z, l.tile_row);
+    let (weights, overflow) = (&l.weights, l.overflow);
     let (tiles, alt) = match (object.shape, tile_row) {
         (Shape::Tiled { frame, alt, .. }, Some(j)) => (Some((frame, j)), alt),
         (Shape::Plane(_), _) => (None, object.material),
@@ -386,8 +370,8 @@ fn lean_row<S: Scalar>(
     // The tolerance at the row's extremes (t' > 0: the bound and `|x|` grow with `|D.x|`).
     (t > S::ZERO).then_some(())?;
     let eye = scene.camera.viewpoint;
-    let d = Primary::dir(first);
-    let (lo, hi) = p.dx_range(scene, first, scene.camera.width)?;
+    let d = first;
+    let (lo, hi) = p.dx_range(scene, d.x, scene.camera.width)?;
     let widest = lo.abs().max(hi.abs()).max(d.y.abs()).max(d.z.abs());
     let t_bound = t.checked_mul(widest.checked_add(widest)?)?;
     let x_lo = eye.x.checked_add(t.checked_mul(lo)?)?;
@@ -397,20 +381,21 @@ fn lean_row<S: Scalar>(
         .max(Vec3::new(x_lo, y, z).max_abs())
         .max(x_hi.abs());
     surface_tolerance(t_bound, m)?;
-    let mut ambient = [[S::ZERO; 3]; 2];
-    let mut lit = [false; 2];
     let mut slot = [0; 2];
     for (k, m) in [object.material, alt].into_iter().enumerate() {
         let material = scene.materials.get(usize::from(m))?;
-        ambient[k] = material.ambient;
-        lit[k] = material.diffuse != [S::ZERO; 3];
+        out.ambient[k] = material.ambient;
+        out.lit[k] = material.diffuse != [S::ZERO; 3];
         slot[k] = usize::from(m != object.material) * ROW_LIGHTS;
     }
     let half = S::MAX.mul_ratio(1, 2)?;
-    let mut lights = heapless::Vec::new();
-    for (j, ((&bits, rl), light)) in occluders
+    out.half = half;
+    out.tiles = tiles;
+    let (lights, cones) = (&mut out.lights, &mut out.cones);
+    for (j, ((&bits, rl), light)) in l
+        .occluders
         .iter()
-        .zip(row_lights)
+        .zip(&l.lights)
         .zip(scene.lights)
         .enumerate()
     {
@@ -419,7 +404,7 @@ fn lean_row<S: Scalar>(
             Some((*weights.get(e)?, (overflow >> (3 * e)) & 7))
         };
         let ((w0, o0), (w1, o1)) = (entry(0)?, entry(1)?);
-        let mut list = heapless::Vec::new();
+        let first = cones.len();
         for i in (0..fast::FAST_OBJECTS).filter(|i| bits & (1 << i) != 0) {
             let mut matching = p
                 .cones()
@@ -428,13 +413,13 @@ fn lean_row<S: Scalar>(
             let (Some(cone), None) = (matching.next(), matching.next()) else {
                 return None;
             };
-            let part = match rl.l {
-                Some((ly, lz)) if ly.abs() <= half && lz.abs() <= half => cone.row_part(ly, lz)?,
+            let row_cone = match rl.l {
+                Some((ly, lz)) if ly.abs() <= half && lz.abs() <= half => cone.in_row(ly, lz)?,
                 // No pixel of the row reaches this light's cones.
                 None => continue,
                 Some(_) => return None,
             };
-            list.push((*cone, part)).ok()?;
+            cones.push(row_cone).ok()?;
         }
         let lean = LeanLight {
             x: light.location.x,
@@ -443,17 +428,11 @@ fn lean_row<S: Scalar>(
             knl: rl.knl,
             weights: [w0, w1],
             overflow: [o0, o1],
-            cones: list,
+            cones: (u8::try_from(first).ok()?, u8::try_from(cones.len()).ok()?),
         };
         lights.push(lean).ok()?;
     }
-    Some(LeanRow {
-        tiles,
-        ambient,
-        lit,
-        lights,
-        half,
-    })
+    Some(())
 }
 
 /// The pixels of columns `columns` of scanline `row`: the row's plane worked out once
@@ -484,6 +463,16 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         scene,
         p,
         level,
+        lean: LeanRow {
+            tiles: None,
+            ambient: [[S::ZERO; 3]; 2],
+            lit: [false; 2],
+            lights: heapless::Vec::new(),
+            cones: heapless::Vec::new(),
+            half: S::ZERO,
+        },
+        lean_built: None,
+        dx0: Primary::dir(&first).x,
         lazy,
         stale: false,
         state: first,
@@ -510,6 +499,12 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     scene: &'a SceneView<'a, S>,
     p: &'a Primary<S>,
     level: Option<Level<S>>,
+    /// The row's lean part ([`lean_row`]), built at the first pixel that needs it
+    /// (`lean_built`: `None` until then, then whether the row is a lean one), and the
+    /// row's `D.x` at column 0 that it needs.
+    lean: LeanRow<S>,
+    lean_built: Option<bool>,
+    dx0: S,
     /// The fast kernel's row at the current pixel: at column 0 as the fast kernel starts
     /// it (`fresh`); after a pixel whose step failed (`valid` false) the next restarts,
     /// as `reference::scanline` does.
@@ -634,7 +629,20 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             return None;
         }
         let l = self.level.as_ref()?;
-        lean_color(self.scene, &self.state, l, l.lean.as_ref()?, self.counters)
+        let lean = match self.lean_built {
+            Some(lean) => lean,
+            None => {
+                let d = Primary::dir(&self.state);
+                let first = Vec3::new(self.dx0, d.y, d.z);
+                let lean = lean_row(self.scene, self.p, l, first, &mut self.lean).is_some();
+                self.lean_built = Some(lean);
+                lean
+            }
+        };
+        if !lean {
+            return None;
+        }
+        lean_color(self.scene, &self.state, l, &self.lean, self.counters)
     }
 
     /// The pixel on the reference path (a quantity out of the format's range).
@@ -871,11 +879,14 @@ fn lean_color<S: Scalar>(
         shadow_rays += 1;
         // Only spheres can shadow a lean row: each cleared by its cone, or the pixel
         // takes the exact test (`plane_color`).
-        if !light.cones.is_empty() && lx.abs() > f.half {
+        let cones = f
+            .cones
+            .get(usize::from(light.cones.0)..usize::from(light.cones.1))?;
+        if !cones.is_empty() && lx.abs() > f.half {
             return None;
         }
-        for (cone, part) in &light.cones {
-            if !cone.clears_in_row(lx, *part, ll) {
+        for cone in cones {
+            if !cone.clears(lx, ll) {
                 return None;
             }
         }

@@ -35,7 +35,9 @@ type Mirror<S> = (Option<Ray<S>>, S);
 /// The colour of a hit on `objects[index]` with the stages of `T`, its mirror chain
 /// included (see the module documentation). `ray` is the ray that arrived: on the fast
 /// kernel an unnormalised direction with the planes' sides (`Incoming`); the reflected
-/// rays are the reference path's.
+/// rays are the reference path's. Not inlined: its callers' frames (scanline loops)
+/// stay as small as they were (stack on a 16 KB chip).
+#[inline(never)]
 pub(crate) fn shade<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     ray: &Incoming<'_, S>,
@@ -44,7 +46,9 @@ pub(crate) fn shade<S: Scalar, T: Stages>(
     counters: &mut Counters,
 ) -> Color<S> {
     let (mut own, mirror) = own_color::<S, T>(scene, ray, index, hit, 0, counters);
-    let Some(mut mirror) = mirror else {
+    // Without reflection (`own_color` then finds no mirror) the mirror loop below is not
+    // compiled: its locals would sit in this frame under every shading call (stack).
+    let Some(mut mirror) = mirror.filter(|_| T::REFLECTION) else {
         return own;
     };
     // Every mirror's own colour and weight, the nearest first: at most
@@ -72,7 +76,9 @@ pub(crate) fn shade<S: Scalar, T: Stages>(
     seen
 }
 
-/// `(1 − K) own + K seen` per channel, each product saturating (a mirror's share).
+/// `(1 − K) own + K seen` per channel, each product saturating (a mirror's share). Not
+/// inlined: its locals would deepen the mirror loop's frame.
+#[inline(never)]
 fn blend<S: Scalar>(mut own: Color<S>, k: S, seen: Color<S>) -> Color<S> {
     let keep = S::ONE.checked_sub(k).unwrap_or(S::ZERO);
     for (c, s) in own.iter_mut().zip(seen) {
