@@ -35,9 +35,7 @@ type Mirror<S> = (Option<Ray<S>>, S);
 /// The colour of a hit on `objects[index]` with the stages of `T`, its mirror chain
 /// included (see the module documentation). `ray` is the ray that arrived: on the fast
 /// kernel an unnormalised direction with the planes' sides (`Incoming`); the reflected
-/// rays are the reference path's. Not inlined: its callers' frames (scanline loops)
-/// stay as small as they were (stack on a 16 KB chip).
-#[inline(never)]
+/// rays are the reference path's.
 pub(crate) fn shade<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     ray: &Incoming<'_, S>,
