@@ -124,6 +124,31 @@ impl<S: Scalar> PlaneFrame<S> {
         Some((i.wrapping_add(j)) & 1 == 1)
     }
 
+    /// [`PlaneFrame::odd_tile_in_row`] for the hits of one scanline, which share `y`, `z`
+    /// and the tile row `j` ([`RowTiles`]): `None` unless `u` lies along the world's x
+    /// axis (then the point's coordinate is `±(x − corner.x)` exactly, as `dot_axis`
+    /// takes it) and the row's `y − corner.y` and `z − corner.z` fit the format (where
+    /// they do not, every point of the row has no tile; callers take the general lookup).
+    pub(crate) fn row_tiles(&self, y: S, z: S, j: i32) -> Option<RowTiles<S>> {
+        let u = self.u;
+        (u.y == S::ZERO && u.z == S::ZERO).then_some(())?;
+        let negate = if u.x == S::ONE {
+            false
+        } else if u.x.checked_neg() == Some(S::ONE) {
+            true
+        } else {
+            return None;
+        };
+        y.checked_sub(self.corner.y)?;
+        z.checked_sub(self.corner.z)?;
+        Some(RowTiles {
+            corner_x: self.corner.x,
+            negate,
+            size: self.size[0],
+            j,
+        })
+    }
+
     /// The course's checkerboard of the frame's axes, anchored at the world origin:
     /// `floor(p·u / W) + floor(p·v / H)` odd.
     pub fn odd_tile_from_origin(&self, p: Vec3<S>) -> Option<bool> {
@@ -147,6 +172,30 @@ impl<S: Scalar> PlaneFrame<S> {
         self.coords(p).is_some_and(|(a, b)| {
             a >= S::ZERO && a <= self.size[0] && b >= S::ZERO && b <= self.size[1]
         })
+    }
+}
+
+/// A tiled plane's checkerboard along one scanline ([`PlaneFrame::row_tiles`]): what
+/// [`PlaneFrame::odd_tile_in_row`] needs of the frame when `u` lies along the x axis,
+/// one subtraction and the tile index per point instead of a vector difference and a
+/// dot product (a level-plane row's pixels, `kernel/rows.rs`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RowTiles<S> {
+    corner_x: S,
+    /// `u` is `−x` (its coordinate is `corner.x − x`).
+    negate: bool,
+    size: S,
+    j: i32,
+}
+
+impl<S: Scalar> RowTiles<S> {
+    /// [`PlaneFrame::odd_tile_in_row`] of the row's point with this `x`, bit for bit.
+    #[inline(always)]
+    pub(crate) fn odd(&self, x: S) -> Option<bool> {
+        let a = x.checked_sub(self.corner_x)?;
+        let a = if self.negate { a.checked_neg()? } else { a };
+        let i = tile_index(a, self.size)?;
+        Some((i.wrapping_add(self.j)) & 1 == 1)
     }
 }
 
@@ -183,5 +232,65 @@ fn tile_index<S: Scalar>(x: S, size: S) -> Option<i32> {
         x.floor_to_i32()
     } else {
         x.checked_div(size)?.floor_to_i32()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{I16F16, I20F12, I32F32};
+
+    /// A row's tiles say what the frame's own lookup says at every `x`, for frames whose
+    /// `u` is `+x` or `−x`, tiles of size 1 and not, a corner off the origin, and rows
+    /// whose tile row is negative; frames whose `u` is not along x have none.
+    fn row_tiles_agree<S: Scalar>() {
+        let v = |x: f64, y: f64, z: f64| {
+            Vec3::new(
+                S::from_f64(x).unwrap(),
+                S::from_f64(y).unwrap(),
+                S::from_f64(z).unwrap(),
+            )
+        };
+        let frames = [
+            (v(0.0, 1.0, 0.0), v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), 1.0),
+            (v(0.0, 1.0, 0.0), v(0.3, 0.0, -2.25), v(-1.0, 0.0, 0.0), 1.5),
+            (v(0.0, 0.0, 1.0), v(-1.75, 0.5, -6.0), v(1.0, 0.0, 0.0), 0.75),
+            (v(0.0, -1.0, 0.0), v(2.0, 4.0, 1.0), v(-1.0, 0.0, 0.0), 2.0),
+        ];
+        for (normal, corner, xdir, size) in frames {
+            let size = S::from_f64(size).unwrap();
+            let frame = PlaneFrame::new(normal, corner, xdir, [size, size]).unwrap();
+            for (y, z) in [(0.0, -3.3), (0.0, 7.9), (4.0, -0.2), (0.5, -6.0)] {
+                let (y, z) = (S::from_f64(y).unwrap(), S::from_f64(z).unwrap());
+                let Some(j) = frame.tile_row(y, z) else {
+                    continue;
+                };
+                let tiles = frame.row_tiles(y, z, j).expect("u lies along x");
+                for k in -400..400 {
+                    let x = S::from_f64(f64::from(k) * 0.0371).unwrap();
+                    assert_eq!(
+                        tiles.odd(x),
+                        frame.odd_tile_in_row(Vec3::new(x, y, z), j),
+                        "{} x={x:?} y={y:?} z={z:?}",
+                        S::NAME
+                    );
+                }
+            }
+        }
+        let slanted = PlaneFrame::new(v(0.0, 1.0, 0.0), v(0.0, 0.0, 0.0), v(1.0, 0.0, 1.0), [
+            S::ONE,
+            S::ONE,
+        ])
+        .unwrap();
+        assert!(slanted.row_tiles(S::ZERO, S::ZERO, 0).is_none());
+    }
+
+    #[test]
+    fn row_tiles_are_the_frames_lookup() {
+        row_tiles_agree::<I16F16>();
+        row_tiles_agree::<I20F12>();
+        row_tiles_agree::<I32F32>();
+        row_tiles_agree::<f32>();
+        row_tiles_agree::<f64>();
     }
 }

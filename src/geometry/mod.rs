@@ -52,6 +52,7 @@ pub use shape::Shape;
 pub(crate) use shape::{SPHERES, unit_ray};
 pub(crate) use spawn::surface_tolerance;
 pub use spawn::{RESIDUAL_ULPS, SPAWN_MARGIN_ULPS};
+pub(crate) use frame::RowTiles;
 pub(crate) use sphere::{RowCone, ShadowCone};
 pub use sphere::{Sphere, SphereError};
 pub use triangle::{EDGE_SLACK_ULPS, Triangle, TriangleError};

@@ -28,7 +28,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::fast::{self, FAST_OBJECTS, FastHit, Primary, Row};
 use super::reference::{fast_color, reference_color};
-use crate::geometry::{RowCone, sides_differ, surface_tolerance};
+use crate::geometry::{RowCone, RowTiles, sides_differ, surface_tolerance};
 use crate::shade::color::{add_sat, term, to_pixel};
 use crate::shade::stages::Stages;
 use crate::shade::{
@@ -86,8 +86,8 @@ struct Level<S: Scalar> {
 /// first pixel that needs it (an I32F32 scanline on a 16 KB chip has no room for copies).
 #[derive(Debug, Clone)]
 struct LeanRow<S: Scalar> {
-    /// A tiled plane's frame and tile row (`None`: a plain plane).
-    tiles: Option<(crate::PlaneFrame<S>, i32)>,
+    /// A tiled plane's checkerboard along the row (`None`: a plain plane).
+    tiles: Option<RowTiles<S>>,
     /// Per tile parity (0: the plane's own material, 1: a tiled plane's odd tiles): the
     /// ambient colour, whether the diffuse colour is not black, and the slot of the
     /// material's weights in [`Level::weights`].
@@ -363,7 +363,7 @@ fn lean_row<S: Scalar>(
     let (t, y, z, tile_row) = (l.t, l.y, l.z, l.tile_row);
     let (weights, overflow) = (&l.weights, l.overflow);
     let (tiles, alt) = match (object.shape, tile_row) {
-        (Shape::Tiled { frame, alt, .. }, Some(j)) => (Some((frame, j)), alt),
+        (Shape::Tiled { frame, alt, .. }, Some(j)) => (Some(frame.row_tiles(y, z, j)?), alt),
         (Shape::Plane(_), _) => (None, object.material),
         _ => return None,
     };
@@ -854,7 +854,7 @@ fn lean_color<S: Scalar>(
     // The material by the tile's parity (`row_material`); the hit's distance bound and
     // the segments' tolerance fit at every pixel of a lean row (`lean_row`).
     let odd = match &f.tiles {
-        Some((frame, j)) => frame.odd_tile_in_row(Vec3::new(x, l.y, l.z), *j) == Some(true),
+        Some(tiles) => tiles.odd(x) == Some(true),
         None => false,
     };
     let parity = usize::from(odd);
