@@ -41,6 +41,7 @@ mod sphere;
 mod triangle;
 mod vec3;
 
+pub(crate) use frame::RowTiles;
 pub use frame::{FrameError, PlaneFrame, Slide, TexMode, Tiling};
 #[cfg(feature = "course")]
 pub(crate) use plane::crossing_point;
@@ -52,7 +53,6 @@ pub use shape::Shape;
 pub(crate) use shape::{SPHERES, unit_ray};
 pub(crate) use spawn::surface_tolerance;
 pub use spawn::{RESIDUAL_ULPS, SPAWN_MARGIN_ULPS};
-pub(crate) use frame::RowTiles;
 pub(crate) use sphere::{RowCone, ShadowCone};
 pub use sphere::{Sphere, SphereError};
 pub use triangle::{EDGE_SLACK_ULPS, Triangle, TriangleError};
