@@ -320,7 +320,6 @@ impl<S: Scalar> ShadowCone<S> {
         })
     }
 
-    /// [`ShadowCone::clears`] for a point of a scanline whose hits share `y` and `z`:
     /// The cone's part for one scanline whose hits share `l.y = ly` and `l.z = lz`
     /// ([`RowCone`]): `None` when `u.y·ly + u.z·lz` does not fit, or when a component of
     /// `u` is beyond half the format's range.

@@ -15,7 +15,8 @@
 //! own test, and shaded its way.
 //!
 //! Every quantity has the fast kernel's value (the same operations; `|L|²` adds its
-//! exact terms in another order only where sums are exact, `Scalar::EXACT_SUMS`), so a
+//! exact terms in another order only where sums are exact, `Scalar::EXACT_SUMS`, and a
+//! shadow cone's `l·u` only where products are exact too, `Scalar::EXACT_PRODUCTS`), so a
 //! pixel is the fast kernel's bit for bit (`tests/rows.rs`: every boing frame, an
 //! unshipped ball scene and seeded random level scenes, whole and partial scanlines, in
 //! every format). A row that cannot be decided once (a plane within the epsilon's margin
@@ -89,8 +90,8 @@ struct LeanRow<S: Scalar> {
     /// A tiled plane's checkerboard along the row (`None`: a plain plane).
     tiles: Option<RowTiles<S>>,
     /// Per tile parity (0: the plane's own material, 1: a tiled plane's odd tiles): the
-    /// ambient colour, whether the diffuse colour is not black, and the slot of the
-    /// material's weights in [`Level::weights`].
+    /// ambient colour and whether the diffuse colour is not black (the weights per
+    /// parity are each light's, [`LeanLight`]).
     ambient: [Color<S>; 2],
     lit: [bool; 2],
     /// Per light, everything its term needs.
@@ -326,11 +327,17 @@ fn level<S: Scalar, T: Stages>(
 }
 
 /// Fills `out` with the per-row part of a lean row ([`LeanRow`]) of the row's plane `l`
-/// (`first`: the row's `D` at column 0); `None` where the row is not one: the plane is a plain plane or a tiled one with its tile row, its materials are there,
-/// each sphere that can shadow the row has exactly one shadow cone from that light, and
-/// at every `D.x` of the row ([`Primary::dx_range`]) the hit's distance bound and the
-/// segments' tolerance fit the format (both grow with `|D.x|` and the hit's `|x|`, so
-/// checking the row's extremes checks every pixel; `lean_color` then skips them).
+/// (`first`: the row's `D` at column 0); `None` where the row is not one. A lean row:
+/// sums are exact (`Scalar::EXACT_SUMS`), the sides are kept, every light has its row
+/// terms and weights, only spheres can shadow the row, each of them has exactly one
+/// shadow cone from that light and the format's products are exact
+/// (`Scalar::EXACT_PRODUCTS`: the cone's `l·u` is summed in another order), the row's
+/// `|L.y|`, `|L.z|` and the cones' `u` lie within half the format's range; the plane is a
+/// plain plane, or a tiled one with its tile row and `u` along x ([`RowTiles`]); its
+/// materials are there; `t' > 0`, and at every `D.x` of the row ([`Primary::dx_range`])
+/// the hit's distance bound and the segments' tolerance fit the format (both grow with
+/// `|D.x|` and the hit's `|x|`, so checking the row's extremes checks every pixel;
+/// `lean_color` then skips them).
 fn lean_row<S: Scalar>(
     scene: &SceneView<'_, S>,
     p: &Primary<S>,
@@ -404,8 +411,13 @@ fn lean_row<S: Scalar>(
             Some((*weights.get(e)?, (overflow >> (3 * e)) & 7))
         };
         let ((w0, o0), (w1, o1)) = (entry(0)?, entry(1)?);
-        let first = cones.len();
+        let start = cones.len();
         for i in (0..fast::FAST_OBJECTS).filter(|i| bits & (1 << i) != 0) {
+            // `RowCone::clears` sums `l·u` in another order than `ShadowCone::clears`:
+            // the same answer only where no partial sum can leave the double width (a
+            // format whose wide type is not double width, `i16f16n`, takes the row the
+            // general way).
+            S::EXACT_PRODUCTS.then_some(())?;
             let mut matching = p
                 .cones()
                 .iter()
@@ -428,7 +440,7 @@ fn lean_row<S: Scalar>(
             knl: rl.knl,
             weights: [w0, w1],
             overflow: [o0, o1],
-            cones: (u8::try_from(first).ok()?, u8::try_from(cones.len()).ok()?),
+            cones: (u8::try_from(start).ok()?, u8::try_from(cones.len()).ok()?),
         };
         lights.push(lean).ok()?;
     }
@@ -829,14 +841,15 @@ fn lit<S: Scalar, T: Stages>(
     Some(color)
 }
 
-/// [`plane_color`] for the rows it draws most (a [`Level::lean`] row): the same
-/// operations in the same order, bit for bit, without its general cases. `None` (and
-/// nothing counted) where a pixel needs one of them: the caller then draws it with
-/// [`plane_color`]. Those cases: a quantity out of the format's range (the hit, its
-/// distance bound or the segments' tolerance: `plane_color` takes the reference path or
-/// the general shading there), a material missing, a light whose `|L|²` does not fit
-/// or is not positive, and a sphere whose shadow cone does not clear the pixel (its exact
-/// segment test needs the tolerance, [`occluded`]).
+/// [`plane_color`] for the rows it draws most (a lean row, [`lean_row`]): the same
+/// operations in the same order, bit for bit, without its general cases (the per-row
+/// ones, the distance bound and the segments' tolerance among them, were checked once by
+/// [`lean_row`]). `None` (and nothing counted) where a pixel needs one of them: the
+/// caller then draws it with [`plane_color`]. Those cases: the hit's `x` or `L.x` out of
+/// the format's range, a light whose `|L|²` does not fit or is not positive, a pixel
+/// whose `|L.x|` is beyond half the range where a cone must be tested, and a sphere whose
+/// shadow cone does not clear the pixel (its exact segment test needs the tolerance,
+/// [`occluded`]).
 #[inline(always)]
 fn lean_color<S: Scalar>(
     scene: &SceneView<'_, S>,
