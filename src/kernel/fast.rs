@@ -574,7 +574,7 @@ impl<S: Scalar> Primary<S> {
             if first.nd.len() != self.terms.len() {
                 return None;
             }
-            let (lo, hi) = self.dx_range(scene, first.dir.x, width)?;
+            let (lo, hi) = self.dx_range(scene, width)?;
             for x in [lo, hi] {
                 let d = Vec3::new(x, first.dir.y, first.dir.z);
                 for (i, term) in self.terms.iter().enumerate() {
@@ -589,19 +589,19 @@ impl<S: Scalar> Primary<S> {
         fits().is_some()
     }
 
-    /// The least and greatest `D.x` a scanline whose column 0 has `D.x = dx0` can take
-    /// at its `width` pixels: the first and last column's, widened by the drift of the
-    /// stepped coordinate (`RESYNC_PIXELS·|step_x|`). `None` when that does not fit.
-    pub(crate) fn dx_range(&self, scene: &SceneView<'_, S>, dx0: S, width: u16) -> Option<(S, S)> {
-        let last = scene
-            .camera
-            .screen_x(width.checked_sub(1)?)?
-            .checked_sub(scene.camera.viewpoint.x)?;
+    /// The least and greatest `D.x` a scanline can take at its `width` pixels: the first
+    /// and last column's (`screen_x − eye.x`, as a restart forms them), widened by the
+    /// drift of the stepped coordinate (`RESYNC_PIXELS·|step_x|`). `None` when that does
+    /// not fit.
+    pub(crate) fn dx_range(&self, scene: &SceneView<'_, S>, width: u16) -> Option<(S, S)> {
+        let camera = &scene.camera;
+        let dx = |column: u16| camera.screen_x(column)?.checked_sub(camera.viewpoint.x);
+        let (first, last) = (dx(0)?, dx(width.checked_sub(1)?)?);
         let span = self.resync_span?;
-        let (lo, hi) = if dx0 <= last {
-            (dx0, last)
+        let (lo, hi) = if first <= last {
+            (first, last)
         } else {
-            (last, dx0)
+            (last, first)
         };
         Some((lo.checked_sub(span)?, hi.checked_add(span)?))
     }

@@ -327,7 +327,8 @@ fn level<S: Scalar, T: Stages>(
 }
 
 /// Fills `out` with the per-row part of a lean row ([`LeanRow`]) of the row's plane `l`
-/// (`first`: the row's `D` at column 0); `None` where the row is not one. A lean row:
+/// (`(dy, dz)`: the row's `D.y` and `D.z`, the same at every pixel); `None` where the
+/// row is not one. A lean row:
 /// sums are exact (`Scalar::EXACT_SUMS`), the sides are kept, every light has its row
 /// terms and weights, only spheres can shadow the row, each of them has exactly one
 /// shadow cone from that light and the format's products are exact
@@ -342,7 +343,7 @@ fn lean_row<S: Scalar>(
     scene: &SceneView<'_, S>,
     p: &Primary<S>,
     l: &Level<S>,
-    first: Vec3<S>,
+    (dy, dz): (S, S),
     out: &mut LeanRow<S>,
 ) -> Option<()> {
     out.lights.clear();
@@ -377,9 +378,8 @@ fn lean_row<S: Scalar>(
     // The tolerance at the row's extremes (t' > 0: the bound and `|x|` grow with `|D.x|`).
     (t > S::ZERO).then_some(())?;
     let eye = scene.camera.viewpoint;
-    let d = first;
-    let (lo, hi) = p.dx_range(scene, d.x, scene.camera.width)?;
-    let widest = lo.abs().max(hi.abs()).max(d.y.abs()).max(d.z.abs());
+    let (lo, hi) = p.dx_range(scene, scene.camera.width)?;
+    let widest = lo.abs().max(hi.abs()).max(dy.abs()).max(dz.abs());
     let t_bound = t.checked_mul(widest.checked_add(widest)?)?;
     let x_lo = eye.x.checked_add(t.checked_mul(lo)?)?;
     let x_hi = eye.x.checked_add(t.checked_mul(hi)?)?;
@@ -484,7 +484,6 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
             half: S::ZERO,
         },
         lean_built: None,
-        dx0: Primary::dir(&first).x,
         lazy,
         stale: false,
         state: first,
@@ -512,11 +511,9 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     p: &'a Primary<S>,
     level: Option<Level<S>>,
     /// The row's lean part ([`lean_row`]), built at the first pixel that needs it
-    /// (`lean_built`: `None` until then, then whether the row is a lean one), and the
-    /// row's `D.x` at column 0 that it needs.
+    /// (`lean_built`: `None` until then, then whether the row is a lean one).
     lean: LeanRow<S>,
     lean_built: Option<bool>,
-    dx0: S,
     /// The fast kernel's row at the current pixel: at column 0 as the fast kernel starts
     /// it (`fresh`); after a pixel whose step failed (`valid` false) the next restarts,
     /// as `reference::scanline` does.
@@ -645,8 +642,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             Some(lean) => lean,
             None => {
                 let d = Primary::dir(&self.state);
-                let first = Vec3::new(self.dx0, d.y, d.z);
-                let lean = lean_row(self.scene, self.p, l, first, &mut self.lean).is_some();
+                let lean = lean_row(self.scene, self.p, l, (d.y, d.z), &mut self.lean).is_some();
                 self.lean_built = Some(lean);
                 lean
             }
