@@ -194,6 +194,10 @@ fn shipped<S: Scalar>(handed_back: &mut usize) {
 }
 
 #[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "every shipped scene in every format: run in release"
+)]
 fn every_entry_point_draws_the_same_pixels_for_every_shipped_scene_and_format() {
     let mut handed_back = 0;
     fixray::for_each_format!(all: shipped(&mut handed_back));

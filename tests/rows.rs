@@ -63,6 +63,10 @@ fn boing<S: Scalar>() {
 }
 
 #[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "every boing frame in every format: run in release"
+)]
 fn every_boing_frame_is_the_fast_kernels_bit_for_bit() {
     fixray::for_each_format!(all: boing());
 }
@@ -85,6 +89,7 @@ fn ball<S: Scalar>() {
 }
 
 #[test]
+#[cfg_attr(debug_assertions, ignore = "160x96 in every format: run in release")]
 fn an_unshipped_ball_scene_is_the_fast_kernels_bit_for_bit() {
     fixray::for_each_format!(all: ball());
 }

@@ -36,7 +36,7 @@ use crate::shade::{
     Incoming, PlaneSides, channel_max, diffuse_falloff, occludes_segment, shade_with, surface,
 };
 use crate::stats::{Counters, count};
-use crate::{Color, Hit, Scalar, SceneView, Shape, Tiling, Vec3};
+use crate::{Color, Hit, Rules, Scalar, SceneView, Shape, Tiling, Vec3};
 
 /// The per-frame part: the fast kernel's (its terms, the lights' sides of every plane,
 /// the spheres' rows and shadow cones).
@@ -116,6 +116,14 @@ struct LeanLight<S: Scalar> {
     knl: Option<S>,
     weights: [[S; 3]; 2],
     overflow: [u16; 2],
+    /// Per tile parity, `weights × knl` per channel: the numerators of the quick terms
+    /// ([`Scalar::quick_quotients`]), set where bit `parity` of `quick` is: `knl` known,
+    /// that parity's weights not negative and without overflow, and the products
+    /// fitting; and `(⌈w_max⌉ + 2)·DELTA`, what the exact term's truncations add to the
+    /// quick quotients' bound ([`lean_color`]).
+    wk: [[S; 3]; 2],
+    slack: [S; 2],
+    quick: u8,
     /// The light's cones: `cones.0..cones.1` in [`LeanRow::cones`].
     cones: (u8, u8),
 }
@@ -433,6 +441,26 @@ fn lean_row<S: Scalar>(
             };
             cones.push(row_cone).ok()?;
         }
+        // The quick terms' numerators and their slack (`lean_color`).
+        // `Scalar::quick_pixel` maps colours to pixels as the crate's rules do.
+        let (mut wk, mut slack, mut quick) = ([[S::ZERO; 3]; 2], [S::ZERO; 2], 0u8);
+        if let (Some(knl), Rules::Fixray) = (rl.knl, scene.rules()) {
+            for (k, (w, o)) in [(w0, o0), (w1, o1)].into_iter().enumerate() {
+                let products = [0, 1, 2].map(|c| w[c].checked_mul(knl));
+                let top = w[0].max(w[1]).max(w[2]);
+                let extra = top
+                    .floor_to_i32()
+                    .and_then(|n| n.checked_add(3))
+                    .and_then(|n| S::DELTA.checked_mul_int(n));
+                if let ([Some(a), Some(b), Some(c)], Some(extra), 0) = (products, extra, o)
+                    && w.iter().all(|c| *c >= S::ZERO)
+                {
+                    wk[k] = [a, b, c];
+                    slack[k] = extra;
+                    quick |= 1 << k;
+                }
+            }
+        }
         let lean = LeanLight {
             x: light.location.x,
             yz: rl.l.and(rl.yz),
@@ -440,6 +468,9 @@ fn lean_row<S: Scalar>(
             knl: rl.knl,
             weights: [w0, w1],
             overflow: [o0, o1],
+            wk,
+            slack,
+            quick,
             cones: (u8::try_from(start).ok()?, u8::try_from(cones.len()).ok()?),
         };
         lights.push(lean).ok()?;
@@ -601,7 +632,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             // The lean path exists only where sums are exact (fixed formats): elsewhere
             // not even its call is made.
             Ok(None) if S::EXACT_SUMS => match self.lean() {
-                Some(c) => c,
+                Some(pixel) => return pixel,
                 None => self.plane(column),
             },
             Ok(None) => self.plane(column),
@@ -628,10 +659,10 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         )
     }
 
-    /// The row's plane at the current pixel by [`lean_color`] (`None`: [`Pixels::plane`]
-    /// draws it).
+    /// The row's plane's pixel at the current column by [`lean_color`] (`None`:
+    /// [`Pixels::plane`] draws it).
     #[inline(never)]
-    fn lean(&mut self) -> Option<Color<S>> {
+    fn lean(&mut self) -> Option<Rgb888> {
         // Only formats with exact sums have lean rows: in the others (floats) this is
         // all there is of it (flash), and `pixel` does not call it.
         if !S::EXACT_SUMS {
@@ -837,15 +868,26 @@ fn lit<S: Scalar, T: Stages>(
     Some(color)
 }
 
-/// [`plane_color`] for the rows it draws most (a lean row, [`lean_row`]): the same
-/// operations in the same order, bit for bit, without its general cases (the per-row
-/// ones, the distance bound and the segments' tolerance among them, were checked once by
+/// [`plane_color`]'s pixel for the rows it draws most (a lean row, [`lean_row`]): the
+/// same operations in the same order, without its general cases (the per-row ones, the
+/// distance bound and the segments' tolerance among them, were checked once by
 /// [`lean_row`]). `None` (and nothing counted) where a pixel needs one of them: the
 /// caller then draws it with [`plane_color`]. Those cases: the hit's `x` or `L.x` out of
 /// the format's range, a light whose `|L|²` does not fit or is not positive, a pixel
 /// whose `|L.x|` is beyond half the range where a cone must be tested, and a sphere whose
 /// shadow cone does not clear the pixel (its exact segment test needs the tolerance,
 /// [`occluded`]).
+///
+/// The last light's term `w·(255·N·L/|L|²)` is first taken quickly, by
+/// [`Scalar::quick_pixel`]: the pixel of `(w·255·N·L)/|L|²` over the colour so far by
+/// one approximate reciprocal, returned only where its error bound settles it. With
+/// `|L|² ≥ 1` and `w ≥ 0` the exact term (a truncated quotient times `w`, floored) is
+/// within `(w + 2)·DELTA` of the real quotients (`w` DELTAs for the quotient's
+/// truncation, one for the product's and one for `w·255·N·L`'s, divided by
+/// `|L|² ≥ 1`; the row keeps `(⌊w_max⌋ + 3)·DELTA`, [`LeanLight::slack`]), so the pixel
+/// is this function's exact one, bit for bit. Where it does not settle, the format has
+/// no shortcut, the row's light has no quick numerators or `|L|² < 1`, the term is the
+/// exact one.
 #[inline(always)]
 fn lean_color<S: Scalar>(
     scene: &SceneView<'_, S>,
@@ -853,7 +895,7 @@ fn lean_color<S: Scalar>(
     l: &Level<S>,
     f: &LeanRow<S>,
     counters: &mut Counters,
-) -> Option<Color<S>> {
+) -> Option<Rgb888> {
     let d = Primary::dir(state);
     let x = scene
         .camera
@@ -871,10 +913,10 @@ fn lean_color<S: Scalar>(
     let mut color = *f.ambient.get(parity)?;
     if !*f.lit.get(parity)? {
         counters_add(&mut counters.tile_lookups, tiled);
-        return Some(color);
+        return Some(to_pixel(scene.rules(), color));
     }
     let (mut shadow_rays, mut diffuse) = (0u32, 0u32);
-    for light in &f.lights {
+    for (index, light) in f.lights.iter().enumerate() {
         let (Some(lx), Some(yz)) = (light.x.checked_sub(x), light.yz) else {
             continue;
         };
@@ -899,15 +941,25 @@ fn lean_color<S: Scalar>(
                 return None;
             }
         }
-        let falloff = diffuse_falloff(nl, light.knl, ll);
         diffuse += 1;
+        let last = index + 1 == f.lights.len();
+        if last && light.quick & (1 << parity) != 0 && ll >= S::ONE {
+            let (wk, slack) = (*light.wk.get(parity)?, *light.slack.get(parity)?);
+            if let Some([r, g, b]) = S::quick_pixel(color, wk, ll, slack) {
+                counters_add(&mut counters.tile_lookups, tiled);
+                counters_add(&mut counters.shadow_rays, shadow_rays);
+                counters_add(&mut counters.diffuse, diffuse);
+                return Some(Rgb888::new(r, g, b));
+            }
+        }
+        let falloff = diffuse_falloff(nl, light.knl, ll);
         let (w, overflow) = (light.weights.get(parity)?, light.overflow.get(parity)?);
         color = add_weighted(color, *w, *overflow, falloff);
     }
     counters_add(&mut counters.tile_lookups, tiled);
     counters_add(&mut counters.shadow_rays, shadow_rays);
     counters_add(&mut counters.diffuse, diffuse);
-    Some(color)
+    Some(to_pixel(scene.rules(), color))
 }
 
 /// `count` `n` times.

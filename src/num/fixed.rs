@@ -48,8 +48,15 @@ fn div_i32(a: i32, b: i32, frac: u32) -> Option<i32> {
     }
 }
 
+/// [`super::recip::quick_pixel`] of bit patterns ([`Scalar::quick_pixel`] of the 32-bit
+/// formats; `[b, slack]`): the same integer arithmetic on every target.
+#[inline]
+fn quick_i32(base: [i32; 3], a: [i32; 3], [b, slack]: [i32; 2], frac: u32) -> Option<[u8; 3]> {
+    super::recip::quick_pixel(base, a, b, slack, frac)
+}
+
 macro_rules! impl_fixed {
-    ($t:ty, $name:literal, $wide:ty, $bits:ty, $wide_bits:ty, $mul:path, $div:expr) => {
+    ($t:ty, $name:literal, $wide:ty, $bits:ty, $wide_bits:ty, $mul:path, $div:expr, $quick:expr) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
             const ZERO: Self = <$t>::ZERO;
@@ -104,6 +111,11 @@ macro_rules! impl_fixed {
             fn checked_div(self, rhs: Self) -> Option<Self> {
                 let div: fn(Self, Self) -> Option<Self> = $div;
                 div(self, rhs)
+            }
+            #[inline]
+            fn quick_pixel(base: [Self; 3], a: [Self; 3], b: Self, slack: Self) -> Option<[u8; 3]> {
+                let quick: fn([Self; 3], [Self; 3], Self, Self) -> Option<[u8; 3]> = $quick;
+                quick(base, a, b, slack)
             }
             #[inline]
             fn checked_sqrt(self) -> Option<Self> {
@@ -173,7 +185,13 @@ impl_fixed!(
     i32,
     i64,
     wide::mul_wide_i32,
-    |a, b| div_i32(a.to_bits(), b.to_bits(), I16F16::FRAC_NBITS).map(I16F16::from_bits)
+    |a, b| div_i32(a.to_bits(), b.to_bits(), I16F16::FRAC_NBITS).map(I16F16::from_bits),
+    |base, a, b, slack| quick_i32(
+        base.map(I16F16::to_bits),
+        a.map(I16F16::to_bits),
+        [b.to_bits(), slack.to_bits()],
+        I16F16::FRAC_NBITS
+    )
 );
 impl_fixed!(
     I20F12,
@@ -182,7 +200,13 @@ impl_fixed!(
     i32,
     i64,
     wide::mul_wide_i32,
-    |a, b| div_i32(a.to_bits(), b.to_bits(), I20F12::FRAC_NBITS).map(I20F12::from_bits)
+    |a, b| div_i32(a.to_bits(), b.to_bits(), I20F12::FRAC_NBITS).map(I20F12::from_bits),
+    |base, a, b, slack| quick_i32(
+        base.map(I20F12::to_bits),
+        a.map(I20F12::to_bits),
+        [b.to_bits(), slack.to_bits()],
+        I20F12::FRAC_NBITS
+    )
 );
 impl_fixed!(
     I32F32,
@@ -191,7 +215,9 @@ impl_fixed!(
     i64,
     i128,
     wide::mul_wide_i64,
-    I32F32::checked_div
+    I32F32::checked_div,
+    // No shortcut: a 64-bit format's terms take its division.
+    |_, _, _, _| None
 );
 
 #[cfg(test)]

@@ -89,19 +89,38 @@ fn leading_zeros(x: u32) -> u32 {
     }
 }
 
-/// [`leading_zeros`] by binary search (five steps).
+/// [`leading_zeros`] by two halving steps and a table of the top byte's.
 #[inline(always)]
 #[cfg_attr(not(no_long_multiply), allow(dead_code))]
 fn leading_zeros_soft(x: u32) -> u32 {
     let (mut x, mut n) = (x, 0);
-    for bits in [16, 8, 4, 2, 1] {
-        if x >> (32 - bits) == 0 {
-            n += bits;
-            x <<= bits;
-        }
+    if x >> 16 == 0 {
+        n = 16;
+        x <<= 16;
     }
-    n + u32::from(x == 0)
+    if x >> 24 == 0 {
+        n += 8;
+        x <<= 8;
+    }
+    // x >> 24 < 256: the table's index.
+    n + u32::from(CLZ8[(x >> 24) as usize])
 }
+
+/// The leading zeros of a byte (8 for zero).
+#[cfg_attr(not(no_long_multiply), allow(dead_code))]
+const CLZ8: [u8; 256] = {
+    let mut table = [0u8; 256];
+    let mut i = 0;
+    while i < 256 {
+        let mut n = 0;
+        while n < 8 && (i << n) & 0x80 == 0 {
+            n += 1;
+        }
+        table[i] = n as u8;
+        i += 1;
+    }
+    table
+};
 
 /// `x >> s` for `s < 64`, on 32-bit halves (a 64-bit shift by a variable amount is a
 /// helper call on 32-bit cores).
@@ -197,6 +216,111 @@ fn mul_wide_u32_u64(q: u64, b: u32) -> Option<u64> {
     Some(mul_wide_u32(u32::try_from(q).ok()?, b))
 }
 
+/// `1/d` for `d` in [1, 2) (Q1.31, top bit set) to about 2⁻¹⁸, in Q1.31, without a
+/// double-width product: the table's `x₀` and one Newton step `x₀(2 − d·x₀)` whose
+/// `d·x₀` takes all of `d` (two 32-bit multiplies: `dh·x₀ + dl·x₀/2¹⁶`). Its error is the
+/// table's squared (2⁻¹⁸) plus the step's truncations (about 2⁻²³): below 2⁻¹⁷·⁸ either
+/// way (the unit test checks it over 2,000,000 divisors and every table interval's
+/// ends). Cheaper than [`reciprocal`] (which adds a second,
+/// double-width step for 2⁻²⁹) for [`quick_quotients`].
+#[inline(always)]
+fn reciprocal_fine(d: u32) -> Option<u32> {
+    let index = usize::try_from((d >> 23) & 0xFF).ok()?;
+    let x0 = u32::from(*RECIPROCALS.get(index)?); // Q0.16, in (2¹⁵, 2¹⁶)
+    // t = d·x₀/2¹⁶ ≈ 2³¹ (Q1.31): the high half's product and the low half's, which
+    // both fit 32 bits (each factor below 2¹⁶), the low one truncated.
+    let t = (d >> 16) * x0 + (((d & 0xFFFF) * x0) >> 16);
+    // As in `reciprocal`: (2³¹ − t)/2 is small, x₁ = x₀·2¹⁵ + x₀·(2³¹ − t)/2¹⁶.
+    let half_err = (1i32 << 30) - i32::try_from(t >> 1).ok()?;
+    let x0 = i32::try_from(x0).ok()?;
+    let x1 = (x0 << 15) + ((x0 * (half_err >> 7)) >> 8);
+    u32::try_from(x1).ok()
+}
+
+/// `x·y/2³²` from 16-bit halves with three 32-bit multiplies (the low halves' product
+/// is dropped): between the exact value's floor minus 2 and the exact value.
+#[inline(always)]
+fn mul_high_approx(x: u32, y: u32) -> u32 {
+    let (xh, xl) = (x >> 16, x & 0xFFFF);
+    let (yh, yl) = (y >> 16, y & 0xFFFF);
+    // xh·yh ≤ (2¹⁶ − 1)² and each cross term shifted is below 2¹⁶: the sum fits.
+    xh * yh + ((xh * yl) >> 16) + ((xl * yh) >> 16)
+}
+
+/// `(aᵢ·2^frac)/b` for three non-negative 32-bit bit patterns `aᵢ` and a positive `b`,
+/// by one shared reciprocal ([`reciprocal_fine`]) and three products of 16-bit halves:
+/// `(q, e)` with `|qᵢ − aᵢ·2^frac/b| ≤ e` for each `i` (the real quotient, not the
+/// truncated one), where `e = ⌊q_max/2¹⁷⌋ + 4` (the reciprocal's 2⁻¹⁷·⁸ and the products'
+/// and the final shift's truncations, at most 2.5 DELTAs; the unit test checks it on 1,000,000 seeded
+/// cases). No double-width product and no remainder: for colour terms whose pixels
+/// [`quick_pixel`] certifies from the bound. `None` when an `aᵢ` is negative, `b` is not positive,
+/// `frac > 16`, or a quotient may not fit 31 bits.
+#[inline(always)]
+pub(crate) fn quick_quotients(a: [i32; 3], b: i32, frac: u32) -> Option<([i32; 3], i32)> {
+    if b <= 0 || frac > 16 || a.iter().any(|v| *v < 0) {
+        return None;
+    }
+    let ub = b.cast_unsigned();
+    let n = leading_zeros(ub);
+    let x = reciprocal_fine(ub << n)?; // ≈ 2⁶²/(ub·2ⁿ)
+    let top = a[0].max(a[1]).max(a[2]).cast_unsigned();
+    if top == 0 {
+        return Some(([0; 3], 0));
+    }
+    // One shift for the three, from the largest: its product keeps 30 bits.
+    let s = leading_zeros(top);
+    // qᵢ = aᵢ·2^frac/b = (aᵢ·2ˢ)·x/2³² · 2^(frac + n − 30 − s); the product of the
+    // largest is at least 2³⁰ (both factors at least 2³¹ and 2³⁰), so a right shift of
+    // at least one keeps every quotient below 2³¹.
+    let shift = (30 + s).checked_sub(frac + n).filter(|k| *k >= 1)?;
+    let q = |v: i32| -> i32 {
+        let p = mul_high_approx(v.cast_unsigned() << s, x);
+        // shift ≥ 1: the result is below 2³¹ (and zero beyond 31 places).
+        p.checked_shr(shift).unwrap_or(0).cast_signed()
+    };
+    let q = [q(a[0]), q(a[1]), q(a[2])];
+    let e = (q[0].max(q[1]).max(q[2]) >> 17) + 4;
+    Some((q, e))
+}
+
+/// The pixel channels `round(clamp(bᵢ + aᵢ·2^frac/d, 0, 255))` (ties away from zero,
+/// as the crate's rules map colours to pixels) of bit patterns with `frac` fraction
+/// bits, for one colour term `aᵢ/d` over a base colour `bᵢ`, when [`quick_quotients`]
+/// settles them: each channel's interval `bᵢ + qᵢ ± (e + slack)` (low end at least
+/// `bᵢ`, sums saturating at `i32::MAX`) must round to one pixel value. Whatever lies in
+/// those intervals, the colour the exact arithmetic computes among it (the caller
+/// states how far its terms can be from the real quotients in `slack`), maps to the
+/// same pixel, the mapping being monotonic. `None` when it does not settle or
+/// [`quick_quotients`] refuses.
+#[inline(never)]
+pub(crate) fn quick_pixel(
+    base: [i32; 3],
+    a: [i32; 3],
+    d: i32,
+    slack: i32,
+    frac: u32,
+) -> Option<[u8; 3]> {
+    let (q, e) = quick_quotients(a, d, frac)?;
+    let e = e.checked_add(slack)?;
+    let (one, half) = (1i32 << frac, 1i32 << frac >> 1);
+    let top = 255 * one;
+    // round(clamp(v, 0, 255)) in bits: 0 ≤ v ≤ 255·2^frac after the clamp, so v + ½ fits.
+    let pixel = |v: i32| -> i32 { (v.clamp(0, top) + half) >> frac };
+    let mut out = [0u8; 3];
+    for ((o, b), q) in out.iter_mut().zip(base).zip(q) {
+        // Both ends of the channel's interval (q ≥ 0, e ≥ 0), saturating as the
+        // colour sums do (far beyond 255 either way).
+        let low = b.saturating_add(q.saturating_sub(e).max(0));
+        let high = b.saturating_add(q.saturating_add(e));
+        let p = pixel(low);
+        if pixel(high) != p {
+            return None;
+        }
+        *o = u8::try_from(p).ok()?;
+    }
+    Some(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -267,6 +391,165 @@ mod tests {
         std::println!("reciprocal: worst relative error 2^{:.2}", worst.log2());
     }
 
+    /// The one-step reciprocal ([`reciprocal_fine`]): within 2⁻¹⁷·⁸ of `1/d` (relative),
+    /// over seeded divisors and both ends of every table interval (where the table's
+    /// error is largest).
+    #[test]
+    fn the_fine_reciprocal_is_within_two_to_the_minus_17_8() {
+        let mut worst = 0.0f64;
+        let mut check = |d: u32| {
+            let x = reciprocal_fine(d).unwrap();
+            let prod =
+                f64::from(x) / f64::from(1u32 << 31) * (f64::from(d) / f64::from(1u32 << 31));
+            let err = (1.0 - prod).abs();
+            assert!(err < 2f64.powf(-17.8), "1/{d:#x}: {err:e}");
+            worst = worst.max(err);
+        };
+        for i in 0u32..256 {
+            let lo = (1 << 31) | (i << 23);
+            for d in [
+                lo,
+                lo + 1,
+                lo | 0x7F_FFFF,
+                (lo | 0x7F_FFFF) - 1,
+                lo | 0x40_0000,
+            ] {
+                check(d);
+            }
+        }
+        let mut x: u64 = 0x0D1F_2026_1204_0001;
+        for _ in 0..2_000_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            check((x as u32) | (1 << 31));
+        }
+        std::println!(
+            "fine reciprocal: worst relative error 2^{:.2}",
+            worst.log2()
+        );
+    }
+
+    /// [`quick_quotients`] within its stated error `e` of the real quotients, for both
+    /// fraction sizes, over seeded triples of every size (equal, spread, zero) and
+    /// divisors of every size; refused only where its contract says.
+    #[test]
+    fn quick_quotients_are_within_their_bound() {
+        let mut x: u64 = 0x0D1F_2026_1204_0002;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let (mut answered, mut worst) = (0u32, 0.0f64);
+        for case in 0..1_000_000u32 {
+            let r = next();
+            let frac = if case % 2 == 0 { 16 } else { 12 };
+            let big = ((r >> 32) as u32 >> 1) >> ((r >> 3) % 31);
+            let mut spread = |k: u64| -> i32 {
+                let v = (next() as u32 >> 1) >> (k % 31);
+                match k % 5 {
+                    0 => 0,
+                    1 => big.cast_signed(),
+                    _ => v.min(big).cast_signed(),
+                }
+            };
+            let a = [big.cast_signed(), spread(r >> 8), spread(r >> 16)];
+            let b = ((r as u32) >> 1 >> ((r >> 24) % 31)).max(1).cast_signed();
+            let Some((q, e)) = quick_quotients(a, b, frac) else {
+                // Refused: only where a quotient might not fit 31 bits.
+                let exact = (f64::from(big) * f64::from(1u32 << frac)) / f64::from(b);
+                assert!(
+                    exact >= 2f64.powi(28),
+                    "case {case}: {a:?}/{b} refused, {exact}"
+                );
+                continue;
+            };
+            answered += 1;
+            for (qi, ai) in q.iter().zip(a) {
+                let exact = (f64::from(ai) * f64::from(1u32 << frac)) / f64::from(b);
+                let err = (f64::from(*qi) - exact).abs();
+                assert!(
+                    err <= f64::from(e),
+                    "case {case}: {ai}/{b} (frac {frac}): {qi} vs {exact} (e {e})"
+                );
+                if exact >= 2f64.powi(20) {
+                    worst = worst.max(err / exact);
+                }
+            }
+        }
+        assert!(answered > 800_000, "{answered} answered");
+        std::println!(
+            "quick quotients: worst relative error 2^{:.2}",
+            worst.log2()
+        );
+        assert_eq!(quick_quotients([1, 2, 3], 0, 16), None);
+        assert_eq!(quick_quotients([1, -2, 3], 7, 16), None);
+        assert_eq!(quick_quotients([0; 3], 7, 16), Some(([0; 3], 0)));
+        // 2³⁰ / 2⁻¹⁶ does not fit: refused, never wrapped.
+        assert_eq!(quick_quotients([1 << 30, 0, 0], 1, 16), None);
+    }
+
+    /// [`quick_pixel`] where it answers is the pixel of the exact arithmetic it stands
+    /// in for (the lean pixel's: `b + ⌊w·⌊knl·2¹⁶/ll⌋/2¹⁶⌋`, rounded and clamped) when the
+    /// caller's slack is `(⌊w⌋ + 3)` DELTAs, over seeded bases, weights (up to 12),
+    /// numerators and divisors of I16F16 and I20F12; and it answers nearly always.
+    #[test]
+    fn quick_pixels_are_the_exact_arithmetics_pixels() {
+        let mut x: u64 = 0x0D1F_2026_1204_0003;
+        let mut next = |n: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % n
+        };
+        let (mut tried, mut answered) = (0u32, 0u32);
+        for case in 0..400_000u32 {
+            let frac: u32 = if case % 2 == 0 { 16 } else { 12 };
+            let one = 1i64 << frac;
+            // |L|² ≥ 1, 255·N·L > 0, weights in [0, 12], bases around the pixel range.
+            let ll = one + i64::try_from(next(400 << frac)).unwrap();
+            let knl = 1 + i64::try_from(next(2000 << frac)).unwrap();
+            let w: [i64; 3] = [0, 1, 2].map(|_| i64::try_from(next(12 << frac)).unwrap());
+            let b: [i64; 3] =
+                [0, 1, 2].map(|_| i64::try_from(next(300 << frac)).unwrap() - (20 << frac));
+            let wk = w.map(|w| (w * knl) >> frac);
+            let Ok(wk) = wk
+                .map(i32::try_from)
+                .into_iter()
+                .collect::<Result<Vec<_>, _>>()
+            else {
+                continue;
+            };
+            let top = w.iter().max().unwrap() >> frac;
+            // One DELTA is 1 in bits.
+            let slack = i32::try_from(top + 3).unwrap();
+            let exact = |c: usize| -> u8 {
+                let f = (knl << frac) / ll;
+                let t = (w[c] * f) >> frac;
+                let v = (b[c] + t).clamp(0, 255 * one);
+                u8::try_from((v + one / 2) >> frac).unwrap()
+            };
+            tried += 1;
+            let base = b.map(|v| i32::try_from(v).unwrap());
+            let d = i32::try_from(ll).unwrap();
+            if let Some(p) = quick_pixel(base, [wk[0], wk[1], wk[2]], d, slack, frac) {
+                answered += 1;
+                assert_eq!(
+                    p,
+                    [exact(0), exact(1), exact(2)],
+                    "case {case}: {b:?} {w:?} {knl} {ll}"
+                );
+            }
+        }
+        std::println!("quick pixels: {answered} of {tried} answered");
+        assert!(
+            f64::from(answered) > 0.95 * f64::from(tried),
+            "{answered} of {tried}"
+        );
+    }
+
     /// The exact division against the 64-bit one, bit for bit, for both fraction sizes
     /// the 32-bit formats use: edges and a seeded sweep over every sign and size.
     #[test]
@@ -284,6 +567,12 @@ mod tests {
             u32::MAX,
         ] {
             assert_eq!(leading_zeros_soft(x), x.leading_zeros(), "{x}");
+        }
+        for shift in 0..32 {
+            for low in [0u32, 1, 0x5A5A_5A5A, u32::MAX] {
+                let x = (1u32 << shift) | (low & ((1u32 << shift) - 1));
+                assert_eq!(leading_zeros_soft(x), x.leading_zeros(), "{x:#x}");
+            }
         }
         let v = 0x8123_4567_89AB_CDEFu64;
         for s in 0..64 {
