@@ -444,7 +444,7 @@ fn lean_row<S: Scalar>(
         // The quick terms' numerators and their slack (`lean_color`).
         // `Scalar::quick_pixel` maps colours to pixels as the crate's rules do.
         let (mut wk, mut slack, mut quick) = ([[S::ZERO; 3]; 2], [S::ZERO; 2], 0u8);
-        if let (Some(knl), Rules::Fixray) = (rl.knl, scene.rules()) {
+        if let (Some(knl), Rules::Fixray, true) = (rl.knl, scene.rules(), S::QUICK_PIXEL) {
             for (k, (w, o)) in [(w0, o0), (w1, o1)].into_iter().enumerate() {
                 let products = [0, 1, 2].map(|c| w[c].checked_mul(knl));
                 let top = w[0].max(w[1]).max(w[2]);
@@ -632,7 +632,8 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             // The lean path exists only where sums are exact (fixed formats): elsewhere
             // not even its call is made.
             Ok(None) if S::EXACT_SUMS => match self.lean() {
-                Some(pixel) => return pixel,
+                Some(Ok(pixel)) => return pixel,
+                Some(Err(color)) => color,
                 None => self.plane(column),
             },
             Ok(None) => self.plane(column),
@@ -659,10 +660,10 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         )
     }
 
-    /// The row's plane's pixel at the current column by [`lean_color`] (`None`:
-    /// [`Pixels::plane`] draws it).
+    /// The row's plane at the current column by [`lean_color`]: its pixel where the
+    /// quick term settled it, else its colour (`None`: [`Pixels::plane`] draws it).
     #[inline(never)]
-    fn lean(&mut self) -> Option<Rgb888> {
+    fn lean(&mut self) -> Option<Result<Rgb888, Color<S>>> {
         // Only formats with exact sums have lean rows: in the others (floats) this is
         // all there is of it (flash), and `pixel` does not call it.
         if !S::EXACT_SUMS {
@@ -868,8 +869,8 @@ fn lit<S: Scalar, T: Stages>(
     Some(color)
 }
 
-/// [`plane_color`]'s pixel for the rows it draws most (a lean row, [`lean_row`]): the
-/// same operations in the same order, without its general cases (the per-row ones, the
+/// [`plane_color`] for the rows it draws most (a lean row, [`lean_row`]): the same
+/// operations in the same order, without its general cases (the per-row ones, the
 /// distance bound and the segments' tolerance among them, were checked once by
 /// [`lean_row`]). `None` (and nothing counted) where a pixel needs one of them: the
 /// caller then draws it with [`plane_color`]. Those cases: the hit's `x` or `L.x` out of
@@ -878,8 +879,9 @@ fn lit<S: Scalar, T: Stages>(
 /// shadow cone does not clear the pixel (its exact segment test needs the tolerance,
 /// [`occluded`]).
 ///
-/// The last light's term `w·(255·N·L/|L|²)` is first taken quickly, by
-/// [`Scalar::quick_pixel`]: the pixel of `(w·255·N·L)/|L|²` over the colour so far by
+/// Its colour (`Err`), or its pixel (`Ok`) where the last light's term
+/// `w·(255·N·L/|L|²)` was taken quickly, by [`Scalar::quick_pixel`] (on cores where it
+/// pays): the pixel of `(w·255·N·L)/|L|²` over the colour so far by
 /// one approximate reciprocal, returned only where its error bound settles it. With
 /// `|L|² ≥ 1` and `w ≥ 0` the exact term (a truncated quotient times `w`, floored) is
 /// within `(w + 2)·DELTA` of the real quotients (`w` DELTAs for the quotient's
@@ -895,7 +897,7 @@ fn lean_color<S: Scalar>(
     l: &Level<S>,
     f: &LeanRow<S>,
     counters: &mut Counters,
-) -> Option<Rgb888> {
+) -> Option<Result<Rgb888, Color<S>>> {
     let d = Primary::dir(state);
     let x = scene
         .camera
@@ -913,7 +915,7 @@ fn lean_color<S: Scalar>(
     let mut color = *f.ambient.get(parity)?;
     if !*f.lit.get(parity)? {
         counters_add(&mut counters.tile_lookups, tiled);
-        return Some(to_pixel(scene.rules(), color));
+        return Some(Err(color));
     }
     let (mut shadow_rays, mut diffuse) = (0u32, 0u32);
     for (index, light) in f.lights.iter().enumerate() {
@@ -943,13 +945,13 @@ fn lean_color<S: Scalar>(
         }
         diffuse += 1;
         let last = index + 1 == f.lights.len();
-        if last && light.quick & (1 << parity) != 0 && ll >= S::ONE {
+        if S::QUICK_PIXEL && last && light.quick & (1 << parity) != 0 && ll >= S::ONE {
             let (wk, slack) = (*light.wk.get(parity)?, *light.slack.get(parity)?);
             if let Some([r, g, b]) = S::quick_pixel(color, wk, ll, slack) {
                 counters_add(&mut counters.tile_lookups, tiled);
                 counters_add(&mut counters.shadow_rays, shadow_rays);
                 counters_add(&mut counters.diffuse, diffuse);
-                return Some(Rgb888::new(r, g, b));
+                return Some(Ok(Rgb888::new(r, g, b)));
             }
         }
         let falloff = diffuse_falloff(nl, light.knl, ll);
@@ -959,7 +961,7 @@ fn lean_color<S: Scalar>(
     counters_add(&mut counters.tile_lookups, tiled);
     counters_add(&mut counters.shadow_rays, shadow_rays);
     counters_add(&mut counters.diffuse, diffuse);
-    Some(to_pixel(scene.rules(), color))
+    Some(Err(color))
 }
 
 /// `count` `n` times.

@@ -179,6 +179,10 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// `self × k` for an integer `k`, exact, or `None` on overflow.
     fn checked_mul_int(self, k: i32) -> Option<Self>;
 
+    /// Whether [`Scalar::quick_pixel`] can answer on this target (a kernel leaves its
+    /// shortcut out entirely where it cannot).
+    const QUICK_PIXEL: bool = false;
+
     /// The pixel of a colour term over a base colour, `round(clamp(baseᵢ + aᵢ/b, 0,
     /// 255))` per channel (the `fixray` rules' mapping, `shade::color::to_rgb888`), for
     /// non-negative `aᵢ` and a positive `b`, when one approximate reciprocal settles it:
@@ -187,9 +191,10 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// to it. A caller whose own term (the format's truncated division and products) is
     /// within `slack` of the real quotients `aᵢ/b` thus gets its own pixel, bit for bit,
     /// without the division (the level-plane kernel's lean pixels). `None` (the default)
-    /// where the format has no such shortcut (I16F16 and I20F12 have one:
-    /// `num/recip.rs`), an argument is outside that domain, a quotient may not fit, or
-    /// the interval straddles two pixel values.
+    /// where the format has no such shortcut (I16F16 and I20F12 have one, `num/recip.rs`,
+    /// on cores without a long multiply only, where it pays: `num/fixed.rs`), an argument
+    /// is outside that domain, a quotient may not fit, or the interval straddles two
+    /// pixel values.
     #[inline]
     fn quick_pixel(base: [Self; 3], a: [Self; 3], b: Self, slack: Self) -> Option<[u8; 3]> {
         let _ = (base, a, b, slack);

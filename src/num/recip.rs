@@ -223,6 +223,7 @@ fn mul_wide_u32_u64(q: u64, b: u32) -> Option<u64> {
 /// way (the unit test checks it over 2,000,000 divisors and every table interval's
 /// ends). Cheaper than [`reciprocal`] (which adds a second,
 /// double-width step for 2⁻²⁹) for [`quick_quotients`].
+#[cfg_attr(not(no_long_multiply), allow(dead_code))]
 #[inline(always)]
 fn reciprocal_fine(d: u32) -> Option<u32> {
     let index = usize::try_from((d >> 23) & 0xFF).ok()?;
@@ -239,6 +240,7 @@ fn reciprocal_fine(d: u32) -> Option<u32> {
 
 /// `x·y/2³²` from 16-bit halves with three 32-bit multiplies (the low halves' product
 /// is dropped): between the exact value's floor minus 2 and the exact value.
+#[cfg_attr(not(no_long_multiply), allow(dead_code))]
 #[inline(always)]
 fn mul_high_approx(x: u32, y: u32) -> u32 {
     let (xh, xl) = (x >> 16, x & 0xFFFF);
@@ -255,6 +257,7 @@ fn mul_high_approx(x: u32, y: u32) -> u32 {
 /// cases). No double-width product and no remainder: for colour terms whose pixels
 /// [`quick_pixel`] certifies from the bound. `None` when an `aᵢ` is negative, `b` is not positive,
 /// `frac > 16`, or a quotient may not fit 31 bits.
+#[cfg_attr(not(no_long_multiply), allow(dead_code))]
 #[inline(always)]
 pub(crate) fn quick_quotients(a: [i32; 3], b: i32, frac: u32) -> Option<([i32; 3], i32)> {
     if b <= 0 || frac > 16 || a.iter().any(|v| *v < 0) {
@@ -292,6 +295,7 @@ pub(crate) fn quick_quotients(a: [i32; 3], b: i32, frac: u32) -> Option<([i32; 3
 /// states how far its terms can be from the real quotients in `slack`), maps to the
 /// same pixel, the mapping being monotonic. `None` when it does not settle or
 /// [`quick_quotients`] refuses.
+#[cfg_attr(not(no_long_multiply), allow(dead_code))]
 #[inline(never)]
 pub(crate) fn quick_pixel(
     base: [i32; 3],
