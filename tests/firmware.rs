@@ -438,3 +438,39 @@ fn the_boing_ball_bounces_bit_for_bit_on_every_core() {
     .unwrap();
     assert!(mismatches.is_empty(), "{mismatches:?}");
 }
+
+/// The Cortex-M0's quick pixels (`Scalar::quick_pixel`, used only on cores without a long
+/// multiply, so no host test draws them): every level-plane scene the repository ships,
+/// in both formats that have them, on the M0, each frame's hash equal to the host's
+/// exact arithmetic's (the spheres and tiles scenes and all 16 boing frames in I16F16
+/// and I20F12).
+#[test]
+#[ignore = "needs qemu-system-arm; run with --ignored (CI does)"]
+fn quick_pixels_on_the_m0_are_the_hosts_bit_for_bit() {
+    assert!(
+        qemu::qemu_available_for("thumbv6m-none-eabi"),
+        "qemu-system-arm is not installed"
+    );
+    let scenes = [
+        ("spheres", include_str!("../scenes/spheres.scene")),
+        ("tiles", include_str!("../scenes/tiles.scene")),
+    ];
+    let run = qemu::run("thumbv6m-none-eabi", "i16f16,i20f12", "spheres,tiles,boing").unwrap();
+    assert_eq!(run.frames.len(), 2 * (2 + 16), "{:?}", run.frames);
+    let mut mismatches = Vec::new();
+    for f in &run.frames {
+        let format = f.get("format");
+        let host = match scenes.iter().find(|(name, _)| *name == f.get("scene")) {
+            Some((_, text)) => fixray::with_format!(format, host_hash(text)).unwrap(),
+            None => {
+                assert_eq!(f.get("scene"), "boing");
+                let k: u16 = f.get("frame").parse().expect("a frame number");
+                fixray::with_format!(format, boing_hash(k)).unwrap()
+            }
+        };
+        if host != f.hash() {
+            mismatches.push(format!("{format} {} {:?}", f.get("scene"), f.get("frame")));
+        }
+    }
+    assert!(mismatches.is_empty(), "{mismatches:?}");
+}
