@@ -296,7 +296,7 @@ pub(crate) fn quick_quotients(a: [i32; 3], b: i32, frac: u32) -> Option<([i32; 3
 /// same pixel, the mapping being monotonic. `None` when it does not settle or
 /// [`quick_quotients`] refuses.
 #[cfg_attr(not(no_long_multiply), allow(dead_code))]
-#[inline(never)]
+#[inline(always)]
 pub(crate) fn quick_pixel(
     base: [i32; 3],
     a: [i32; 3],
