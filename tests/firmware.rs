@@ -439,11 +439,11 @@ fn the_boing_ball_bounces_bit_for_bit_on_every_core() {
     assert!(mismatches.is_empty(), "{mismatches:?}");
 }
 
-/// The Cortex-M0's quick pixels (`Scalar::quick_pixel`, used only on cores without a long
-/// multiply, so no host test draws them): every level-plane scene the repository ships,
-/// in both formats that have them, on the M0, each frame's hash equal to the host's
-/// exact arithmetic's (the spheres and tiles scenes and all 16 boing frames in I16F16
-/// and I20F12).
+/// The Cortex-M0's quick pixels (`Scalar::quick_pixel`, used on cores without a long
+/// multiply and on the host; the M4F and RISC-V keep the exact terms): the level-plane
+/// scenes the repository ships, in both formats that have them, on the M0, each frame's
+/// hash equal to the host's (the spheres and tiles scenes and all 16 boing frames in
+/// I16F16 and I20F12).
 #[test]
 #[ignore = "needs qemu-system-arm; run with --ignored (CI does)"]
 fn quick_pixels_on_the_m0_are_the_hosts_bit_for_bit() {

@@ -117,10 +117,10 @@ struct LeanLight<S: Scalar> {
     weights: [[S; 3]; 2],
     overflow: [u16; 2],
     /// Per tile parity, `weights × knl` per channel: the numerators of the quick terms
-    /// ([`Scalar::quick_quotients`]), set where bit `parity` of `quick` is: `knl` known,
-    /// that parity's weights not negative and without overflow, and the products
-    /// fitting; and `(⌈w_max⌉ + 2)·DELTA`, what the exact term's truncations add to the
-    /// quick quotients' bound ([`lean_color`]).
+    /// ([`Scalar::quick_pixel`]), set where bit `parity` of `quick` is: `knl` known, that
+    /// parity's weights not negative and without overflow, and the products fitting;
+    /// and `(⌊w_max⌋ + 3)·DELTA`, what the exact term's truncations can add to the quick
+    /// quotients' bound ([`lean_color`]).
     wk: [[S; 3]; 2],
     slack: [S; 2],
     quick: u8,

@@ -48,25 +48,24 @@ fn div_i32(a: i32, b: i32, frac: u32) -> Option<i32> {
     }
 }
 
-/// Whether [`quick_i32`] answers on this target.
-const QUICK_I32: bool = cfg!(no_long_multiply);
+/// Whether [`quick_i32`] answers on this target: on cores without a long multiply, and on
+/// hosted targets (`target_os` not `none`), so that the host's tests, reports and
+/// simulator draw with the Cortex-M0's arithmetic (the pixels are the same either way).
+const QUICK_I32: bool = cfg!(any(no_long_multiply, not(target_os = "none")));
 
 /// [`super::recip::quick_pixel`] of bit patterns ([`Scalar::quick_pixel`] of the 32-bit
 /// formats; `[b, slack]`), where it pays: on cores without a long multiply (the
 /// Cortex-M0, where the exact division and the colour's three double-width products cost
-/// about 300 instructions). Elsewhere `None`: with `UMULL` or `MULHU` (Cortex-M4F,
-/// RISC-V, the host) the exact arithmetic is cheaper than the quick pixel's
-/// certification (measured: boing 650 -> 683 instructions a pixel on the M4F, 796 -> 886
-/// on RISC-V). The one place the choice is made; the pixels are the same either way.
+/// about 300 instructions), and on hosted targets ([`QUICK_I32`]). Elsewhere `None`: on
+/// bare-metal cores with `UMULL` or `MULHU` (Cortex-M4F, RISC-V) the exact arithmetic is
+/// cheaper than the quick pixel's certification (measured: boing 650 -> 683 instructions
+/// a pixel on the M4F, 796 -> 886 on RISC-V). The one place the choice is made; the
+/// pixels are the same either way.
 #[inline]
 fn quick_i32(base: [i32; 3], a: [i32; 3], [b, slack]: [i32; 2], frac: u32) -> Option<[u8; 3]> {
-    #[cfg(no_long_multiply)]
-    {
+    if QUICK_I32 {
         super::recip::quick_pixel(base, a, b, slack, frac)
-    }
-    #[cfg(not(no_long_multiply))]
-    {
-        let _ = (base, a, b, slack, frac);
+    } else {
         None
     }
 }

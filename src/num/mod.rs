@@ -192,7 +192,8 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// within `slack` of the real quotients `aᵢ/b` thus gets its own pixel, bit for bit,
     /// without the division (the level-plane kernel's lean pixels). `None` (the default)
     /// where the format has no such shortcut (I16F16 and I20F12 have one, `num/recip.rs`,
-    /// on cores without a long multiply only, where it pays: `num/fixed.rs`), an argument
+    /// on cores without a long multiply, where it pays, and on hosted targets:
+    /// `num/fixed.rs`), an argument
     /// is outside that domain, a quotient may not fit, or the interval straddles two
     /// pixel values.
     #[inline]

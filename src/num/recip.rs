@@ -223,7 +223,6 @@ fn mul_wide_u32_u64(q: u64, b: u32) -> Option<u64> {
 /// way (the unit test checks it over 2,000,000 divisors and every table interval's
 /// ends). Cheaper than [`reciprocal`] (which adds a second,
 /// double-width step for 2⁻²⁹) for [`quick_quotients`].
-#[cfg_attr(not(no_long_multiply), allow(dead_code))]
 #[inline(always)]
 fn reciprocal_fine(d: u32) -> Option<u32> {
     let index = usize::try_from((d >> 23) & 0xFF).ok()?;
@@ -240,7 +239,6 @@ fn reciprocal_fine(d: u32) -> Option<u32> {
 
 /// `x·y/2³²` from 16-bit halves with three 32-bit multiplies (the low halves' product
 /// is dropped): between the exact value's floor minus 2 and the exact value.
-#[cfg_attr(not(no_long_multiply), allow(dead_code))]
 #[inline(always)]
 fn mul_high_approx(x: u32, y: u32) -> u32 {
     let (xh, xl) = (x >> 16, x & 0xFFFF);
@@ -257,7 +255,6 @@ fn mul_high_approx(x: u32, y: u32) -> u32 {
 /// cases). No double-width product and no remainder: for colour terms whose pixels
 /// [`quick_pixel`] certifies from the bound. `None` when an `aᵢ` is negative, `b` is not positive,
 /// `frac > 16`, or a quotient may not fit 31 bits.
-#[cfg_attr(not(no_long_multiply), allow(dead_code))]
 #[inline(always)]
 pub(crate) fn quick_quotients(a: [i32; 3], b: i32, frac: u32) -> Option<([i32; 3], i32)> {
     if b <= 0 || frac > 16 || a.iter().any(|v| *v < 0) {
@@ -272,9 +269,10 @@ pub(crate) fn quick_quotients(a: [i32; 3], b: i32, frac: u32) -> Option<([i32; 3
     }
     // One shift for the three, from the largest: its product keeps 30 bits.
     let s = leading_zeros(top);
-    // qᵢ = aᵢ·2^frac/b = (aᵢ·2ˢ)·x/2³² · 2^(frac + n − 30 − s); the product of the
-    // largest is at least 2³⁰ (both factors at least 2³¹ and 2³⁰), so a right shift of
-    // at least one keeps every quotient below 2³¹.
+    // qᵢ = aᵢ·2^frac/b = (aᵢ·2ˢ)·x/2³² · 2^(frac + n − 30 − s). The product is below
+    // 2³¹ (x < 2³¹), so the quotients fit; a right shift of at least one halves the
+    // products' truncation (the bound's 2.5 DELTAs), and refuses only quotients of at
+    // least 2²⁹ (the largest product is at least 2²⁹).
     let shift = (30 + s).checked_sub(frac + n).filter(|k| *k >= 1)?;
     let q = |v: i32| -> i32 {
         let p = mul_high_approx(v.cast_unsigned() << s, x);
@@ -295,7 +293,6 @@ pub(crate) fn quick_quotients(a: [i32; 3], b: i32, frac: u32) -> Option<([i32; 3
 /// states how far its terms can be from the real quotients in `slack`), maps to the
 /// same pixel, the mapping being monotonic. `None` when it does not settle or
 /// [`quick_quotients`] refuses.
-#[cfg_attr(not(no_long_multiply), allow(dead_code))]
 #[inline(always)]
 pub(crate) fn quick_pixel(
     base: [i32; 3],
