@@ -2,6 +2,7 @@
 //! Products are formed exactly in double width ([`super::wide`]) and rounded once.
 
 use super::{Decimal, EPSILON_DELTAS, Scalar, wide};
+use ::fixed::FixedI32;
 use ::fixed::types::{I16F16, I20F12, I32F32};
 
 /// `bits × num / den` truncated towards zero, as the double-width quotient
@@ -53,8 +54,8 @@ fn div_i32(a: i32, b: i32, frac: u32) -> Option<i32> {
 /// simulator draw with the Cortex-M0's arithmetic (the pixels are the same either way).
 const QUICK_I32: bool = cfg!(any(no_long_multiply, not(target_os = "none")));
 
-/// [`super::recip::quick_pixel`] of bit patterns ([`Scalar::quick_pixel`] of the 32-bit
-/// formats; `[b, slack]`), where it pays: on cores without a long multiply (the
+/// [`super::recip::quick_pixel`] on the bit patterns ([`Scalar::quick_pixel`] of the
+/// 32-bit formats), where it pays: on cores without a long multiply (the
 /// Cortex-M0, where the exact division and the colour's three double-width products cost
 /// about 300 instructions), and on hosted targets ([`QUICK_I32`]). Elsewhere `None`: on
 /// bare-metal cores with `UMULL` or `MULHU` (Cortex-M4F, RISC-V) the exact arithmetic is
@@ -62,9 +63,22 @@ const QUICK_I32: bool = cfg!(any(no_long_multiply, not(target_os = "none")));
 /// a pixel on the M4F, 796 -> 886 on RISC-V). The one place the choice is made; the
 /// pixels are the same either way.
 #[inline]
-fn quick_i32(base: [i32; 3], a: [i32; 3], [b, slack]: [i32; 2], frac: u32) -> Option<[u8; 3]> {
+fn quick_i32<F: ::fixed::types::extra::LeEqU32>(
+    base: [FixedI32<F>; 3],
+    a: [FixedI32<F>; 3],
+    b: FixedI32<F>,
+    slack: FixedI32<F>,
+) -> Option<[u8; 3]> {
     if QUICK_I32 {
-        super::recip::quick_pixel(base, a, b, slack, frac)
+        let bits = FixedI32::<F>::to_bits;
+        let frac = FixedI32::<F>::FRAC_NBITS;
+        super::recip::quick_pixel(
+            base.map(bits),
+            a.map(bits),
+            b.to_bits(),
+            slack.to_bits(),
+            frac,
+        )
     } else {
         None
     }
@@ -202,12 +216,7 @@ impl_fixed!(
     i64,
     wide::mul_wide_i32,
     |a, b| div_i32(a.to_bits(), b.to_bits(), I16F16::FRAC_NBITS).map(I16F16::from_bits),
-    |base, a, b, slack| quick_i32(
-        base.map(I16F16::to_bits),
-        a.map(I16F16::to_bits),
-        [b.to_bits(), slack.to_bits()],
-        I16F16::FRAC_NBITS
-    ),
+    quick_i32,
     QUICK_I32
 );
 impl_fixed!(
@@ -218,12 +227,7 @@ impl_fixed!(
     i64,
     wide::mul_wide_i32,
     |a, b| div_i32(a.to_bits(), b.to_bits(), I20F12::FRAC_NBITS).map(I20F12::from_bits),
-    |base, a, b, slack| quick_i32(
-        base.map(I20F12::to_bits),
-        a.map(I20F12::to_bits),
-        [b.to_bits(), slack.to_bits()],
-        I20F12::FRAC_NBITS
-    ),
+    quick_i32,
     QUICK_I32
 );
 impl_fixed!(

@@ -193,9 +193,8 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// without the division (the level-plane kernel's lean pixels). `None` (the default)
     /// where the format has no such shortcut (I16F16 and I20F12 have one, `num/recip.rs`,
     /// on cores without a long multiply, where it pays, and on hosted targets:
-    /// `num/fixed.rs`), an argument
-    /// is outside that domain, a quotient may not fit, or the interval straddles two
-    /// pixel values.
+    /// `num/fixed.rs`), an argument is outside that domain, a quotient may not fit, or the
+    /// interval straddles two pixel values.
     #[inline]
     fn quick_pixel(base: [Self; 3], a: [Self; 3], b: Self, slack: Self) -> Option<[u8; 3]> {
         let _ = (base, a, b, slack);

@@ -58,16 +58,9 @@ pub(crate) fn recip_div(a: i32, b: i32) -> Option<i32> {
 fn reciprocal(ub: u32) -> Option<(u32, u32)> {
     let n = leading_zeros(ub);
     let d = ub << n; // Q1.31 in [1, 2)
-    let index = usize::try_from((d >> 23) & 0xFF).ok()?;
-    let x0 = u32::from(*RECIPROCALS.get(index)?); // Q0.16, in (2¹⁵, 2¹⁶)
+    let x0 = table_reciprocal(d)?;
     // First step, 16-bit: t = dh·x₀ ≈ 2³¹ (Q1.31, below 2³²: both factors below 2¹⁶).
-    let t = (d >> 16) * x0;
-    // (2³¹ − t)/2, signed and small (|·| < 2²¹·¹): t/2 < 2³¹ fits an i32.
-    let half_err = (1i32 << 30) - i32::try_from(t >> 1).ok()?;
-    // x₁ = x₀ + x₀·(2³¹ − t)/2³¹, in Q1.31: x₀·2¹⁵ + x₀·half_err/2¹⁵ (|product| < 2³¹).
-    let x0 = i32::try_from(x0).ok()?;
-    let x1 = (x0 << 15) + ((x0 * (half_err >> 7)) >> 8);
-    let mut x = u32::try_from(x1).ok()?;
+    let mut x = newton_16(x0, (d >> 16) * x0)?;
     // Second step, on all of d: t = d·x ≈ 1 (Q1.31); x ← x·(2 − t).
     let t = u32::try_from(mul_wide_u32(d, x) >> 31).ok()?;
     let e = 0u32.wrapping_sub(t); // 2 − t in Q1.31: 2³² − t (t in (0, 2³²))
@@ -221,20 +214,34 @@ fn mul_wide_u32_u64(q: u64, b: u32) -> Option<u64> {
 /// `d·x₀` takes all of `d` (two 32-bit multiplies: `dh·x₀ + dl·x₀/2¹⁶`). Its error is the
 /// table's squared (2⁻¹⁸) plus the step's truncations (about 2⁻²³): below 2⁻¹⁷·⁸ either
 /// way (the unit test checks it over 2,000,000 divisors and every table interval's
-/// ends). Cheaper than [`reciprocal`] (which adds a second,
-/// double-width step for 2⁻²⁹) for [`quick_quotients`].
+/// ends). Cheaper than [`reciprocal`] (which adds a second, double-width step for
+/// 2⁻²⁹) for [`quick_quotients`].
 #[inline(always)]
 fn reciprocal_fine(d: u32) -> Option<u32> {
-    let index = usize::try_from((d >> 23) & 0xFF).ok()?;
-    let x0 = u32::from(*RECIPROCALS.get(index)?); // Q0.16, in (2¹⁵, 2¹⁶)
+    let x0 = table_reciprocal(d)?;
     // t = d·x₀/2¹⁶ ≈ 2³¹ (Q1.31): the high half's product and the low half's, which
     // both fit 32 bits (each factor below 2¹⁶), the low one truncated.
-    let t = (d >> 16) * x0 + (((d & 0xFFFF) * x0) >> 16);
-    // As in `reciprocal`: (2³¹ − t)/2 is small, x₁ = x₀·2¹⁵ + x₀·(2³¹ − t)/2¹⁶.
+    newton_16(x0, (d >> 16) * x0 + (((d & 0xFFFF) * x0) >> 16))
+}
+
+/// The table's `x₀ ≈ 1/d` (Q0.16, in (2¹⁵, 2¹⁶)) for `d` in [1, 2) (Q1.31).
+#[inline(always)]
+fn table_reciprocal(d: u32) -> Option<u32> {
+    let index = usize::try_from((d >> 23) & 0xFF).ok()?;
+    Some(u32::from(*RECIPROCALS.get(index)?))
+}
+
+/// One Newton step `x₁ = x₀(2 − d·x₀)` in 32-bit arithmetic, from the table's `x₀` (Q0.16)
+/// and `t ≈ d·x₀` (Q1.31, near 2³¹): `x₁ = x₀·2¹⁵ + x₀·(2³¹ − t)/2¹⁶` in Q1.31. Both
+/// reciprocals take it ([`reciprocal`] with `d`'s top half, [`reciprocal_fine`] with all
+/// of it).
+#[inline(always)]
+fn newton_16(x0: u32, t: u32) -> Option<u32> {
+    // (2³¹ − t)/2, signed and small (|·| < 2²¹·¹): t/2 < 2³¹ fits an i32.
     let half_err = (1i32 << 30) - i32::try_from(t >> 1).ok()?;
+    // x₀·half_err/2¹⁵ with |product| < 2³¹.
     let x0 = i32::try_from(x0).ok()?;
-    let x1 = (x0 << 15) + ((x0 * (half_err >> 7)) >> 8);
-    u32::try_from(x1).ok()
+    u32::try_from((x0 << 15) + ((x0 * (half_err >> 7)) >> 8)).ok()
 }
 
 /// `x·y/2³²` from 16-bit halves with three 32-bit multiplies (the low halves' product
@@ -250,11 +257,11 @@ fn mul_high_approx(x: u32, y: u32) -> u32 {
 /// `(aᵢ·2^frac)/b` for three non-negative 32-bit bit patterns `aᵢ` and a positive `b`,
 /// by one shared reciprocal ([`reciprocal_fine`]) and three products of 16-bit halves:
 /// `(q, e)` with `|qᵢ − aᵢ·2^frac/b| ≤ e` for each `i` (the real quotient, not the
-/// truncated one), where `e = ⌊q_max/2¹⁷⌋ + 4` (the reciprocal's 2⁻¹⁷·⁸ and the products'
-/// and the final shift's truncations, at most 2.5 DELTAs; the unit test checks it on 1,000,000 seeded
-/// cases). No double-width product and no remainder: for colour terms whose pixels
-/// [`quick_pixel`] certifies from the bound. `None` when an `aᵢ` is negative, `b` is not positive,
-/// `frac > 16`, or a quotient may not fit 31 bits.
+/// truncated one), where `e = ⌊q_max/2¹⁷⌋ + 4` (the reciprocal's 2⁻¹⁷·⁸ and the
+/// products' and the final shift's truncations, at most 2.5 DELTAs; the unit test checks
+/// it on 1,000,000 seeded cases). No double-width product and no remainder: for colour
+/// terms whose pixels [`quick_pixel`] certifies from the bound. `None` when an `aᵢ` is
+/// negative, `b` is not positive, `frac > 16`, or a quotient may not fit 31 bits.
 #[inline(always)]
 pub(crate) fn quick_quotients(a: [i32; 3], b: i32, frac: u32) -> Option<([i32; 3], i32)> {
     if b <= 0 || frac > 16 || a.iter().any(|v| *v < 0) {
