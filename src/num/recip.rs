@@ -109,6 +109,7 @@ const CLZ8: [u8; 256] = {
         while n < 8 && (i << n) & 0x80 == 0 {
             n += 1;
         }
+        // n ≤ 8 (`as` because `TryFrom` is not `const`).
         table[i] = n as u8;
         i += 1;
     }
