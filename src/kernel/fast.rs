@@ -551,6 +551,12 @@ impl<S: Scalar> Primary<S> {
         self.terms_at(scene, r, true)
     }
 
+    /// The `D.x` [`Primary::advance_dir`] would step the row to, without stepping it.
+    #[inline(always)]
+    pub(crate) fn next_dx(&self, row: &Row<S>) -> Option<S> {
+        row.dir.x.checked_add(self.step_x)
+    }
+
     /// [`Primary::advance`] without the terms: `D.x` and the column only (the terms are
     /// then stale until [`Primary::refresh`]).
     pub(crate) fn advance_dir(&self, row: &mut Row<S>) -> Option<()> {

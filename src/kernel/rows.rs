@@ -533,6 +533,9 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         columns,
         counters,
         stages: core::marker::PhantomData,
+        run: [Rgb888::new(0, 0, 0); RUN],
+        run_at: 0,
+        run_len: 0,
     })
 }
 
@@ -565,13 +568,28 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     columns: core::ops::Range<u16>,
     counters: &'a mut Counters,
     stages: core::marker::PhantomData<T>,
+    /// Pixels a quick run drew ahead ([`Pixels::quick_run`]): `run[run_at..run_len]`
+    /// are the next ones, before `columns`.
+    run: [Rgb888; RUN],
+    run_at: u8,
+    run_len: u8,
 }
+
+/// How many pixels a quick run draws ahead of the one asked for ([`Pixels::quick_run`]).
+const RUN: usize = 16;
 
 impl<S: Scalar, T: Stages> Iterator for Pixels<'_, S, T> {
     type Item = Rgb888;
 
     #[inline]
     fn next(&mut self) -> Option<Rgb888> {
+        // The pixels a quick run drew ahead ([`Pixels::quick_run`]) first.
+        if self.run_at < self.run_len
+            && let Some(pixel) = self.run.get(usize::from(self.run_at))
+        {
+            self.run_at += 1;
+            return Some(*pixel);
+        }
         let column = self.columns.next()?;
         Some(self.pixel(column))
     }
@@ -584,6 +602,20 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         let (scene, p) = (self.scene, self.p);
         count(&mut self.counters.primary_rays);
         let in_spheres = column >= self.spheres.0 && column <= self.spheres.1;
+        // The commonest pixels first ([`Pixels::quick_run`]): a lazy row's columns
+        // outside the spheres' columns, on a lean row already built.
+        if S::QUICK_PIXEL
+            && S::EXACT_SUMS
+            && S::EXACT_PRODUCTS
+            && self.lazy
+            && !in_spheres
+            && !self.fresh
+            && self.valid
+            && self.lean_built == Some(true)
+            && let Some(pixel) = self.quick_run(column)
+        {
+            return pixel;
+        }
         // Outside the spheres' columns a lazy row steps `D` alone (the pixel's plane
         // needs nothing else); its terms are brought up to date where a sphere can be met.
         // (Only where products are exact: elsewhere none of it is compiled, flash.)
@@ -641,6 +673,47 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             Err(()) => self.reference(column),
         };
         to_pixel(scene.rules(), color)
+    }
+
+    /// The pixel at `column` and as many of the row's next columns as [`Pixels::run`]
+    /// holds, while each is a quick step ([`quick_step`]), in a loop: the row's lean part
+    /// is looked up once, not once a pixel, and one call draws them all. `None` when
+    /// `column`'s is not one (nothing changed but a resync column's restart, which the
+    /// general path then does again, to the same state).
+    #[inline(never)]
+    fn quick_run(&mut self, column: u16) -> Option<Rgb888> {
+        let (scene, p, row) = (self.scene, self.p, self.row);
+        let (l, f) = (self.level.as_ref()?, &self.lean);
+        let [light] = f.lights.as_slice() else {
+            return None;
+        };
+        let first = quick_step(scene, p, l, f, light, &mut self.state, row, column)?;
+        let (end, spheres) = (self.columns.end, self.spheres);
+        let mut n = 0u8;
+        for slot in self.run.iter_mut() {
+            let c = self.columns.start;
+            if c >= end || (c >= spheres.0 && c <= spheres.1) {
+                break;
+            }
+            let Some(pixel) = quick_step(scene, p, l, f, light, &mut self.state, row, c) else {
+                break;
+            };
+            *slot = pixel;
+            n += 1;
+            self.columns.start = c + 1;
+        }
+        (self.run_at, self.run_len) = (0, n);
+        (self.fresh, self.stale, self.valid) = (false, true, true);
+        // Each pixel's counts, as the general path counts them (`pixel`, `lean_color`).
+        let tiled = f.tiles.is_some();
+        let counters = &mut *self.counters;
+        for _ in 0..=n {
+            count(&mut counters.primary_rays);
+            counters_add(&mut counters.tile_lookups, u32::from(tiled));
+            count(&mut counters.shadow_rays);
+            count(&mut counters.diffuse);
+        }
+        Some(first)
     }
 
     /// The row's plane at the current pixel ([`plane_color`]). Out of line, as is
@@ -970,6 +1043,75 @@ fn counters_add(counter: &mut u32, n: u32) {
     for _ in 0..n {
         count(counter);
     }
+}
+
+/// The pixel at `column` of a lean row `f` (of level `l`) with one light, where
+/// [`Pixels::pixel`]'s general path would step `D` alone (a lazy row, a column outside
+/// the spheres' columns: [`Primary::advance_dir`] from the last column, or
+/// [`Primary::restart_dir`] at a resync) and draw the row's plane by [`lean_color`],
+/// whose quick term settles it: the same operations in the same order for that case
+/// (the step, the hit's `x`, the tile's parity, `L.x`, `|L|²`, the cones,
+/// [`Scalar::quick_pixel`]), without the general cases' lookups and loops; `state` is
+/// stepped to `column`. `None` wherever the case is another, with `state` unchanged but
+/// at a resync column, which is restarted (the general path then restarts it again, to
+/// the same state). The caller counts.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn quick_step<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    l: &Level<S>,
+    f: &LeanRow<S>,
+    light: &LeanLight<S>,
+    state: &mut Row<S>,
+    row: u16,
+    column: u16,
+) -> Option<Rgb888> {
+    let resync = column.is_multiple_of(fast::RESYNC_PIXELS);
+    let dx = if resync {
+        p.restart_dir(scene, row, column, state)?;
+        Primary::dir(state).x
+    } else {
+        // The general path steps only from the last column (else it restarts).
+        (Primary::column(state).checked_add(1) == Some(column)).then_some(())?;
+        p.next_dx(state)?
+    };
+    let x = scene.camera.viewpoint.x.checked_add(l.t.checked_mul(dx)?)?;
+    let odd = match &f.tiles {
+        Some(tiles) => tiles.odd(x) == Some(true),
+        None => false,
+    };
+    let parity = usize::from(odd);
+    if light.quick & (1 << parity) == 0 || !*f.lit.get(parity)? || light.nl.is_none() {
+        return None;
+    }
+    let lx = light.x.checked_sub(x)?;
+    let ll = S::acc_round(S::acc_add(S::acc_mul(lx, lx)?, light.yz?)?)?;
+    if ll < S::ONE {
+        return None;
+    }
+    let cones = f
+        .cones
+        .get(usize::from(light.cones.0)..usize::from(light.cones.1))?;
+    if !cones.is_empty() && lx.abs() > f.half {
+        return None;
+    }
+    for cone in cones {
+        if !cone.clears(lx, ll) {
+            return None;
+        }
+    }
+    let (color, wk, slack) = (
+        *f.ambient.get(parity)?,
+        *light.wk.get(parity)?,
+        *light.slack.get(parity)?,
+    );
+    let [r, g, b] = S::quick_pixel(color, wk, ll, slack)?;
+    if !resync {
+        // `next_dx` fitted and the column follows the state's: this step cannot fail.
+        p.advance_dir(state)?;
+    }
+    Some(Rgb888::new(r, g, b))
 }
 
 /// The material of the row's plane at `point`: a tiled plane's by its tile (the row's
