@@ -504,10 +504,28 @@ impl<S: Scalar> Primary<S> {
         column: u16,
         r: &mut Row<S>,
     ) -> Option<()> {
+        let dy = scene
+            .camera
+            .screen_y(row)?
+            .checked_sub(scene.camera.viewpoint.y)?;
+        self.restart_dir_in_row(scene, row, dy, column, r)
+    }
+
+    /// [`Primary::restart_dir`] with the row's `D.y` (`screen_y(row) − eye.y`, the same at
+    /// every pixel of the row) given: a scanline that keeps it restarts without its
+    /// division (`kernel/rows.rs`, every [`RESYNC_PIXELS`]).
+    #[inline]
+    pub(crate) fn restart_dir_in_row(
+        &self,
+        scene: &SceneView<'_, S>,
+        row: u16,
+        dy: S,
+        column: u16,
+        r: &mut Row<S>,
+    ) -> Option<()> {
         let eye = scene.camera.viewpoint;
-        let y = scene.camera.screen_y(row)?;
         let x = scene.camera.screen_x(column)?;
-        r.dir = Vec3::new(x.checked_sub(eye.x)?, y.checked_sub(eye.y)?, self.dz);
+        r.dir = Vec3::new(x.checked_sub(eye.x)?, dy, self.dz);
         r.column = column;
         r.row = row;
         // The epsilon bound for this pixel and the next RESYNC_PIXELS (|D.x| grows by at

@@ -517,6 +517,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         lean_built: None,
         lazy,
         stale: false,
+        dy: Primary::dir(&first).y,
         state: first,
         fresh: true,
         // From another column than 0 the first pixel restarts there, as the fast
@@ -552,6 +553,8 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     /// it (`fresh`); after a pixel whose step failed (`valid` false) the next restarts,
     /// as `reference::scanline` does.
     state: Row<S>,
+    /// The row's `D.y` (the same at every pixel: restarts take it, not its division).
+    dy: S,
     fresh: bool,
     valid: bool,
     /// Whether the row steps only `D` outside the spheres' columns (the formats whose
@@ -634,7 +637,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
                 p.advance(&mut self.state)
             }
         } else if skip {
-            p.restart_dir(scene, self.row, column, &mut self.state)
+            p.restart_dir_in_row(scene, self.row, self.dy, column, &mut self.state)
         } else {
             self.stale = false;
             p.restart(scene, self.row, column, &mut self.state)
@@ -682,7 +685,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
     /// general path then does again, to the same state).
     #[inline(never)]
     fn quick_run(&mut self, column: u16) -> Option<Rgb888> {
-        let (scene, p, row) = (self.scene, self.p, self.row);
+        let (scene, p, row) = (self.scene, self.p, (self.row, self.dy));
         let (l, f) = (self.level.as_ref()?, &self.lean);
         let [light] = f.lights.as_slice() else {
             return None;
@@ -1064,12 +1067,12 @@ fn quick_step<S: Scalar>(
     f: &LeanRow<S>,
     light: &LeanLight<S>,
     state: &mut Row<S>,
-    row: u16,
+    (row, dy): (u16, S),
     column: u16,
 ) -> Option<Rgb888> {
     let resync = column.is_multiple_of(fast::RESYNC_PIXELS);
     let dx = if resync {
-        p.restart_dir(scene, row, column, state)?;
+        p.restart_dir_in_row(scene, row, dy, column, state)?;
         Primary::dir(state).x
     } else {
         // The general path steps only from the last column (else it restarts).
