@@ -350,6 +350,7 @@ impl<S: Scalar> ShadowCone<S> {
         (u.x.abs() <= half && u.y.abs() <= half && u.z.abs() <= half).then_some(())?;
         let yz = S::acc_add(S::acc_mul(u.y, ly)?, S::acc_mul(u.z, lz)?)?;
         Some(RowCone {
+            object: self.object,
             near: self.near,
             ux: u.x,
             k: self.k,
@@ -415,6 +416,8 @@ impl<S: Scalar> ShadowCone<S> {
 /// cone: an I32F32 scanline's frame on a 16 KB chip).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct RowCone<S: Scalar> {
+    /// The sphere's index.
+    pub(crate) object: u8,
     near: S,
     ux: S,
     k: S,

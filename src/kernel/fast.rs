@@ -569,6 +569,12 @@ impl<S: Scalar> Primary<S> {
         self.terms_at(scene, r, true)
     }
 
+    /// Every pixel's `D.z` (`−eye.z`: the screen is the plane `z = 0`).
+    #[inline(always)]
+    pub(crate) fn dz(&self) -> S {
+        self.dz
+    }
+
     /// The `D.x` [`Primary::advance_dir`] would step the row to, without stepping it.
     #[inline(always)]
     pub(crate) fn next_dx(&self, row: &Row<S>) -> Option<S> {

@@ -690,7 +690,17 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         let [light] = f.lights.as_slice() else {
             return None;
         };
-        let first = quick_step(scene, p, l, f, light, &mut self.state, row, column)?;
+        let tiled = u32::from(f.tiles.is_some());
+        // Each pixel's counts, as the general path counts them (`pixel`, `lean_color`,
+        // and `lit` for a shadowed one).
+        let counted = |counters: &mut Counters, lit: bool| {
+            count(&mut counters.primary_rays);
+            counters_add(&mut counters.tile_lookups, tiled);
+            count(&mut counters.shadow_rays);
+            counters_add(&mut counters.diffuse, u32::from(lit));
+        };
+        let (first, lit) = quick_step(scene, p, l, f, light, &mut self.state, row, column)?;
+        counted(self.counters, lit);
         let (end, spheres) = (self.columns.end, self.spheres);
         let mut n = 0u8;
         for slot in self.run.iter_mut() {
@@ -698,24 +708,17 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             if c >= end || (c >= spheres.0 && c <= spheres.1) {
                 break;
             }
-            let Some(pixel) = quick_step(scene, p, l, f, light, &mut self.state, row, c) else {
+            let Some((pixel, lit)) = quick_step(scene, p, l, f, light, &mut self.state, row, c)
+            else {
                 break;
             };
+            counted(self.counters, lit);
             *slot = pixel;
             n += 1;
             self.columns.start = c + 1;
         }
         (self.run_at, self.run_len) = (0, n);
         (self.fresh, self.stale, self.valid) = (false, true, true);
-        // Each pixel's counts, as the general path counts them (`pixel`, `lean_color`).
-        let tiled = f.tiles.is_some();
-        let counters = &mut *self.counters;
-        for _ in 0..=n {
-            count(&mut counters.primary_rays);
-            counters_add(&mut counters.tile_lookups, u32::from(tiled));
-            count(&mut counters.shadow_rays);
-            count(&mut counters.diffuse);
-        }
         Some(first)
     }
 
@@ -1069,7 +1072,7 @@ fn quick_step<S: Scalar>(
     state: &mut Row<S>,
     (row, dy): (u16, S),
     column: u16,
-) -> Option<Rgb888> {
+) -> Option<(Rgb888, bool)> {
     let resync = column.is_multiple_of(fast::RESYNC_PIXELS);
     let dx = if resync {
         p.restart_dir_in_row(scene, row, dy, column, state)?;
@@ -1099,22 +1102,65 @@ fn quick_step<S: Scalar>(
     if !cones.is_empty() && lx.abs() > f.half {
         return None;
     }
+    // A sphere whose cone does not clear the pixel takes its exact segment test, as
+    // `plane_color` takes it (`occluded`, with the tolerance `lit` gives it): where it
+    // meets the segment the light adds nothing and the pixel is the ambient colour's.
+    let mut shadowed = false;
     for cone in cones {
-        if !cone.clears(lx, ll) {
-            return None;
+        if !cone.clears(lx, ll) && exact_shadow(scene, p, l, (dx, dy), x, (lx, ll), cone)? {
+            shadowed = true;
+            break;
         }
     }
-    let (color, wk, slack) = (
-        *f.ambient.get(parity)?,
-        *light.wk.get(parity)?,
-        *light.slack.get(parity)?,
-    );
-    let [r, g, b] = S::quick_pixel(color, wk, ll, slack)?;
+    let color = *f.ambient.get(parity)?;
+    let pixel = if shadowed {
+        to_pixel(Rules::Fixray, color)
+    } else {
+        let (wk, slack) = (*light.wk.get(parity)?, *light.slack.get(parity)?);
+        let [r, g, b] = S::quick_pixel(color, wk, ll, slack)?;
+        Rgb888::new(r, g, b)
+    };
     if !resync {
         // `next_dx` fitted and the column follows the state's: this step cannot fail.
         p.advance_dir(state)?;
     }
-    Some(Rgb888::new(r, g, b))
+    Some((pixel, !shadowed))
+}
+
+/// Whether the sphere of `cone` shadows a lean row's hit at `x` from the row's one light
+/// (`L = (lx, L.y, L.z)`, `|L|² = ll`): its exact segment test with the segments'
+/// tolerance at the hit, what `plane_color` decides there (`lit` → `occluded`: the hit's
+/// distance bound `t'·2|D|∞`, `segment_tolerance`, the sides of light 0). `None` where a
+/// quantity does not fit (the general path then draws the pixel).
+#[inline(never)]
+fn exact_shadow<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    l: &Level<S>,
+    (dx, dy): (S, S),
+    x: S,
+    (lx, ll): (S, S),
+    cone: &RowCone<S>,
+) -> Option<bool> {
+    let eye = scene.camera.viewpoint;
+    let d = Vec3::new(dx, dy, p.dz());
+    let twice = d.max_abs().checked_add(d.max_abs())?;
+    let t = l.t.checked_mul(twice)?;
+    let point = Vec3::new(x, l.y, l.z);
+    let tol = surface_tolerance(t, eye.max_abs().max(point.max_abs()))?;
+    let (y, z) = l.lights.first()?.l?;
+    let i = usize::from(cone.object);
+    let n = l.sides.len();
+    let (a0, a1) = (*l.sides.get(i)?, *p.at_lights().get(..n)?.get(i)?);
+    let shape = &scene.objects.get(i)?.shape;
+    Some(shape.meets_segment_with(
+        Some((a0, a1)),
+        point,
+        Vec3::new(lx, y, z),
+        ll,
+        tol,
+        scene.epsilon,
+    ))
 }
 
 /// The material of the row's plane at `point`: a tiled plane's by its tile (the row's
