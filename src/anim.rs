@@ -161,6 +161,10 @@ impl<S: Scalar> Bounce<S> {
     /// # Errors
     /// [`AnimError::NotASphere`] when the bounced object is not a sphere in `scene`,
     /// [`AnimError::OutOfRange`] as [`Bounce::centre`].
+    ///
+    /// Out of line: its temporaries (a sphere built anew) are not in the frame of the
+    /// caller's frame loop, under which the renderer runs (stack on a 16 KB chip).
+    #[inline(never)]
     pub fn apply<const O: usize, const M: usize, const L: usize>(
         &self,
         scene: &mut Scene<S, O, M, L>,

@@ -35,8 +35,9 @@ pub struct Sphere<S> {
     center: Vec3<S>,
     radius: S,
     radius_sq: S,
-    /// `1/radius` (`None`: it does not fit the format), for the normal.
-    inv_radius: Option<S>,
+    /// `1/radius` for the normal, where it has at least 8 significant bits (`1/r ≥
+    /// 256·DELTA`); zero where not (the normal is then normalised).
+    inv_radius: S,
 }
 
 impl<S: Scalar> Sphere<S> {
@@ -55,7 +56,10 @@ impl<S: Scalar> Sphere<S> {
             center,
             radius,
             radius_sq,
-            inv_radius: S::ONE.checked_div(radius),
+            inv_radius: S::ONE
+                .checked_div(radius)
+                .filter(|k| S::DELTA.checked_mul_int(256).is_some_and(|min| *k >= min))
+                .unwrap_or(S::ZERO),
         })
     }
 
@@ -239,26 +243,27 @@ impl<S: Scalar> Sphere<S> {
     }
 
     /// The outward unit normal at a point on the surface: `(P − C)·(1/r)` (three
-    /// products: `1/r` is kept with the sphere), components clamped to [−1, 1], where its
-    /// squared length is within 2⁻⁶ of 1 (the point is on the surface to within about
-    /// 1 % of the radius, as hits are); otherwise, or when `1/r` does not fit the format,
+    /// products: `1/r` is kept with the sphere), components clamped to [−1, 1], where
+    /// `|P − C|²` is within `r²/64` of `r²` (the point is on the surface to within about
+    /// 1 % of the radius, as hits are); otherwise, or when `1/r` has fewer than 8
+    /// significant bits in the format (a radius beyond 256 in I16F16, 16 in I20F12),
     /// `(P − C)` normalised ([`Vec3::unit`]: a square root and three to six divisions,
     /// which on a Cortex-M0 cost about twenty times as much). Either way the direction
     /// carries the point's error divided by `r`.
     pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
         let d = point.diff(self.center)?;
-        let scaled = self.inv_radius.and_then(|k| {
-            let (one, minus_one) = (S::ONE, S::ONE.checked_neg()?);
-            let c = |v: S| -> Option<S> { Some(v.checked_mul(k)?.min(one).max(minus_one)) };
-            let n = Vec3::new(c(d.x)?, c(d.y)?, c(d.z)?);
-            let margin = S::ONE.mul_ratio(1, 64)?;
-            let nn = n.dot(n)?.checked_sub(S::ONE)?;
-            (nn.abs() <= margin).then_some(n)
-        });
-        match scaled {
-            Some(n) => Some(n),
-            None => d.unit(),
-        }
+        // |d|² within r²/64 of r² (one rounding): the point is on the surface.
+        let on = |k: S| -> Option<S> {
+            let excess = S::sub_dot3(self.radius_sq, d.to_array(), d.to_array())?;
+            (excess.abs().checked_mul_int(64)? <= self.radius_sq).then_some(k)
+        };
+        let k = (self.inv_radius > S::ZERO).then_some(self.inv_radius);
+        let Some(k) = k.and_then(on) else {
+            return d.unit();
+        };
+        let (one, minus_one) = (S::ONE, S::ONE.checked_neg()?);
+        let c = |v: S| -> Option<S> { Some(v.checked_mul(k)?.min(one).max(minus_one)) };
+        Some(Vec3::new(c(d.x)?, c(d.y)?, c(d.z)?))
     }
 
     fn magnitude(&self, ray: &Ray<S>, hit: &Hit<S>) -> S {
@@ -270,12 +275,13 @@ impl<S: Scalar> Sphere<S> {
     }
 
     /// A secondary ray leaving a hit on the sphere in direction `dir`: based off the
-    /// surface along the sphere's normal by the bound of [`super::Plane::spawn`].
-    /// `None` when the offset base does not fit the format.
+    /// surface along the sphere's normal by the bound of [`super::Plane::spawn`], the
+    /// normal normalised (the bound is along a unit vector; [`Sphere::normal_at`] is one
+    /// only to about 1 %). `None` when the offset base does not fit the format.
     pub fn spawn(&self, ray: &Ray<S>, hit: &Hit<S>, dir: Vec3<S>) -> Option<Ray<S>> {
         spawn_along(
             hit,
-            self.normal_at(hit.point)?,
+            hit.point.diff(self.center)?.unit()?,
             dir,
             self.magnitude(ray, hit),
         )
@@ -350,7 +356,6 @@ impl<S: Scalar> ShadowCone<S> {
         (u.x.abs() <= half && u.y.abs() <= half && u.z.abs() <= half).then_some(())?;
         let yz = S::acc_add(S::acc_mul(u.y, ly)?, S::acc_mul(u.z, lz)?)?;
         Some(RowCone {
-            object: self.object,
             near: self.near,
             ux: u.x,
             k: self.k,
@@ -416,8 +421,6 @@ impl<S: Scalar> ShadowCone<S> {
 /// cone: an I32F32 scanline's frame on a 16 KB chip).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct RowCone<S: Scalar> {
-    /// The sphere's index.
-    pub(crate) object: u8,
     near: S,
     ux: S,
     k: S,

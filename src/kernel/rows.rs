@@ -116,14 +116,12 @@ struct LeanLight<S: Scalar> {
     knl: Option<S>,
     weights: [[S; 3]; 2],
     overflow: [u16; 2],
-    /// Per tile parity, `weights × knl` per channel: the numerators of the quick terms
-    /// ([`Scalar::quick_pixel`]), set where bit `parity` of `quick` is: `knl` known, that
-    /// parity's weights not negative and without overflow, and the products fitting;
-    /// and `(⌊w_max⌋ + 3)·DELTA`, what the exact term's truncations can add to the quick
-    /// quotients' bound ([`lean_color`]).
-    wk: [[S; 3]; 2],
-    slack: [S; 2],
-    quick: u8,
+    /// Per tile parity, the quick term ([`Scalar::quick_term`]): the numerators
+    /// `weights × knl` per channel and the slack `(⌊w_max⌋ + 3)·DELTA`, what the exact
+    /// term's truncations can add to the quick quotients' bound ([`lean_color`]); `None`
+    /// where `knl` is not known, that parity's weights are negative or overflow, the
+    /// products do not fit, or the format has no quick pixel.
+    quick: [Option<S::QuickTerm>; 2],
     /// The light's cones: `cones.0..cones.1` in [`LeanRow::cones`].
     cones: (u8, u8),
 }
@@ -443,7 +441,7 @@ fn lean_row<S: Scalar>(
         }
         // The quick terms' numerators and their slack (`lean_color`).
         // `Scalar::quick_pixel` maps colours to pixels as the crate's rules do.
-        let (mut wk, mut slack, mut quick) = ([[S::ZERO; 3]; 2], [S::ZERO; 2], 0u8);
+        let mut quick = [None; 2];
         if let (Some(knl), Rules::Fixray, true) = (rl.knl, scene.rules(), S::QUICK_PIXEL) {
             for (k, (w, o)) in [(w0, o0), (w1, o1)].into_iter().enumerate() {
                 let products = [0, 1, 2].map(|c| w[c].checked_mul(knl));
@@ -455,9 +453,7 @@ fn lean_row<S: Scalar>(
                 if let ([Some(a), Some(b), Some(c)], Some(extra), 0) = (products, extra, o)
                     && w.iter().all(|c| *c >= S::ZERO)
                 {
-                    wk[k] = [a, b, c];
-                    slack[k] = extra;
-                    quick |= 1 << k;
+                    quick[k] = S::quick_term([a, b, c], extra);
                 }
             }
         }
@@ -468,8 +464,6 @@ fn lean_row<S: Scalar>(
             knl: rl.knl,
             weights: [w0, w1],
             overflow: [o0, o1],
-            wk,
-            slack,
             quick,
             cones: (u8::try_from(start).ok()?, u8::try_from(cones.len()).ok()?),
         };
@@ -517,7 +511,6 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         lean_built: None,
         lazy,
         stale: false,
-        dy: Primary::dir(&first).y,
         state: first,
         fresh: true,
         // From another column than 0 the first pixel restarts there, as the fast
@@ -553,8 +546,6 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     /// it (`fresh`); after a pixel whose step failed (`valid` false) the next restarts,
     /// as `reference::scanline` does.
     state: Row<S>,
-    /// The row's `D.y` (the same at every pixel: restarts take it, not its division).
-    dy: S,
     fresh: bool,
     valid: bool,
     /// Whether the row steps only `D` outside the spheres' columns (the formats whose
@@ -637,7 +628,9 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
                 p.advance(&mut self.state)
             }
         } else if skip {
-            p.restart_dir_in_row(scene, self.row, self.dy, column, &mut self.state)
+            // `D.y` is the row's at every pixel (`scanline` started it on this row).
+            let dy = Primary::dir(&self.state).y;
+            p.restart_dir_in_row(scene, self.row, dy, column, &mut self.state)
         } else {
             self.stale = false;
             p.restart(scene, self.row, column, &mut self.state)
@@ -685,7 +678,9 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
     /// general path then does again, to the same state).
     #[inline(never)]
     fn quick_run(&mut self, column: u16) -> Option<Rgb888> {
-        let (scene, p, row) = (self.scene, self.p, (self.row, self.dy));
+        // `D.y` is the row's at every pixel (`scanline` started it on this row).
+        let (scene, p) = (self.scene, self.p);
+        let row = (self.row, Primary::dir(&self.state).y);
         let (l, f) = (self.level.as_ref()?, &self.lean);
         let [light] = f.lights.as_slice() else {
             return None;
@@ -1024,14 +1019,16 @@ fn lean_color<S: Scalar>(
         }
         diffuse += 1;
         let last = index + 1 == f.lights.len();
-        if S::QUICK_PIXEL && last && light.quick & (1 << parity) != 0 && ll >= S::ONE {
-            let (wk, slack) = (*light.wk.get(parity)?, *light.slack.get(parity)?);
-            if let Some([r, g, b]) = S::quick_pixel(color, wk, ll, slack) {
-                counters_add(&mut counters.tile_lookups, tiled);
-                counters_add(&mut counters.shadow_rays, shadow_rays);
-                counters_add(&mut counters.diffuse, diffuse);
-                return Some(Ok(Rgb888::new(r, g, b)));
-            }
+        if S::QUICK_PIXEL
+            && last
+            && ll >= S::ONE
+            && let Some(term) = light.quick.get(parity)?
+            && let Some([r, g, b]) = S::quick_pixel(color, term, ll)
+        {
+            counters_add(&mut counters.tile_lookups, tiled);
+            counters_add(&mut counters.shadow_rays, shadow_rays);
+            counters_add(&mut counters.diffuse, diffuse);
+            return Some(Ok(Rgb888::new(r, g, b)));
         }
         let falloff = diffuse_falloff(nl, light.knl, ll);
         let (w, overflow) = (light.weights.get(parity)?, light.overflow.get(parity)?);
@@ -1088,7 +1085,8 @@ fn quick_step<S: Scalar>(
         None => false,
     };
     let parity = usize::from(odd);
-    if light.quick & (1 << parity) == 0 || !*f.lit.get(parity)? || light.nl.is_none() {
+    let term = light.quick.get(parity)?.as_ref()?;
+    if !*f.lit.get(parity)? || light.nl.is_none() {
         return None;
     }
     let lx = light.x.checked_sub(x)?;
@@ -1106,8 +1104,8 @@ fn quick_step<S: Scalar>(
     // `plane_color` takes it (`occluded`, with the tolerance `lit` gives it): where it
     // meets the segment the light adds nothing and the pixel is the ambient colour's.
     let mut shadowed = false;
-    for cone in cones {
-        if !cone.clears(lx, ll) && exact_shadow(scene, p, l, (dx, dy), x, (lx, ll), cone)? {
+    for (k, cone) in cones.iter().enumerate() {
+        if !cone.clears(lx, ll) && exact_shadow(scene, p, l, (dx, dy), x, (lx, ll), k)? {
             shadowed = true;
             break;
         }
@@ -1116,8 +1114,7 @@ fn quick_step<S: Scalar>(
     let pixel = if shadowed {
         to_pixel(Rules::Fixray, color)
     } else {
-        let (wk, slack) = (*light.wk.get(parity)?, *light.slack.get(parity)?);
-        let [r, g, b] = S::quick_pixel(color, wk, ll, slack)?;
+        let [r, g, b] = S::quick_pixel(color, term, ll)?;
         Rgb888::new(r, g, b)
     };
     if !resync {
@@ -1127,7 +1124,7 @@ fn quick_step<S: Scalar>(
     Some((pixel, !shadowed))
 }
 
-/// Whether the sphere of `cone` shadows a lean row's hit at `x` from the row's one light
+/// Whether the sphere of the light's `cone`-th cone shadows a lean row's hit at `x` from the row's one light
 /// (`L = (lx, L.y, L.z)`, `|L|² = ll`): its exact segment test with the segments'
 /// tolerance at the hit, what `plane_color` decides there (`lit` → `occluded`: the hit's
 /// distance bound `t'·2|D|∞`, `segment_tolerance`, the sides of light 0). `None` where a
@@ -1140,7 +1137,7 @@ fn exact_shadow<S: Scalar>(
     (dx, dy): (S, S),
     x: S,
     (lx, ll): (S, S),
-    cone: &RowCone<S>,
+    cone: usize,
 ) -> Option<bool> {
     let eye = scene.camera.viewpoint;
     let d = Vec3::new(dx, dy, p.dz());
@@ -1149,7 +1146,11 @@ fn exact_shadow<S: Scalar>(
     let point = Vec3::new(x, l.y, l.z);
     let tol = surface_tolerance(t, eye.max_abs().max(point.max_abs()))?;
     let (y, z) = l.lights.first()?.l?;
-    let i = usize::from(cone.object);
+    // The row's cones of the light are its occluders' spheres in order (`lean_row`).
+    let bits = *l.occluders.first()?;
+    let i = (0..fast::FAST_OBJECTS)
+        .filter(|i| bits & (1 << i) != 0)
+        .nth(cone)?;
     let n = l.sides.len();
     let (a0, a1) = (*l.sides.get(i)?, *p.at_lights().get(..n)?.get(i)?);
     let shape = &scene.objects.get(i)?.shape;

@@ -65,27 +65,36 @@ const QUICK_I32: bool = cfg!(any(no_long_multiply, not(target_os = "none")));
 #[inline]
 fn quick_i32<F: ::fixed::types::extra::LeEqU32>(
     base: [FixedI32<F>; 3],
-    a: [FixedI32<F>; 3],
+    term: &super::recip::QuickTerm,
     b: FixedI32<F>,
-    slack: FixedI32<F>,
 ) -> Option<[u8; 3]> {
     if QUICK_I32 {
-        let bits = FixedI32::<F>::to_bits;
-        let frac = FixedI32::<F>::FRAC_NBITS;
-        super::recip::quick_pixel(
-            base.map(bits),
-            a.map(bits),
+        super::recip::quick_pixel_term(
+            base.map(FixedI32::<F>::to_bits),
+            term,
             b.to_bits(),
-            slack.to_bits(),
-            frac,
+            FixedI32::<F>::FRAC_NBITS,
         )
     } else {
         None
     }
 }
 
+/// [`Scalar::quick_term`] of the 32-bit formats with a quick pixel ([`quick_i32`]).
+#[inline]
+fn quick_term_i32<F: ::fixed::types::extra::LeEqU32>(
+    a: [FixedI32<F>; 3],
+    slack: FixedI32<F>,
+) -> Option<super::recip::QuickTerm> {
+    if QUICK_I32 {
+        super::recip::quick_term(a.map(FixedI32::<F>::to_bits), slack.to_bits())
+    } else {
+        None
+    }
+}
+
 macro_rules! impl_fixed {
-    ($t:ty, $name:literal, $wide:ty, $bits:ty, $wide_bits:ty, $mul:path, $div:expr, $quick:expr, $has_quick:expr) => {
+    ($t:ty, $name:literal, $wide:ty, $bits:ty, $wide_bits:ty, $mul:path, $div:expr, $qterm:ty, $quick:expr, $term:expr, $has_quick:expr) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
             const ZERO: Self = <$t>::ZERO;
@@ -142,10 +151,16 @@ macro_rules! impl_fixed {
                 div(self, rhs)
             }
             const QUICK_PIXEL: bool = $has_quick;
+            type QuickTerm = $qterm;
             #[inline]
-            fn quick_pixel(base: [Self; 3], a: [Self; 3], b: Self, slack: Self) -> Option<[u8; 3]> {
-                let quick: fn([Self; 3], [Self; 3], Self, Self) -> Option<[u8; 3]> = $quick;
-                quick(base, a, b, slack)
+            fn quick_term(a: [Self; 3], slack: Self) -> Option<$qterm> {
+                let term: fn([Self; 3], Self) -> Option<$qterm> = $term;
+                term(a, slack)
+            }
+            #[inline]
+            fn quick_pixel(base: [Self; 3], term: &$qterm, b: Self) -> Option<[u8; 3]> {
+                let quick: fn([Self; 3], &$qterm, Self) -> Option<[u8; 3]> = $quick;
+                quick(base, term, b)
             }
             #[inline]
             fn checked_sqrt(self) -> Option<Self> {
@@ -216,7 +231,9 @@ impl_fixed!(
     i64,
     wide::mul_wide_i32,
     |a, b| div_i32(a.to_bits(), b.to_bits(), I16F16::FRAC_NBITS).map(I16F16::from_bits),
+    super::recip::QuickTerm,
     quick_i32,
+    quick_term_i32,
     QUICK_I32
 );
 impl_fixed!(
@@ -227,7 +244,9 @@ impl_fixed!(
     i64,
     wide::mul_wide_i32,
     |a, b| div_i32(a.to_bits(), b.to_bits(), I20F12::FRAC_NBITS).map(I20F12::from_bits),
+    super::recip::QuickTerm,
     quick_i32,
+    quick_term_i32,
     QUICK_I32
 );
 impl_fixed!(
@@ -239,7 +258,9 @@ impl_fixed!(
     wide::mul_wide_i64,
     I32F32::checked_div,
     // No shortcut: a 64-bit format's terms take its division.
-    |_, _, _, _| None,
+    (),
+    |_, _, _| None,
+    |_, _| None,
     false
 );
 

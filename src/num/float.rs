@@ -100,6 +100,7 @@ macro_rules! impl_float {
                 if self < 0.0 { -self } else { self }
             }
             type Acc = $t;
+            type QuickTerm = ();
             #[inline]
             fn acc_mul(a: Self, b: Self) -> Option<Self> {
                 Some(a * b).filter(|v| v.is_finite())

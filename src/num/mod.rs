@@ -183,21 +183,36 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// shortcut out entirely where it cannot).
     const QUICK_PIXEL: bool = false;
 
+    /// A colour term prepared once for many [`Scalar::quick_pixel`]s (a row's pixels):
+    /// its numerators and the caller's slack ([`Scalar::quick_term`]). `()` in the formats
+    /// without a quick pixel (no room is taken for it there).
+    type QuickTerm: Copy + Debug + Send + Sync;
+
+    /// The [`Scalar::QuickTerm`] of the numerators `aᵢ` (not negative, not all zero) of a
+    /// colour term `aᵢ/b` and the caller's `slack` ([`Scalar::quick_pixel`]). `None` (the
+    /// default) where the format has no quick pixel or an argument is outside that
+    /// domain.
+    #[inline]
+    fn quick_term(a: [Self; 3], slack: Self) -> Option<Self::QuickTerm> {
+        let _ = (a, slack);
+        None
+    }
+
     /// The pixel of a colour term over a base colour, `round(clamp(baseᵢ + aᵢ/b, 0,
     /// 255))` per channel (the `fixray` rules' mapping, `shade::color::to_rgb888`), for
-    /// non-negative `aᵢ` and a positive `b`, when one approximate reciprocal settles it:
-    /// the quotients are known to within a bound `e` (about `q·2⁻¹⁷`), and the pixel is
-    /// returned only where every colour within `e + slack` of the base plus them rounds
-    /// to it. A caller whose own term (the format's truncated division and products) is
-    /// within `slack` of the real quotients `aᵢ/b` thus gets its own pixel, bit for bit,
-    /// without the division (the level-plane kernel's lean pixels). `None` (the default)
-    /// where the format has no such shortcut (I16F16 and I20F12 have one, `num/recip.rs`,
-    /// on cores without a long multiply, where it pays, and on hosted targets:
-    /// `num/fixed.rs`), an argument is outside that domain, a quotient may not fit, or the
-    /// interval straddles two pixel values.
+    /// the term's non-negative `aᵢ` (prepared by [`Scalar::quick_term`]) and a positive
+    /// `b`, when one approximate reciprocal settles it: the quotients are known to within
+    /// a bound `e` (about `q·2⁻¹⁷`), and the pixel is returned only where every colour
+    /// within `e + slack` of the base plus them rounds to it. A caller whose own term
+    /// (the format's truncated division and products) is within `slack` of the real
+    /// quotients `aᵢ/b` thus gets its own pixel, bit for bit, without the division (the
+    /// level-plane kernel's lean pixels). `None` (the default) where the format has no
+    /// such shortcut (I16F16 and I20F12 have one, `num/recip.rs`, on cores without a long
+    /// multiply, where it pays, and on hosted targets: `num/fixed.rs`), `b` is outside
+    /// that domain, a quotient may not fit, or the interval straddles two pixel values.
     #[inline]
-    fn quick_pixel(base: [Self; 3], a: [Self; 3], b: Self, slack: Self) -> Option<[u8; 3]> {
-        let _ = (base, a, b, slack);
+    fn quick_pixel(base: [Self; 3], term: &Self::QuickTerm, b: Self) -> Option<[u8; 3]> {
+        let _ = (base, term, b);
         None
     }
 

@@ -255,6 +255,24 @@ fn mul_high_approx(x: u32, y: u32) -> u32 {
     xh * yh + ((xh * yl) >> 16) + ((xl * yh) >> 16)
 }
 
+/// Three non-negative numerators scaled for [`quick_quotients_scaled`] (once for many
+/// divisors: a row's pixels, [`QuickTerm`]): `(aᵢ·2^(s−1), s)` where `s` is the largest's leading zeros
+/// (at least 1: the largest then has its top bit at 30). `None` when an `aᵢ` is negative
+/// or all are zero.
+#[inline]
+fn quick_scale(a: [i32; 3]) -> Option<([i32; 3], u32)> {
+    if a.iter().any(|v| *v < 0) {
+        return None;
+    }
+    let top = a[0].max(a[1]).max(a[2]).cast_unsigned();
+    if top == 0 {
+        return None;
+    }
+    // top < 2³¹: s ≥ 1, and aᵢ·2^(s−1) < 2³¹.
+    let s = leading_zeros(top);
+    Some((a.map(|v| v << (s - 1)), s))
+}
+
 /// `(aᵢ·2^frac)/b` for three non-negative 32-bit bit patterns `aᵢ` and a positive `b`,
 /// by one shared reciprocal ([`reciprocal_fine`]) and three products of 16-bit halves:
 /// `(q, e)` with `|qᵢ − aᵢ·2^frac/b| ≤ e` for each `i` (the real quotient, not the
@@ -263,31 +281,42 @@ fn mul_high_approx(x: u32, y: u32) -> u32 {
 /// it on 1,000,000 seeded cases). No double-width product and no remainder: for colour
 /// terms whose pixels [`quick_pixel`] certifies from the bound. `None` when an `aᵢ` is
 /// negative, `b` is not positive, `frac > 16`, or a quotient may not fit 31 bits.
-#[inline(always)]
+#[cfg_attr(not(test), allow(dead_code))]
 pub(crate) fn quick_quotients(a: [i32; 3], b: i32, frac: u32) -> Option<([i32; 3], i32)> {
-    if b <= 0 || frac > 16 || a.iter().any(|v| *v < 0) {
+    if a == [0; 3] && b > 0 && frac <= 16 {
+        return Some(([0; 3], 0));
+    }
+    let (scaled, s) = quick_scale(a)?;
+    quick_quotients_scaled(scaled, s, b, frac)
+}
+
+/// [`quick_quotients`] of numerators scaled once by [`quick_scale`] (`scaled`, `s`), bit
+/// for bit: the per-divisor part.
+#[inline(always)]
+pub(crate) fn quick_quotients_scaled(
+    scaled: [i32; 3],
+    s: u32,
+    b: i32,
+    frac: u32,
+) -> Option<([i32; 3], i32)> {
+    if b <= 0 || frac > 16 || !(1..=31).contains(&s) {
         return None;
     }
     let ub = b.cast_unsigned();
     let n = leading_zeros(ub);
     let x = reciprocal_fine(ub << n)?; // ≈ 2⁶²/(ub·2ⁿ)
-    let top = a[0].max(a[1]).max(a[2]).cast_unsigned();
-    if top == 0 {
-        return Some(([0; 3], 0));
-    }
-    // One shift for the three, from the largest: its product keeps 30 bits.
-    let s = leading_zeros(top);
-    // qᵢ = aᵢ·2^frac/b = (aᵢ·2ˢ)·x/2³² · 2^(frac + n − 30 − s). The product is below
-    // 2³¹ (x < 2³¹), so the quotients fit; a right shift of at least one halves the
-    // products' truncation (the bound's 2.5 DELTAs), and refuses only quotients of at
-    // least 2²⁹ (the largest product is at least 2²⁹).
+    // qᵢ = aᵢ·2^frac/b = (aᵢ·2ˢ)·x/2³² · 2^(frac + n − 30 − s), with `aᵢ·2ˢ` the scaled
+    // numerator doubled (the largest has its top bit at 31: its product keeps 30 bits).
+    // The product is below 2³¹ (x < 2³¹), so the quotients fit; a right shift of at
+    // least one halves the products' truncation (the bound's 2.5 DELTAs), and refuses
+    // only quotients of at least 2²⁹ (the largest product is at least 2²⁹).
     let shift = (30 + s).checked_sub(frac + n).filter(|k| *k >= 1)?;
     let q = |v: i32| -> i32 {
-        let p = mul_high_approx(v.cast_unsigned() << s, x);
+        let p = mul_high_approx(v.cast_unsigned() << 1, x);
         // shift ≥ 1: the result is below 2³¹ (and zero beyond 31 places).
         p.checked_shr(shift).unwrap_or(0).cast_signed()
     };
-    let q = [q(a[0]), q(a[1]), q(a[2])];
+    let q = [q(scaled[0]), q(scaled[1]), q(scaled[2])];
     let e = (q[0].max(q[1]).max(q[2]) >> 17) + 4;
     Some((q, e))
 }
@@ -301,7 +330,7 @@ pub(crate) fn quick_quotients(a: [i32; 3], b: i32, frac: u32) -> Option<([i32; 3
 /// states how far its terms can be from the real quotients in `slack`), maps to the
 /// same pixel, the mapping being monotonic. `None` when it does not settle or
 /// [`quick_quotients`] refuses.
-#[inline(always)]
+#[cfg_attr(not(test), allow(dead_code))]
 pub(crate) fn quick_pixel(
     base: [i32; 3],
     a: [i32; 3],
@@ -310,6 +339,53 @@ pub(crate) fn quick_pixel(
     frac: u32,
 ) -> Option<[u8; 3]> {
     let (q, e) = quick_quotients(a, d, frac)?;
+    let pixel = settle(base, q, e, slack, frac);
+    // The prepared form is the same function of its arguments.
+    #[cfg(test)]
+    if let Some(term) = quick_term(a, slack) {
+        assert_eq!(pixel, quick_pixel_term(base, &term, d, frac));
+    }
+    pixel
+}
+
+/// A colour term's numerators and slack prepared once for many [`quick_pixel_term`]s
+/// (a row's pixels): the numerators scaled by [`quick_scale`], and the caller's slack
+/// ([`quick_pixel`]). The I16F16 and I20F12 formats' `Scalar::QuickTerm`.
+#[derive(Debug, Clone, Copy)]
+pub struct QuickTerm {
+    scaled: [i32; 3],
+    shift: u32,
+    slack: i32,
+}
+
+/// The [`QuickTerm`] of non-negative numerators `a` (not all zero) with the caller's
+/// `slack` (not negative); `None` outside that domain.
+#[inline]
+pub(crate) fn quick_term(a: [i32; 3], slack: i32) -> Option<QuickTerm> {
+    let (scaled, shift) = quick_scale(a)?;
+    (slack >= 0).then_some(QuickTerm {
+        scaled,
+        shift,
+        slack,
+    })
+}
+
+/// [`quick_pixel`] of a prepared term, bit for bit (the per-divisor part).
+#[inline(always)]
+pub(crate) fn quick_pixel_term(
+    base: [i32; 3],
+    term: &QuickTerm,
+    d: i32,
+    frac: u32,
+) -> Option<[u8; 3]> {
+    let (q, e) = quick_quotients_scaled(term.scaled, term.shift, d, frac)?;
+    settle(base, q, e, term.slack, frac)
+}
+
+/// The pixel of `base + q` where every colour within `e + slack` of it rounds to one
+/// value per channel ([`quick_pixel`]).
+#[inline(always)]
+fn settle(base: [i32; 3], q: [i32; 3], e: i32, slack: i32, frac: u32) -> Option<[u8; 3]> {
     let e = e.checked_add(slack)?;
     let (one, half) = (1i32 << frac, 1i32 << frac >> 1);
     let top = 255 * one;

@@ -49,6 +49,7 @@ macro_rules! delegate {
     ($t:ident, $inner:ty, $name:literal, exact_products: $exact:expr, { $($own:item)* }) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
+            type QuickTerm = ();
             const ZERO: Self = Self(<$inner as Scalar>::ZERO);
             const ONE: Self = Self(<$inner as Scalar>::ONE);
             const MAX: Self = Self(<$inner as Scalar>::MAX);
