@@ -383,22 +383,28 @@ pub(crate) fn quick_pixel_term(
 }
 
 /// The pixel of `base + q` where every colour within `e + slack` of it rounds to one
-/// value per channel ([`quick_pixel`]).
+/// value per channel ([`quick_pixel`]). In plain 32-bit arithmetic: with `|base| ≤ 2²⁹`,
+/// `0 ≤ q < 2³⁰` ([`quick_quotients_scaled`]) and `e + slack < 2²⁹` (else `None`) no sum
+/// can overflow.
 #[inline(always)]
 fn settle(base: [i32; 3], q: [i32; 3], e: i32, slack: i32, frac: u32) -> Option<[u8; 3]> {
-    let e = e.checked_add(slack)?;
+    const LIMIT: i32 = 1 << 29;
+    let e = e.checked_add(slack).filter(|e| *e < LIMIT)?;
     let (one, half) = (1i32 << frac, 1i32 << frac >> 1);
     let top = 255 * one;
     // round(clamp(v, 0, 255)) in bits: 0 ≤ v ≤ 255·2^frac after the clamp, so v + ½ fits.
     let pixel = |v: i32| -> i32 { (v.clamp(0, top) + half) >> frac };
     let mut out = [0u8; 3];
     for ((o, b), q) in out.iter_mut().zip(base).zip(q) {
-        // Both ends of the channel's interval (q ≥ 0, e ≥ 0), saturating as the
-        // colour sums do (far beyond 255 either way).
-        let low = b.saturating_add(q.saturating_sub(e).max(0));
-        let high = b.saturating_add(q.saturating_add(e));
-        let p = pixel(low);
-        if pixel(high) != p {
+        if !(-LIMIT..=LIMIT).contains(&b) || !(0..2 * LIMIT).contains(&q) {
+            return None;
+        }
+        // Both ends of the channel's interval (the real term is not negative, so the
+        // low end could be `b`; `b + q − e` is below it or equal: a wider interval, as
+        // sure).
+        let mid = b + q;
+        let p = pixel(mid - e);
+        if pixel(mid + e) != p {
             return None;
         }
         *o = u8::try_from(p).ok()?;
