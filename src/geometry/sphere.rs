@@ -250,6 +250,7 @@ impl<S: Scalar> Sphere<S> {
     /// `(P − C)` normalised ([`Vec3::unit`]: a square root and three to six divisions,
     /// which on a Cortex-M0 cost about twenty times as much). Either way the direction
     /// carries the point's error divided by `r`.
+    #[inline(never)]
     pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
         let d = point.diff(self.center)?;
         // |d|² within r²/64 of r² (one rounding): the point is on the surface.

@@ -99,6 +99,9 @@ pub struct Primary<S: Scalar> {
     resync_span: Option<S>,
     /// `−eye.z`, the z of every `D`.
     dz: S,
+    /// The screen's x unit where the window divides exactly (`Camera::x_unit`; zero:
+    /// it does not): a restart's screen x is then a product, not a division.
+    x_unit: S,
 }
 
 /// How many sphere–light shadow cones a frame keeps (beyond, the exact test alone).
@@ -447,6 +450,7 @@ impl<S: Scalar> Primary<S> {
             resync_span: S::from_i32(i32::from(RESYNC_PIXELS))
                 .and_then(|n| n.checked_mul(step_x.abs())),
             dz: S::ZERO.checked_sub(eye.z)?,
+            x_unit: scene.camera.x_unit().unwrap_or(S::ZERO),
         })
     }
 
@@ -524,7 +528,8 @@ impl<S: Scalar> Primary<S> {
         r: &mut Row<S>,
     ) -> Option<()> {
         let eye = scene.camera.viewpoint;
-        let x = scene.camera.screen_x(column)?;
+        let unit = (self.x_unit > S::ZERO).then_some(self.x_unit);
+        let x = scene.camera.screen_x_in(unit, column)?;
         r.dir = Vec3::new(x.checked_sub(eye.x)?, dy, self.dz);
         r.column = column;
         r.row = row;

@@ -102,6 +102,10 @@ struct LeanRow<S: Scalar> {
     /// Half the format's range: a pixel's `|L.x|` beyond takes [`plane_color`]
     /// ([`RowCone::clears`]).
     half: S,
+    /// Whether quick runs may draw the row ([`Pixels::quick_run`]): one light, with a
+    /// quick term and a lit material for every tile parity the row shows (else each
+    /// pixel would try one and fall back).
+    runs: bool,
 }
 
 /// One light of a lean row: [`RowLight`]'s terms, the light's `x`, its weights per tile
@@ -469,6 +473,11 @@ fn lean_row<S: Scalar>(
         };
         lights.push(lean).ok()?;
     }
+    let parities = if out.tiles.is_some() { 2 } else { 1 };
+    out.runs = match out.lights.as_slice() {
+        [light] => (0..parities).all(|k| light.quick[k].is_some() && out.lit[k]),
+        _ => false,
+    };
     Some(())
 }
 
@@ -507,6 +516,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
             lights: heapless::Vec::new(),
             cones: heapless::Vec::new(),
             half: S::ZERO,
+            runs: false,
         },
         lean_built: None,
         lazy,
@@ -570,7 +580,7 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
 }
 
 /// How many pixels a quick run draws ahead of the one asked for ([`Pixels::quick_run`]).
-const RUN: usize = 16;
+const RUN: usize = 32;
 
 impl<S: Scalar, T: Stages> Iterator for Pixels<'_, S, T> {
     type Item = Rgb888;
@@ -606,6 +616,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             && !self.fresh
             && self.valid
             && self.lean_built == Some(true)
+            && self.lean.runs
             && let Some(pixel) = self.quick_run(column)
         {
             return pixel;

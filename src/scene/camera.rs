@@ -69,6 +69,37 @@ impl<S: Scalar> Camera<S> {
         }
     }
 
+    /// The unit `u` of the screen x coordinates when every column's is a whole multiple
+    /// of it, in a format whose products are exact (`Scalar::EXACT_PRODUCTS`): the
+    /// window's width divides exactly (`u·2W = WX` on the pixel-centre grid, `u·(W − 1) =
+    /// WX` on the corner grid), so that [`Camera::screen_x`] is `u·(2i + 1)` (or `u·i`),
+    /// bit for bit ([`Camera::screen_x_in`]): a product where it is otherwise a division
+    /// (a 128-pixel row 8 units wide in I16F16, say). `None` otherwise.
+    pub(crate) fn x_unit(&self) -> Option<S> {
+        let w = i32::from(self.width);
+        let den = match self.grid {
+            PixelGrid::Centres => 2 * w,
+            PixelGrid::Corners => w - 1,
+        };
+        let u = self.world_width.mul_ratio(1, den).filter(|_| den > 0)?;
+        (S::EXACT_PRODUCTS && u.checked_mul_int(den) == Some(self.world_width)).then_some(u)
+    }
+
+    /// [`Camera::screen_x`] given [`Camera::x_unit`]'s `unit` (`None`: as `screen_x`).
+    /// With a unit there is no remainder in `mul_ratio`'s division: its quotient times
+    /// the column's numerator is the same value, checked the same way.
+    #[inline]
+    pub(crate) fn screen_x_in(&self, unit: Option<S>, column: u16) -> Option<S> {
+        let Some(u) = unit else {
+            return self.screen_x(column);
+        };
+        let i = i32::from(column);
+        match self.grid {
+            PixelGrid::Centres => u.checked_mul_int(2 * i + 1),
+            PixelGrid::Corners => u.checked_mul_int(i),
+        }
+    }
+
     /// The primary ray through pixel `column` of the scanline whose screen y is `y`.
     pub fn primary_ray_at(&self, column: u16, y: S) -> Option<Ray<S>> {
         self.pixel_ray_at(column, y).map(|p| p.ray)
@@ -106,5 +137,52 @@ fn corner<S: Scalar>(size: S, k: i32, n: i32) -> Option<S> {
         Some(S::ZERO)
     } else {
         size.mul_ratio(k, n)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{I16F16, I20F12, I32F32};
+
+    /// `screen_x_in` with the camera's unit is `screen_x` at every column, for windows
+    /// that divide exactly and ones that do not, both grids, the fixed formats; floats
+    /// have no unit.
+    fn screen_x_by_unit<S: Scalar>() -> usize {
+        let mut exact = 0;
+        for width in [1u16, 2, 3, 7, 64, 100, 128, 160, 320, 640] {
+            for ww in [1.0, 3.0, 4.0, 8.0, 10.0, 12.5, 0.75] {
+                for grid in [PixelGrid::Centres, PixelGrid::Corners] {
+                    let camera = Camera {
+                        width,
+                        height: 4,
+                        world_width: S::from_f64(ww).unwrap(),
+                        world_height: S::ONE,
+                        viewpoint: Vec3::new(S::ONE, S::ONE, S::ONE),
+                        grid,
+                    };
+                    let unit = camera.x_unit();
+                    exact += usize::from(unit.is_some());
+                    for column in 0..width {
+                        assert_eq!(
+                            camera.screen_x_in(unit, column),
+                            camera.screen_x(column),
+                            "{} {width} px, {ww} wide, {grid:?}, column {column}",
+                            S::NAME
+                        );
+                    }
+                }
+            }
+        }
+        exact
+    }
+
+    #[test]
+    fn screen_x_by_the_unit_is_screen_x() {
+        // 8 units over 128 pixels (boing) divides in every fixed format.
+        assert!(screen_x_by_unit::<I16F16>() > 10);
+        assert!(screen_x_by_unit::<I20F12>() > 10);
+        assert!(screen_x_by_unit::<I32F32>() > 10);
+        assert_eq!(screen_x_by_unit::<f32>(), 0);
     }
 }
