@@ -36,7 +36,9 @@ pub struct Sphere<S> {
     radius: S,
     radius_sq: S,
     /// `1/radius` for the normal, where it has at least 8 significant bits (`1/r ≥
-    /// 256·DELTA`); zero where not (the normal is then normalised).
+    /// 256·DELTA`) and `r²` at least 10 (`r² ≥ 1024·DELTA`: the normal's surface check,
+    /// `r²/64`, is then well above its roundings); zero where not (the normal is then
+    /// normalised).
     inv_radius: S,
 }
 
@@ -59,6 +61,11 @@ impl<S: Scalar> Sphere<S> {
             inv_radius: S::ONE
                 .checked_div(radius)
                 .filter(|k| S::DELTA.checked_mul_int(256).is_some_and(|min| *k >= min))
+                .filter(|_| {
+                    S::DELTA
+                        .checked_mul_int(1024)
+                        .is_some_and(|m| radius_sq >= m)
+                })
                 .unwrap_or(S::ZERO),
         })
     }
@@ -245,8 +252,10 @@ impl<S: Scalar> Sphere<S> {
     /// The outward unit normal at a point on the surface: `(P − C)·(1/r)` (three
     /// products: `1/r` is kept with the sphere), components clamped to [−1, 1], where
     /// `|P − C|²` is within `r²/64` of `r²` (the point is on the surface to within about
-    /// 1 % of the radius, as hits are); otherwise, or when `1/r` has fewer than 8
-    /// significant bits in the format (a radius beyond 256 in I16F16, 16 in I20F12),
+    /// 1 % of the radius, as hits are: its length is then 1 within about 1 %, plus
+    /// `1/r`'s rounding); otherwise, or when `1/r` or `r²` has too few significant bits
+    /// in the format (a radius beyond 256 or below ⅛ in I16F16, beyond 16 or below ½ in
+    /// I20F12),
     /// `(P − C)` normalised ([`Vec3::unit`]: a square root and three to six divisions,
     /// which on a Cortex-M0 cost about twenty times as much). Either way the direction
     /// carries the point's error divided by `r`.
@@ -465,15 +474,11 @@ mod tests {
         }
     }
 
-    /// `ShadowCone::clears_line` clears only lines whose every point's exact segment
-    /// test misses the sphere: on seeded random spheres, lights and lines along x (a third
-    /// of them aimed at the sphere's edge as seen from the light, in y and z), for every
-    /// cleared line, points along it from far left to far right (every 1/8 unit, and its
-    /// nearest point to the light), the exact test says no. It clears a good share.
     /// The normal by `1/r` is the normalised one's within a few DELTAs (relative to the
     /// error the point's rounding carries, `DELTA/r` a component) at points on the
     /// surface, and a point off the surface (where `(P − C)/r` is not a unit vector)
-    /// takes the normalised one: unit length either way.
+    /// takes the normalised one: unit length either way, for radii from 1/64 (below
+    /// the formats' floors for the product: normalised) to 3¼.
     #[test]
     fn the_normal_by_the_reciprocal_radius_is_unit_on_and_off_the_surface() {
         fn check<S: Scalar>() {
@@ -482,7 +487,11 @@ mod tests {
             let mut worst = 0.0f64;
             for case in 0..2_000 {
                 let c = [0; 3].map(|_| 8.0 * next() - 4.0);
-                let r = 0.25 + 3.0 * next();
+                let r = if case % 3 == 0 {
+                    1.0 / 64.0 + 0.5 * next()
+                } else {
+                    0.25 + 3.0 * next()
+                };
                 let dir = [0; 3].map(|_| next() - 0.5);
                 let len = dir.iter().map(|v| v * v).sum::<f64>().sqrt();
                 // On the surface, or (every fourth case) at twice the radius.
@@ -520,8 +529,48 @@ mod tests {
         check::<I20F12>();
         check::<I32F32>();
         check::<f32>();
+        // Small spheres, points a little off the surface and one DELTA from the centre:
+        // where `r²` has few bits its rounding would pass points far off the surface, so
+        // those spheres' normals are normalised (unit length within 2⁻⁶).
+        fn small<S: Scalar>() {
+            for r in [1.0 / 1024.0, 1.0 / 256.0, 0.05, 0.1, 0.3] {
+                let c = Vec3::new(S::ONE, S::ONE, S::ONE);
+                let sphere = Sphere::new(c, S::from_f64(r).unwrap()).unwrap();
+                for k in [0.0, 0.96, 1.0, 1.04] {
+                    for dir in [[1.0, 0.0, 0.0], [0.6, -0.8, 0.0], [0.48, 0.6, 0.64]] {
+                        let off = dir.map(|v: f64| S::from_f64(k * r * v).unwrap());
+                        let off = if k == 0.0 {
+                            Vec3::new(S::DELTA, S::ZERO, S::ZERO)
+                        } else {
+                            Vec3::new(off[0], off[1], off[2])
+                        };
+                        let Some(n) = sphere.normal_at(c.sum(off).unwrap()) else {
+                            continue;
+                        };
+                        let len = [n.x, n.y, n.z]
+                            .map(|v| v.to_f64() * v.to_f64())
+                            .iter()
+                            .sum::<f64>()
+                            .sqrt();
+                        assert!(
+                            (len - 1.0).abs() < 1.0 / 64.0,
+                            "{} r = {r}, {k}·r along {dir:?}: |n| = {len}",
+                            S::NAME
+                        );
+                    }
+                }
+            }
+        }
+        small::<I16F16>();
+        small::<I20F12>();
+        small::<I32F32>();
     }
 
+    /// `ShadowCone::clears_line` clears only lines whose every point's exact segment
+    /// test misses the sphere: on seeded random spheres, lights and lines along x (a third
+    /// of them aimed at the sphere's edge as seen from the light, in y and z), for every
+    /// cleared line, points along it from far left to far right (every 1/8 unit, and its
+    /// nearest point to the light), the exact test says no. It clears a good share.
     #[test]
     fn a_cleared_line_misses_the_sphere_at_every_point_in_every_format() {
         fn check<S: Scalar>() {

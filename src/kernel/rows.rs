@@ -124,7 +124,7 @@ struct LeanLight<S: Scalar> {
     /// `weights × knl` per channel and the slack `(⌊w_max⌋ + 3)·DELTA`, what the exact
     /// term's truncations can add to the quick quotients' bound ([`lean_color`]); `None`
     /// where `knl` is not known, that parity's weights are negative or overflow, the
-    /// products do not fit, or the format has no quick pixel.
+    /// products do not fit or are all zero, or the format has no quick pixel.
     quick: [Option<S::QuickTerm>; 2],
     /// The light's cones: `cones.0..cones.1` in [`LeanRow::cones`].
     cones: (u8, u8),
@@ -699,14 +699,15 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         let tiled = u32::from(f.tiles.is_some());
         // Each pixel's counts, as the general path counts them (`pixel`, `lean_color`,
         // and `lit` for a shadowed one).
-        let counted = |counters: &mut Counters, lit: bool| {
-            count(&mut counters.primary_rays);
+        // (The first pixel's primary ray was counted by `pixel`, the caller.)
+        let counted = |counters: &mut Counters, lit: bool, ray: bool| {
+            counters_add(&mut counters.primary_rays, u32::from(ray));
             counters_add(&mut counters.tile_lookups, tiled);
             count(&mut counters.shadow_rays);
             counters_add(&mut counters.diffuse, u32::from(lit));
         };
         let (first, lit) = quick_step(scene, p, l, f, light, &mut self.state, row, column)?;
-        counted(self.counters, lit);
+        counted(self.counters, lit, false);
         let (end, spheres) = (self.columns.end, self.spheres);
         let mut n = 0u8;
         for slot in self.run.iter_mut() {
@@ -718,7 +719,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             else {
                 break;
             };
-            counted(self.counters, lit);
+            counted(self.counters, lit, true);
             *slot = pixel;
             n += 1;
             self.columns.start = c + 1;
@@ -971,7 +972,7 @@ fn lit<S: Scalar, T: Stages>(
 /// `|L|² ≥ 1` and `w ≥ 0` the exact term (a truncated quotient times `w`, floored) is
 /// within `(w + 2)·DELTA` of the real quotients (`w` DELTAs for the quotient's
 /// truncation, one for the product's and one for `w·255·N·L`'s, divided by
-/// `|L|² ≥ 1`; the row keeps `(⌊w_max⌋ + 3)·DELTA`, [`LeanLight::slack`]), so the pixel
+/// `|L|² ≥ 1`; the row keeps `(⌊w_max⌋ + 3)·DELTA` in its [`LeanLight::quick`] term), so the pixel
 /// is this function's exact one, bit for bit. Where it does not settle, the format has
 /// no shortcut, the row's light has no quick numerators or `|L|² < 1`, the term is the
 /// exact one.
@@ -1062,13 +1063,15 @@ fn counters_add(counter: &mut u32, n: u32) {
 /// The pixel at `column` of a lean row `f` (of level `l`) with one light, where
 /// [`Pixels::pixel`]'s general path would step `D` alone (a lazy row, a column outside
 /// the spheres' columns: [`Primary::advance_dir`] from the last column, or
-/// [`Primary::restart_dir`] at a resync) and draw the row's plane by [`lean_color`],
-/// whose quick term settles it: the same operations in the same order for that case
-/// (the step, the hit's `x`, the tile's parity, `L.x`, `|L|²`, the cones,
-/// [`Scalar::quick_pixel`]), without the general cases' lookups and loops; `state` is
-/// stepped to `column`. `None` wherever the case is another, with `state` unchanged but
-/// at a resync column, which is restarted (the general path then restarts it again, to
-/// the same state). The caller counts.
+/// [`Primary::restart_dir`] at a resync) and draw the row's plane by [`lean_color`]
+/// (where the quick term settles it), or by `plane_color` where a sphere's cone does
+/// not clear the pixel (its exact segment test, [`exact_shadow`]: shadowed, the
+/// ambient colour): the same operations in the same order for those cases (the step,
+/// the hit's `x`, the tile's parity, `L.x`, `|L|²`, the cones, [`Scalar::quick_pixel`]),
+/// without the general cases' lookups and loops; `state` is stepped to `column`; with
+/// the pixel, whether the light lit it. `None` wherever the case is another, with
+/// `state` unchanged but at a resync column, which is restarted (the general path then
+/// restarts it again, to the same state). The caller counts.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn quick_step<S: Scalar>(

@@ -54,7 +54,7 @@ fn div_i32(a: i32, b: i32, frac: u32) -> Option<i32> {
 /// simulator draw with the Cortex-M0's arithmetic (the pixels are the same either way).
 const QUICK_I32: bool = cfg!(any(no_long_multiply, not(target_os = "none")));
 
-/// [`super::recip::quick_pixel`] on the bit patterns ([`Scalar::quick_pixel`] of the
+/// [`super::recip::quick_pixel_term`] on the bit patterns ([`Scalar::quick_pixel`] of the
 /// 32-bit formats), where it pays: on cores without a long multiply (the
 /// Cortex-M0, where the exact division and the colour's three double-width products cost
 /// about 300 instructions), and on hosted targets ([`QUICK_I32`]). Elsewhere `None`: on

@@ -281,7 +281,7 @@ fn quick_scale(a: [i32; 3]) -> Option<([i32; 3], u32)> {
 /// it on 1,000,000 seeded cases). No double-width product and no remainder: for colour
 /// terms whose pixels [`quick_pixel`] certifies from the bound. `None` when an `aᵢ` is
 /// negative, `b` is not positive, `frac > 16`, or a quotient may not fit 31 bits.
-#[cfg_attr(not(test), allow(dead_code))]
+#[cfg(test)]
 pub(crate) fn quick_quotients(a: [i32; 3], b: i32, frac: u32) -> Option<([i32; 3], i32)> {
     if a == [0; 3] && b > 0 && frac <= 16 {
         return Some(([0; 3], 0));
@@ -324,13 +324,14 @@ pub(crate) fn quick_quotients_scaled(
 /// The pixel channels `round(clamp(bᵢ + aᵢ·2^frac/d, 0, 255))` (ties away from zero,
 /// as the crate's rules map colours to pixels) of bit patterns with `frac` fraction
 /// bits, for one colour term `aᵢ/d` over a base colour `bᵢ`, when [`quick_quotients`]
-/// settles them: each channel's interval `bᵢ + qᵢ ± (e + slack)` (low end at least
-/// `bᵢ`, sums saturating at `i32::MAX`) must round to one pixel value. Whatever lies in
+/// settles them: each channel's interval `bᵢ + qᵢ ± (e + slack)` (in plain 32-bit
+/// arithmetic, within the ranges [`settle`] checks) must round to one pixel value.
+/// Whatever lies in
 /// those intervals, the colour the exact arithmetic computes among it (the caller
 /// states how far its terms can be from the real quotients in `slack`), maps to the
 /// same pixel, the mapping being monotonic. `None` when it does not settle or
 /// [`quick_quotients`] refuses.
-#[cfg_attr(not(test), allow(dead_code))]
+#[cfg(test)]
 pub(crate) fn quick_pixel(
     base: [i32; 3],
     a: [i32; 3],
