@@ -263,3 +263,37 @@ fn edge_on<S: Scalar>() {
 fn a_row_edge_on_to_the_floor_is_the_fast_kernels_bit_for_bit() {
     fixray::for_each_format!(all: edge_on());
 }
+
+/// One primary ray per pixel, however the level-plane kernel draws it (its quick runs
+/// draw many pixels a call and hand them out one by one): `primary_rays` over a whole
+/// frame is the frame's pixel count, on two boing frames and the ball scene.
+fn one_ray_a_pixel<S: Scalar>() {
+    let count = |name: &str, scene: &Scene<S>| {
+        assert_eq!(
+            Frame::new(scene).kernel(),
+            KernelKind::Rows,
+            "{name} {}",
+            S::NAME
+        );
+        let mut line = vec![Rgb888::new(0, 0, 0); usize::from(scene.camera.width)];
+        let mut counters = fixray::Counters::default();
+        let frame = Frame::new(scene);
+        for row in 0..scene.camera.height {
+            frame.render_line_counted(row, &mut line, &mut counters);
+        }
+        let pixels = u32::from(scene.camera.width) * u32::from(scene.camera.height);
+        assert_eq!(counters.primary_rays, pixels, "{name} {}", S::NAME);
+    };
+    let mut boing = Scene::<S>::parse(include_str!("../scenes/boing.scene")).unwrap();
+    let bounce = Bounce::boing(&boing.objects).unwrap();
+    for k in [0, 8] {
+        bounce.apply(&mut boing, k).unwrap();
+        count(&format!("boing frame {k}"), &boing);
+    }
+    count("ball", &Scene::<S>::parse(BALL).unwrap());
+}
+
+#[test]
+fn the_level_plane_kernel_traces_one_primary_ray_a_pixel() {
+    fixray::for_each_format!(all: one_ray_a_pixel());
+}
