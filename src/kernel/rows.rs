@@ -814,14 +814,12 @@ fn plane_color<S: Scalar, T: Stages>(
     let d = Primary::dir(state);
     let eye = scene.camera.viewpoint;
     // As `Primary::point`: the hit, and the bound t'·2|D|∞ on its world distance.
-    let hit =
-        l.t.checked_mul(d.x)
-            .and_then(|tx| eye.x.checked_add(tx))
-            .map(|x| Vec3::new(x, l.y, l.z))
-            .and_then(|point| {
-                let t_bound = hit_bound(l, d, memo)?;
-                Some(Hit { t: t_bound, point })
-            });
+    let hit = row_x(scene, l, d.x)
+        .map(|x| Vec3::new(x, l.y, l.z))
+        .and_then(|point| {
+            let t_bound = hit_bound(l, d, memo)?;
+            Some(Hit { t: t_bound, point })
+        });
     let Some(hit) = hit else {
         return reference_color::<S, T>(scene, y, column, counters);
     };
@@ -896,9 +894,7 @@ fn lit<S: Scalar, T: Stages>(
                 };
                 let to_light = Vec3::new(lx, ly, lz);
                 let ll = match rl.yz {
-                    Some(yz) if S::EXACT_SUMS => S::acc_mul(lx, lx)
-                        .and_then(|xx| S::acc_add(xx, yz))
-                        .and_then(S::acc_round),
+                    Some(yz) if S::EXACT_SUMS => row_ll(lx, yz),
                     _ => to_light.dot(to_light),
                 };
                 let ll = ll.filter(|ll| *ll > S::ZERO)?;
@@ -984,19 +980,10 @@ fn lean_color<S: Scalar>(
     f: &LeanRow<S>,
     counters: &mut Counters,
 ) -> Option<Result<Rgb888, Color<S>>> {
-    let d = Primary::dir(state);
-    let x = scene
-        .camera
-        .viewpoint
-        .x
-        .checked_add(l.t.checked_mul(d.x)?)?;
+    let x = row_x(scene, l, Primary::dir(state).x)?;
     // The material by the tile's parity (`row_material`); the hit's distance bound and
     // the segments' tolerance fit at every pixel of a lean row (`lean_row`).
-    let odd = match &f.tiles {
-        Some(tiles) => tiles.odd(x) == Some(true),
-        None => false,
-    };
-    let parity = usize::from(odd);
+    let parity = f.parity(x);
     let tiled = u32::from(f.tiles.is_some());
     let mut color = *f.ambient.get(parity)?;
     if !*f.lit.get(parity)? {
@@ -1008,7 +995,7 @@ fn lean_color<S: Scalar>(
         let (Some(lx), Some(yz)) = (light.x.checked_sub(x), light.yz) else {
             continue;
         };
-        let ll = S::acc_round(S::acc_add(S::acc_mul(lx, lx)?, yz)?)?;
+        let ll = row_ll(lx, yz)?;
         if ll <= S::ZERO {
             return None;
         }
@@ -1018,13 +1005,7 @@ fn lean_color<S: Scalar>(
         shadow_rays += 1;
         // Only spheres can shadow a lean row: each cleared by its cone, or the pixel
         // takes the exact test (`plane_color`).
-        let cones = f
-            .cones
-            .get(usize::from(light.cones.0)..usize::from(light.cones.1))?;
-        if !cones.is_empty() && lx.abs() > f.half {
-            return None;
-        }
-        for cone in cones {
+        for cone in f.cones_at(light, lx)? {
             if !cone.clears(lx, ll) {
                 return None;
             }
@@ -1057,6 +1038,42 @@ fn lean_color<S: Scalar>(
 fn counters_add(counter: &mut u32, n: u32) {
     for _ in 0..n {
         count(counter);
+    }
+}
+
+/// The `x` of the row's hit at `D.x = dx`: `eye.x + t'·dx`, as `Primary::point` forms it.
+#[inline(always)]
+fn row_x<S: Scalar>(scene: &SceneView<'_, S>, l: &Level<S>, dx: S) -> Option<S> {
+    scene.camera.viewpoint.x.checked_add(l.t.checked_mul(dx)?)
+}
+
+/// `|L|²` of a row's hit from `L.x` and the row's `L.y² + L.z²`, one rounding (the
+/// fixed formats' sums are exact).
+#[inline(always)]
+fn row_ll<S: Scalar>(lx: S, yz: S::Acc) -> Option<S> {
+    S::acc_round(S::acc_add(S::acc_mul(lx, lx)?, yz)?)
+}
+
+impl<S: Scalar> LeanRow<S> {
+    /// The tile parity of the row's hit at `x` (0: the plane's own material, 1: a tiled
+    /// plane's odd tiles), as `row_material` chooses it.
+    #[inline(always)]
+    fn parity(&self, x: S) -> usize {
+        match &self.tiles {
+            Some(tiles) => usize::from(tiles.odd(x) == Some(true)),
+            None => 0,
+        }
+    }
+
+    /// The shadow cones of `light`'s occluding spheres at a hit with `L.x = lx`; `None`
+    /// where there are some and `|L.x|` is beyond half the range (their row part of `l·u`
+    /// then does not hold: the pixel takes the general path).
+    #[inline(always)]
+    fn cones_at(&self, light: &LeanLight<S>, lx: S) -> Option<&[RowCone<S>]> {
+        let cones = self
+            .cones
+            .get(usize::from(light.cones.0)..usize::from(light.cones.1))?;
+        (cones.is_empty() || lx.abs() <= self.half).then_some(cones)
     }
 }
 
@@ -1093,27 +1110,18 @@ fn quick_step<S: Scalar>(
         (Primary::column(state).checked_add(1) == Some(column)).then_some(())?;
         p.next_dx(state)?
     };
-    let x = scene.camera.viewpoint.x.checked_add(l.t.checked_mul(dx)?)?;
-    let odd = match &f.tiles {
-        Some(tiles) => tiles.odd(x) == Some(true),
-        None => false,
-    };
-    let parity = usize::from(odd);
+    let x = row_x(scene, l, dx)?;
+    let parity = f.parity(x);
     let term = light.quick.get(parity)?.as_ref()?;
     if !*f.lit.get(parity)? || light.nl.is_none() {
         return None;
     }
     let lx = light.x.checked_sub(x)?;
-    let ll = S::acc_round(S::acc_add(S::acc_mul(lx, lx)?, light.yz?)?)?;
+    let ll = row_ll(lx, light.yz?)?;
     if ll < S::ONE {
         return None;
     }
-    let cones = f
-        .cones
-        .get(usize::from(light.cones.0)..usize::from(light.cones.1))?;
-    if !cones.is_empty() && lx.abs() > f.half {
-        return None;
-    }
+    let cones = f.cones_at(light, lx)?;
     // A sphere whose cone does not clear the pixel takes its exact segment test, as
     // `plane_color` takes it (`occluded`, with the tolerance `lit` gives it): where it
     // meets the segment the light adds nothing and the pixel is the ambient colour's.
@@ -1153,12 +1161,14 @@ fn exact_shadow<S: Scalar>(
     (lx, ll): (S, S),
     cone: usize,
 ) -> Option<bool> {
-    let eye = scene.camera.viewpoint;
-    let d = Vec3::new(dx, dy, p.dz());
-    let twice = d.max_abs().checked_add(d.max_abs())?;
-    let t = l.t.checked_mul(twice)?;
+    // The hit's distance bound and the segments' tolerance as `plane_color` finds them.
+    let mut memo = Memo {
+        bound: None,
+        tol: None,
+    };
+    let t = hit_bound(l, Vec3::new(dx, dy, p.dz()), &mut memo)?;
     let point = Vec3::new(x, l.y, l.z);
-    let tol = surface_tolerance(t, eye.max_abs().max(point.max_abs()))?;
+    let tol = segment_tolerance(scene.camera.viewpoint, point, t, &mut memo)?;
     let (y, z) = l.lights.first()?.l?;
     // The row's cones of the light are its occluders' spheres in order (`lean_row`).
     let bits = *l.occluders.first()?;
