@@ -255,22 +255,21 @@ impl<S: Scalar> Sphere<S> {
     /// 1 % of the radius, as hits are: its length is then 1 within about 1 %, plus
     /// `1/r`'s rounding); otherwise, or when `1/r` or `r²` has too few significant bits
     /// in the format (a radius beyond 256 or below ⅛ in I16F16, beyond 16 or below ½ in
-    /// I20F12),
-    /// `(P − C)` normalised ([`Vec3::unit`]: a square root and three to six divisions,
-    /// which on a Cortex-M0 cost about twenty times as much). Either way the direction
-    /// carries the point's error divided by `r`.
+    /// I20F12), `(P − C)` normalised ([`Vec3::unit`]: a square root and three to six
+    /// divisions, which on a Cortex-M0 cost about twenty times as much). Either way the
+    /// direction carries the point's error divided by `r`.
     #[inline(never)]
     pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
-        let d = point.diff(self.center)?;
+        let (d, k) = (point.diff(self.center)?, self.inv_radius);
         // |d|² within r²/64 of r² (one rounding): the point is on the surface.
-        let on = |k: S| -> Option<S> {
-            let excess = S::sub_dot3(self.radius_sq, d.to_array(), d.to_array())?;
-            (excess.abs().checked_mul_int(64)? <= self.radius_sq).then_some(k)
+        let on_surface = || {
+            S::sub_dot3(self.radius_sq, d.to_array(), d.to_array())
+                .and_then(|excess| excess.abs().checked_mul_int(64))
+                .is_some_and(|e| e <= self.radius_sq)
         };
-        let k = (self.inv_radius > S::ZERO).then_some(self.inv_radius);
-        let Some(k) = k.and_then(on) else {
+        if k <= S::ZERO || !on_surface() {
             return d.unit();
-        };
+        }
         let (one, minus_one) = (S::ONE, S::ONE.checked_neg()?);
         let c = |v: S| -> Option<S> { Some(v.checked_mul(k)?.min(one).max(minus_one)) };
         Some(Vec3::new(c(d.x)?, c(d.y)?, c(d.z)?))
