@@ -968,8 +968,8 @@ fn lit<S: Scalar, T: Stages>(
 /// `|L|² ≥ 1` and `w ≥ 0` the exact term (a truncated quotient times `w`, floored) is
 /// within `(w + 2)·DELTA` of the real quotients (`w` DELTAs for the quotient's
 /// truncation, one for the product's and one for `w·255·N·L`'s, divided by
-/// `|L|² ≥ 1`; the row keeps `(⌊w_max⌋ + 3)·DELTA` in its [`LeanLight::quick`] term), so the pixel
-/// is this function's exact one, bit for bit. Where it does not settle, the format has
+/// `|L|² ≥ 1`; the row keeps `(⌊w_max⌋ + 3)·DELTA` in its [`LeanLight::quick`] term),
+/// so the pixel is this function's exact one, bit for bit. Where it does not settle, the format has
 /// no shortcut, the row's light has no quick numerators or `|L|² < 1`, the term is the
 /// exact one.
 #[inline(always)]
@@ -1146,8 +1146,8 @@ fn quick_step<S: Scalar>(
     Some((pixel, !shadowed))
 }
 
-/// Whether the sphere of the light's `cone`-th cone shadows a lean row's hit at `x` from the row's one light
-/// (`L = (lx, L.y, L.z)`, `|L|² = ll`): its exact segment test with the segments'
+/// Whether the sphere of the light's `cone`-th cone shadows a lean row's hit at `x` from
+/// the row's one light (`L = (lx, L.y, L.z)`, `|L|² = ll`): its exact segment test with the segments'
 /// tolerance at the hit, what `plane_color` decides there (`lit` → `occluded`: the hit's
 /// distance bound `t'·2|D|∞`, `segment_tolerance`, the sides of light 0). `None` where a
 /// quantity does not fit (the general path then draws the pixel).

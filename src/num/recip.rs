@@ -256,9 +256,9 @@ fn mul_high_approx(x: u32, y: u32) -> u32 {
 }
 
 /// Three non-negative numerators scaled for [`quick_quotients_scaled`] (once for many
-/// divisors: a row's pixels, [`QuickTerm`]): `(aᵢ·2^(s−1), s)` where `s` is the largest's leading zeros
-/// (at least 1: the largest then has its top bit at 30). `None` when an `aᵢ` is negative
-/// or all are zero.
+/// divisors: a row's pixels, [`QuickTerm`]): `(aᵢ·2^(s−1), s)` where `s` is the
+/// largest's leading zeros (at least 1: the largest then has its top bit at 30). `None`
+/// when an `aᵢ` is negative or all are zero.
 #[inline]
 fn quick_scale(a: [i32; 3]) -> Option<([i32; 3], u32)> {
     if a.iter().any(|v| *v < 0) {
@@ -293,12 +293,7 @@ pub(crate) fn quick_quotients(a: [i32; 3], b: i32, frac: u32) -> Option<([i32; 3
 /// [`quick_quotients`] of numerators scaled once by [`quick_scale`] (`scaled`, `s`), bit
 /// for bit: the per-divisor part.
 #[inline(always)]
-pub(crate) fn quick_quotients_scaled(
-    scaled: [i32; 3],
-    s: u32,
-    b: i32,
-    frac: u32,
-) -> Option<([i32; 3], i32)> {
+fn quick_quotients_scaled(scaled: [i32; 3], s: u32, b: i32, frac: u32) -> Option<([i32; 3], i32)> {
     if b <= 0 || frac > 16 || !(1..=31).contains(&s) {
         return None;
     }
@@ -326,10 +321,9 @@ pub(crate) fn quick_quotients_scaled(
 /// bits, for one colour term `aᵢ/d` over a base colour `bᵢ`, when [`quick_quotients`]
 /// settles them: each channel's interval `bᵢ + qᵢ ± (e + slack)` (in plain 32-bit
 /// arithmetic, within the ranges [`settle`] checks) must round to one pixel value.
-/// Whatever lies in
-/// those intervals, the colour the exact arithmetic computes among it (the caller
-/// states how far its terms can be from the real quotients in `slack`), maps to the
-/// same pixel, the mapping being monotonic. `None` when it does not settle or
+/// Whatever lies in those intervals, the colour the exact arithmetic computes among it
+/// (the caller states how far its terms can be from the real quotients in `slack`),
+/// maps to the same pixel, the mapping being monotonic. `None` when it does not settle or
 /// [`quick_quotients`] refuses.
 #[cfg(test)]
 pub(crate) fn quick_pixel(
