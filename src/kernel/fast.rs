@@ -31,6 +31,7 @@ use heapless::Vec;
 use core::cmp::Ordering;
 
 use crate::geometry::ShadowCone;
+use crate::shade::SideBits;
 use crate::{Scalar, SceneView, Shape, Vec3};
 
 /// A term of the fast path: which object and, for a plane, `num = D' − N·eye`, for a
@@ -84,6 +85,11 @@ pub struct Primary<S: Scalar> {
     /// shadow segments: [`crate::shade::PlaneSides`]); empty when they do not fit
     /// [`MAX_SIDES`] or the format.
     at_lights: Vec<S, MAX_SIDES>,
+    /// Per light, which of its `at_lights` are positive, as bits (one per object; empty
+    /// when `at_lights` is, or with more than [`POSITIVE_LIGHTS`] lights).
+    light_positive: Vec<u8, POSITIVE_LIGHTS>,
+    /// The spheres among the terms, as bits.
+    sphere_bits: u8,
     /// The spheres' shadow cones from the lights ([`ShadowCone`]).
     cones: Vec<ShadowCone<S>, MAX_CONES>,
     /// Whether a term is a sphere (the scanline then keeps `D·D`).
@@ -103,6 +109,10 @@ pub struct Primary<S: Scalar> {
     /// it does not): a restart's screen x is then a product, not a division.
     x_unit: S,
 }
+
+/// How many lights' sides a frame keeps as bits (`Primary::light_positive`; with more
+/// lights, a shadow segment looks at every plane's sides).
+pub const POSITIVE_LIGHTS: usize = 4;
 
 /// How many sphere–light shadow cones a frame keeps (beyond, the exact test alone).
 pub const MAX_CONES: usize = 3;
@@ -356,6 +366,7 @@ impl<S: Scalar> Primary<S> {
         let mut steps = Vec::new();
         let mut spheres = false;
         let mut still = 0u8;
+        let mut sphere_bits = 0u8;
         for (index, object) in scene.objects.iter().enumerate() {
             let all_rows = (0, scene.camera.height.saturating_sub(1));
             let all_columns = (0, scene.camera.width.saturating_sub(1));
@@ -404,13 +415,19 @@ impl<S: Scalar> Primary<S> {
             if axis.x == S::ZERO {
                 still |= 1 << (terms.len() - 1);
             }
+            if sphere {
+                sphere_bits |= 1 << (terms.len() - 1);
+            }
             steps.push(S::acc_mul(axis.x, step_x)?).ok()?;
         }
         let mut at_lights = Vec::new();
+        // The lights' positive sides as bits, per light (`PlaneSides::light_positive`).
+        let mut light_positive = Vec::new();
         let sides = terms.len().checked_mul(scene.lights.len());
         if sides.is_some_and(|n| n <= MAX_SIDES) {
             'lights: for light in scene.lights {
-                for term in &terms {
+                let mut positive = 0u8;
+                for (i, term) in terms.iter().enumerate() {
                     if term.sphere {
                         // A sphere's shadow test does not use sides (`meets_segment_with`):
                         // a place holder keeps the list indexed by object.
@@ -425,13 +442,21 @@ impl<S: Scalar> Primary<S> {
                         light.location.to_array(),
                     );
                     match side {
-                        Some(a1) => at_lights.push(a1).ok()?,
+                        Some(a1) => {
+                            if a1 > S::ZERO {
+                                positive |= 1 << i;
+                            }
+                            at_lights.push(a1).ok()?;
+                        }
                         None => {
                             at_lights.clear();
+                            light_positive.clear();
                             break 'lights;
                         }
                     }
                 }
+                // Beyond `POSITIVE_LIGHTS` lights, those lights have no bits.
+                let _ = light_positive.push(positive);
             }
         }
         let cones = if spheres {
@@ -443,8 +468,10 @@ impl<S: Scalar> Primary<S> {
             terms,
             steps,
             at_lights,
+            light_positive,
             cones,
             spheres,
+            sphere_bits,
             still,
             step_x,
             resync_span: S::from_i32(i32::from(RESYNC_PIXELS))
@@ -833,6 +860,11 @@ impl<S: Scalar> Primary<S> {
         &self.at_lights
     }
 
+    /// Per light, its positive sides as bits (empty: not kept).
+    pub(crate) fn light_positive(&self) -> &[u8] {
+        &self.light_positive
+    }
+
     /// The spheres' shadow cones, per frame.
     pub(crate) fn cones(&self) -> &[ShadowCone<S>] {
         &self.cones
@@ -841,24 +873,33 @@ impl<S: Scalar> Primary<S> {
     /// `D'_i − N_i·P` of every plane at the hit `P = eye + t'·D` of the row's current
     /// pixel: `num_i − t'·(N_i·D)`, one product each. `None` when one does not fit (the
     /// shadow segments then compute them). Written into `sides` (a buffer the scanline
-    /// keeps: a returned one would be copied whole, capacity and all, per pixel).
+    /// keeps: a returned one would be copied whole, capacity and all, per pixel); returned:
+    /// which sides are positive and which objects are spheres, as bits
+    /// ([`SideBits`]).
     pub(crate) fn sides_at(
         &self,
         row: &Row<S>,
         param: S,
         sides: &mut Vec<S, FAST_OBJECTS>,
-    ) -> Option<()> {
+    ) -> Option<SideBits> {
         sides.clear();
-        for (term, &nd) in self.terms.iter().zip(&row.nd) {
+        let mut positive = 0u8;
+        for (i, (term, &nd)) in self.terms.iter().zip(&row.nd).enumerate() {
             let side = if term.sphere {
                 // Not read for a sphere (see `Primary::new`).
                 S::ZERO
             } else {
                 term.num.checked_sub(param.checked_mul(nd)?)?
             };
+            if side > S::ZERO {
+                positive |= 1 << i;
+            }
             sides.push(side).ok()?;
         }
-        Some(())
+        Some(SideBits {
+            positive,
+            spheres: self.sphere_bits,
+        })
     }
 
     /// The hit point `eye + t'·D` of a term, a bound on its world distance, and `t'`.

@@ -74,10 +74,12 @@ pub(crate) fn fast_color<S: Scalar, T: Stages>(
 ) -> Color<S> {
     let sides = match primary {
         Some(p) if T::SHADOWS && !p.at_lights().is_empty() => {
-            p.sides_at(r, h.param, at_hit).map(|()| PlaneSides {
+            p.sides_at(r, h.param, at_hit).map(|bits| PlaneSides {
                 at_hit,
                 at_lights: p.at_lights(),
                 cones: p.cones(),
+                bits,
+                light_positive: p.light_positive(),
             })
         }
         _ => None,

@@ -33,7 +33,8 @@ use crate::geometry::{RowCone, RowTiles, sides_differ, surface_tolerance};
 use crate::shade::color::{add_sat, term, to_pixel};
 use crate::shade::stages::Stages;
 use crate::shade::{
-    Incoming, PlaneSides, channel_max, diffuse_falloff, occludes_segment, shade_with, surface,
+    Incoming, PlaneSides, SideBits, channel_max, diffuse_falloff, occludes_segment, shade_with,
+    surface,
 };
 use crate::stats::{Counters, count};
 use crate::{Color, Hit, Rules, Scalar, SceneView, Shape, Tiling, Vec3};
@@ -58,8 +59,9 @@ struct Level<S: Scalar> {
     /// The plane's normal facing the ray.
     facing: Vec3<S>,
     /// Every object's side at the hit (`Primary::sides_at`), for shadow segments; empty
-    /// when not kept.
+    /// when not kept. With its bits ([`SideBits`]).
     sides: heapless::Vec<S, FAST_OBJECTS>,
+    side_bits: SideBits,
     /// Per light (empty with more than [`ROW_LIGHTS`] lights): the objects that can stand between the
     /// row's hits and the light, as bits: the spheres, and the planes whose sides at the
     /// hit and at the light differ in sign (a plane with both on one side never crosses
@@ -240,8 +242,12 @@ fn level<S: Scalar, T: Stages>(
         return Some(None);
     };
     let mut sides = heapless::Vec::new();
-    if T::SHADOWS && !p.at_lights().is_empty() && p.sides_at(first, t, &mut sides).is_none() {
-        sides.clear();
+    let mut side_bits = SideBits::default();
+    if T::SHADOWS && !p.at_lights().is_empty() {
+        match p.sides_at(first, t, &mut sides) {
+            Some(bits) => side_bits = bits,
+            None => sides.clear(),
+        }
     }
     let lights = scene.lights.len();
     let mut occluders = heapless::Vec::new();
@@ -328,6 +334,7 @@ fn level<S: Scalar, T: Stages>(
         z,
         facing,
         sides,
+        side_bits,
         occluders,
         materials,
         weights,
@@ -827,6 +834,8 @@ fn plane_color<S: Scalar, T: Stages>(
         at_hit: &l.sides,
         at_lights: p.at_lights(),
         cones: p.cones(),
+        bits: l.side_bits,
+        light_positive: p.light_positive(),
     });
     match lit::<S, T>(scene, l, &hit, sides, memo, counters) {
         Some(c) => c,

@@ -208,10 +208,20 @@ pub(crate) fn occludes_segment<S: Scalar>(
         // j < lights and n ≤ MAX_OBJECTS: the product is small (a checked one would call
         // the 64-bit multiply helper on a Cortex-M0).
         let at_light = s.at_lights.get(j * n..)?.get(..n)?;
-        (n == scene.objects.len()).then_some((s.at_hit, at_light, s.cones, j))
+        // One bit per object (`SideBits`): at most 8 objects.
+        // Without the frame's bits of this light, every plane is looked at.
+        let light_positive = s.light_positive.get(j).copied();
+        (n == scene.objects.len()).then_some((
+            s.at_hit,
+            at_light,
+            s.cones,
+            j,
+            s.bits,
+            light_positive,
+        ))
     });
     match known {
-        Some((at_hit, at_light, cones, j)) => {
+        Some((at_hit, at_light, cones, j, bits, light_positive)) => {
             // A sphere whose shadow cone from this light clearly misses `from` is passed
             // over (`ShadowCone::clears`): what its exact test would decide.
             let clear = |i: usize| {
@@ -219,28 +229,44 @@ pub(crate) fn occludes_segment<S: Scalar>(
                     usize::from(c.light) == j && usize::from(c.object) == i && c.clears(l, ll)
                 })
             };
-            scene
-                .objects
-                .iter()
-                .zip(at_hit.iter().zip(at_light))
-                .enumerate()
-                .any(|(i, (o, (&a0, &a1)))| {
-                    let maybe = match o.shape {
-                        Shape::Sphere(_) => !clear(i),
-                        // Both ends on one side of the plane (or one on it): no crossing,
-                        // as `crossing_of_sides` decides first (here without the calls).
-                        Shape::Plane(_)
-                        | Shape::Tiled { .. }
-                        | Shape::Finite(_)
-                        | Shape::Textured(_)
-                        | Shape::Triangle(_) => sides_differ(a0, a1, tol),
-                        Shape::Revsurf(_) => true,
-                    };
-                    maybe
-                        && o.shape
-                            .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
-                        && !spared(&o.shape)
-                })
+            // A plane whose sides at the hit and at the light have one sign (or are zero)
+            // cannot meet the segment (`sides_differ` asks that first): only the others,
+            // and the spheres, are looked at, in object order.
+            let mut candidates = match light_positive {
+                Some(lp) => ((bits.positive ^ lp) & !bits.spheres) | bits.spheres,
+                None => u8::MAX,
+            };
+            while candidates != 0 {
+                let i = candidates.trailing_zeros();
+                candidates &= candidates - 1;
+                let Ok(i) = usize::try_from(i) else {
+                    break;
+                };
+                let (Some(o), Some(&a0), Some(&a1)) =
+                    (scene.objects.get(i), at_hit.get(i), at_light.get(i))
+                else {
+                    break;
+                };
+                let maybe = match o.shape {
+                    Shape::Sphere(_) => !clear(i),
+                    // Both ends on one side of the plane (or one on it): no crossing,
+                    // as `crossing_of_sides` decides first (here without the calls).
+                    Shape::Plane(_)
+                    | Shape::Tiled { .. }
+                    | Shape::Finite(_)
+                    | Shape::Textured(_)
+                    | Shape::Triangle(_) => sides_differ(a0, a1, tol),
+                    Shape::Revsurf(_) => true,
+                };
+                if maybe
+                    && o.shape
+                        .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
+                    && !spared(&o.shape)
+                {
+                    return true;
+                }
+            }
+            false
         }
         None => scene
             .objects

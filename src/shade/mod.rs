@@ -81,6 +81,22 @@ pub(crate) struct PlaneSides<'a, S> {
     pub(crate) at_lights: &'a [S],
     /// The spheres' shadow cones from the lights (per frame).
     pub(crate) cones: &'a [crate::geometry::ShadowCone<S>],
+    /// Which of `at_hit` are positive, and which objects are spheres.
+    pub(crate) bits: SideBits,
+    /// Per light, which of its `at_lights` are positive, as bits (per frame; empty: not
+    /// kept, a shadow segment then looks at every plane).
+    pub(crate) light_positive: &'a [u8],
+}
+
+/// Bits of [`PlaneSides::at_hit`], one per object (bit `i`: object `i`; the fast kernel
+/// takes at most 8): the planes whose side at the hit is positive, and the spheres (whose
+/// entries are place holders). A plane can meet a shadow segment only where its sides at
+/// the hit and at the light differ in sign (`sides_differ`): with these, the planes that
+/// cannot are passed over without a look at their sides.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(crate) struct SideBits {
+    pub(crate) positive: u8,
+    pub(crate) spheres: u8,
 }
 
 /// The nearest hit of a ray by the rule set `R` ([`rules::RuleSet::intersect`]), with the
