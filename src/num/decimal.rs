@@ -206,20 +206,64 @@ impl Decimal {
     /// `round(value × 2^frac_bits)`, ties away from zero: the bits of the nearest
     /// fixed-point number with `frac_bits` fraction bits. `None` beyond `i128`.
     pub fn to_fixed_bits(&self, frac_bits: u32) -> Option<i128> {
-        let scaled = i128::from(self.mantissa).checked_mul(1i128.checked_shl(frac_bits)?)?;
+        // `i128::MAX`, unsigned. Shifts, adds and 16-bit divisions only: 128-bit products
+        // and quotients call helpers of kilobytes on a 32-bit core.
+        const MAX: u128 = u128::MAX >> 1;
+        let m = u128::from(self.mantissa);
+        let scaled = m
+            .checked_shl(frac_bits)
+            .filter(|s| s >> frac_bits == m && *s <= MAX)?;
         let magnitude = if scaled == 0 {
             0
         } else if self.exponent >= 0 {
-            scaled.checked_mul(i128::try_from(pow10(self.exponent)?).ok()?)?
-        } else {
-            match pow10(self.exponent).and_then(|p| i128::try_from(p).ok()) {
-                Some(p) => scaled / p + i128::from(2 * (scaled % p) >= p),
-                // 10^−e beyond i128 while |scaled| < 2^127: rounds to zero.
-                None => 0,
+            // Ten times at a time: beyond `i128` within 39 steps.
+            let mut x = scaled;
+            for _ in 0..self.exponent {
+                if x > MAX / 10 {
+                    return None;
+                }
+                x = (x << 3) + (x << 1);
             }
+            x
+        } else {
+            round_div_pow10(scaled, self.exponent.unsigned_abs())
         };
+        let magnitude = i128::try_from(magnitude).ok()?;
         Some(if self.negative { -magnitude } else { magnitude })
     }
+}
+
+/// `round(n / 10^k)`, ties up, for `n < 2^127`: `y = ⌊2n / 10^k⌋` by `k` divisions by ten
+/// of 16-bit limbs (each an exact floor, so their chain is `⌊2n / 10^k⌋`), then
+/// `⌊(y + 1) / 2⌋`, which is `⌊(2n + 10^k) / (2·10^k)⌋`. No 128-bit division: its
+/// helper, inlined at the fixed formats' `from_decimal`, was 3 KB of flash per format on
+/// the Cortex-M0.
+fn round_div_pow10(n: u128, k: u32) -> u128 {
+    const LIMBS: usize = 8;
+    let two_n = n << 1;
+    // Most significant first.
+    let mut limbs = [0u32; LIMBS];
+    for (i, limb) in limbs.iter_mut().enumerate() {
+        let shift = 16 * (LIMBS - 1 - i);
+        *limb = u32::try_from((two_n >> shift) & 0xFFFF).unwrap_or(0);
+    }
+    for _ in 0..k {
+        if limbs == [0; LIMBS] {
+            break;
+        }
+        let mut rem = 0u32;
+        for limb in &mut limbs {
+            // rem < 10: cur < 10·2^16, its quotient < 2^16.
+            let cur = (rem << 16) | *limb;
+            *limb = cur / 10;
+            rem = cur % 10;
+        }
+    }
+    let y = limbs
+        .iter()
+        .fold(0u128, |acc, &limb| (acc << 16) | u128::from(limb));
+    // k ≥ 1: y ≤ 2n/10 < 2^125, so `y + 1` does not overflow.
+    (y + 1) >> 1
 }
 
 impl Decimal {
@@ -403,11 +447,6 @@ fn pow10_u64(e: i32) -> Option<u64> {
     10u64.checked_pow(e.unsigned_abs())
 }
 
-/// 10^|e| for |e| ≤ 38 (the powers that fit a `u128`); callers pick the direction.
-fn pow10(e: i32) -> Option<u128> {
-    10u128.checked_pow(e.unsigned_abs())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -568,6 +607,97 @@ mod tests {
         assert_eq!(d("4.096e3").to_integer(), Some(4096));
         assert_eq!(d("6.5").to_integer(), None);
         assert_eq!(d("1e30").to_integer(), None);
+    }
+
+    /// The 16-bit-limb rounding division against the 128-bit one it replaced, on the
+    /// edges (ties, zero, the largest numerators, 10^k beyond 2^128) and 200,000 seeded
+    /// cases.
+    #[test]
+    fn rounded_division_by_powers_of_ten_is_the_wide_ones() {
+        // The replaced formula, in `u128` (its `i128` form overflowed `2·(n mod p)` for
+        // `n ≥ 2^126`, which no format's 2^frac_bits reaches).
+        fn wide(n: u128, k: u32) -> u128 {
+            match 10u128.checked_pow(k) {
+                Some(p) => n / p + u128::from(2 * (n % p) >= p),
+                None => 0,
+            }
+        }
+        let top = (1u128 << 127) - 1;
+        let mut cases = vec![
+            (0, 1),
+            (5, 1),
+            (4, 1),
+            (15, 1),
+            (25, 1),
+            (50, 2),
+            (49, 2),
+            (top, 1),
+            (top, 20),
+            (top, 38),
+            (top, 39),
+            (top, 60),
+            (1, 40),
+            (u128::from(u64::MAX) << 32, 19),
+        ];
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for _ in 0..200_000 {
+            let n = (u128::from(next()) << 64 | u128::from(next())) >> (next() % 127 + 1);
+            let k = u32::try_from(next() % 42).unwrap() + 1;
+            cases.push((n, k));
+        }
+        for (n, k) in cases {
+            assert_eq!(round_div_pow10(n, k), wide(n, k), "{n} / 10^{k}");
+        }
+    }
+
+    /// `to_fixed_bits` against the 128-bit formula it had (products and a quotient),
+    /// over seeded decimals of every size and the fixed formats' fraction bits.
+    #[test]
+    fn fixed_bits_are_the_wide_formulas() {
+        fn wide(d: &Decimal, frac_bits: u32) -> Option<i128> {
+            let scaled = i128::from(d.mantissa).checked_mul(1i128.checked_shl(frac_bits)?)?;
+            let magnitude = if scaled == 0 {
+                0
+            } else if d.exponent >= 0 {
+                let p = 10u128.checked_pow(d.exponent.unsigned_abs())?;
+                scaled.checked_mul(i128::try_from(p).ok()?)?
+            } else {
+                let n = scaled.unsigned_abs();
+                let q = match 10u128.checked_pow(d.exponent.unsigned_abs()) {
+                    Some(p) => n / p + u128::from(2 * (n % p) >= p),
+                    None => 0,
+                };
+                i128::try_from(q).ok()?
+            };
+            Some(if d.negative { -magnitude } else { magnitude })
+        }
+        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for _ in 0..100_000 {
+            let d = Decimal {
+                negative: next() % 2 == 0,
+                mantissa: next() >> (next() % 64),
+                exponent: i32::try_from(next() % 91).unwrap() - 45,
+            };
+            for frac_bits in [0, 12, 16, 32, 63] {
+                assert_eq!(
+                    d.to_fixed_bits(frac_bits),
+                    wide(&d, frac_bits),
+                    "{d:?} {frac_bits}"
+                );
+            }
+        }
     }
 
     #[test]
