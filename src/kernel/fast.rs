@@ -31,7 +31,7 @@ use heapless::Vec;
 use core::cmp::Ordering;
 
 use crate::geometry::ShadowCone;
-use crate::shade::SideBits;
+use crate::shade::{SIDE_BITS_LIGHTS, SideBits};
 use crate::{Scalar, SceneView, Shape, Vec3};
 
 /// A term of the fast path: which object and, for a plane, `num = D' − N·eye`, for a
@@ -85,9 +85,9 @@ pub struct Primary<S: Scalar> {
     /// shadow segments: [`crate::shade::PlaneSides`]); empty when they do not fit
     /// [`MAX_SIDES`] or the format.
     at_lights: Vec<S, MAX_SIDES>,
-    /// Per light, which of its `at_lights` are positive, as bits (one per object; empty
-    /// when `at_lights` is, or with more than [`POSITIVE_LIGHTS`] lights).
-    light_positive: Vec<u8, POSITIVE_LIGHTS>,
+    /// Per light (the first [`SIDE_BITS_LIGHTS`]), which of its `at_lights` are
+    /// positive, as bits (one per object; zero when `at_lights` is empty).
+    light_positive: [u8; SIDE_BITS_LIGHTS],
     /// The spheres among the terms, as bits.
     sphere_bits: u8,
     /// The spheres' shadow cones from the lights ([`ShadowCone`]).
@@ -109,10 +109,6 @@ pub struct Primary<S: Scalar> {
     /// it does not): a restart's screen x is then a product, not a division.
     x_unit: S,
 }
-
-/// How many lights' sides a frame keeps as bits (`Primary::light_positive`; with more
-/// lights, a shadow segment looks at every plane's sides).
-pub const POSITIVE_LIGHTS: usize = 4;
 
 /// How many sphere–light shadow cones a frame keeps (beyond, the exact test alone).
 pub const MAX_CONES: usize = 3;
@@ -422,10 +418,10 @@ impl<S: Scalar> Primary<S> {
         }
         let mut at_lights = Vec::new();
         // The lights' positive sides as bits, per light (`PlaneSides::light_positive`).
-        let mut light_positive = Vec::new();
+        let mut light_positive = [0u8; SIDE_BITS_LIGHTS];
         let sides = terms.len().checked_mul(scene.lights.len());
         if sides.is_some_and(|n| n <= MAX_SIDES) {
-            'lights: for light in scene.lights {
+            'lights: for (j, light) in scene.lights.iter().enumerate() {
                 let mut positive = 0u8;
                 for (i, term) in terms.iter().enumerate() {
                     if term.sphere {
@@ -450,13 +446,14 @@ impl<S: Scalar> Primary<S> {
                         }
                         None => {
                             at_lights.clear();
-                            light_positive.clear();
                             break 'lights;
                         }
                     }
                 }
-                // Beyond `POSITIVE_LIGHTS` lights, those lights have no bits.
-                let _ = light_positive.push(positive);
+                // Beyond `SIDE_BITS_LIGHTS` lights, those lights have no bits.
+                if let Some(slot) = light_positive.get_mut(j) {
+                    *slot = positive;
+                }
             }
         }
         let cones = if spheres {
@@ -860,11 +857,6 @@ impl<S: Scalar> Primary<S> {
         &self.at_lights
     }
 
-    /// Per light, its positive sides as bits (empty: not kept).
-    pub(crate) fn light_positive(&self) -> &[u8] {
-        &self.light_positive
-    }
-
     /// The spheres' shadow cones, per frame.
     pub(crate) fn cones(&self) -> &[ShadowCone<S>] {
         &self.cones
@@ -899,6 +891,7 @@ impl<S: Scalar> Primary<S> {
         Some(SideBits {
             positive,
             spheres: self.sphere_bits,
+            lights: self.light_positive,
         })
     }
 

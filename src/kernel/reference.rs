@@ -79,7 +79,6 @@ pub(crate) fn fast_color<S: Scalar, T: Stages>(
                 at_lights: p.at_lights(),
                 cones: p.cones(),
                 bits,
-                light_positive: p.light_positive(),
             })
         }
         _ => None,

@@ -835,7 +835,6 @@ fn plane_color<S: Scalar, T: Stages>(
         at_lights: p.at_lights(),
         cones: p.cones(),
         bits: l.side_bits,
-        light_positive: p.light_positive(),
     });
     match lit::<S, T>(scene, l, &hit, sides, memo, counters) {
         Some(c) => c,

@@ -210,7 +210,7 @@ pub(crate) fn occludes_segment<S: Scalar>(
         let at_light = s.at_lights.get(j * n..)?.get(..n)?;
         // One bit per object (`SideBits`): at most 8 objects.
         // Without the frame's bits of this light, every plane is looked at.
-        let light_positive = s.light_positive.get(j).copied();
+        let light_positive = s.bits.lights.get(j).copied();
         (n == scene.objects.len()).then_some((
             s.at_hit,
             at_light,

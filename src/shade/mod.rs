@@ -81,11 +81,9 @@ pub(crate) struct PlaneSides<'a, S> {
     pub(crate) at_lights: &'a [S],
     /// The spheres' shadow cones from the lights (per frame).
     pub(crate) cones: &'a [crate::geometry::ShadowCone<S>],
-    /// Which of `at_hit` are positive, and which objects are spheres.
+    /// Which of `at_hit` and of the first lights' `at_lights` are positive, and which
+    /// objects are spheres.
     pub(crate) bits: SideBits,
-    /// Per light, which of its `at_lights` are positive, as bits (per frame; empty: not
-    /// kept, a shadow segment then looks at every plane).
-    pub(crate) light_positive: &'a [u8],
 }
 
 /// Bits of [`PlaneSides::at_hit`], one per object (bit `i`: object `i`; the fast kernel
@@ -93,11 +91,19 @@ pub(crate) struct PlaneSides<'a, S> {
 /// entries are place holders). A plane can meet a shadow segment only where its sides at
 /// the hit and at the light differ in sign (`sides_differ`): with these, the planes that
 /// cannot are passed over without a look at their sides.
+/// The first [`SIDE_BITS_LIGHTS`] lights' sides are kept the same way, per frame (a
+/// shadow segment towards a later light looks at every plane). Four bytes: the struct is
+/// copied into every frame that carries a hit's sides (a 16 KB chip in I32F32 has a few
+/// bytes to spare).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub(crate) struct SideBits {
     pub(crate) positive: u8,
     pub(crate) spheres: u8,
+    pub(crate) lights: [u8; SIDE_BITS_LIGHTS],
 }
+
+/// How many lights' sides [`SideBits`] keeps.
+pub(crate) const SIDE_BITS_LIGHTS: usize = 2;
 
 /// The nearest hit of a ray by the rule set `R` ([`rules::RuleSet::intersect`]), with the
 /// object's index; on equal `t` the first object in file order. A rule set whose
