@@ -86,7 +86,7 @@ pub struct Primary<S: Scalar> {
     /// [`MAX_SIDES`] or the format.
     at_lights: Vec<S, MAX_SIDES>,
     /// Per light (the first [`SIDE_BITS_LIGHTS`]), which of its `at_lights` are
-    /// positive, as bits (one per object; zero when `at_lights` is empty).
+    /// positive, as bits (one per object; read only where `at_lights` is kept).
     light_positive: [u8; SIDE_BITS_LIGHTS],
     /// The spheres among the terms, as bits.
     sphere_bits: u8,
@@ -417,7 +417,7 @@ impl<S: Scalar> Primary<S> {
             steps.push(S::acc_mul(axis.x, step_x)?).ok()?;
         }
         let mut at_lights = Vec::new();
-        // The lights' positive sides as bits, per light (`PlaneSides::light_positive`).
+        // The lights' positive sides as bits, per light (`SideBits::lights`).
         let mut light_positive = [0u8; SIDE_BITS_LIGHTS];
         let sides = terms.len().checked_mul(scene.lights.len());
         if sides.is_some_and(|n| n <= MAX_SIDES) {

@@ -204,7 +204,9 @@ impl Decimal {
     }
 
     /// `round(value × 2^frac_bits)`, ties away from zero: the bits of the nearest
-    /// fixed-point number with `frac_bits` fraction bits. `None` beyond `i128`.
+    /// fixed-point number with `frac_bits` fraction bits. `None` when `mantissa·2^frac_bits`
+    /// or the result exceeds `i128` (the formats take at most 32 fraction bits: a
+    /// mantissa below 2^64 always fits).
     pub fn to_fixed_bits(&self, frac_bits: u32) -> Option<i128> {
         // `i128::MAX`, unsigned. Shifts, adds and 16-bit divisions only: 128-bit products
         // and quotients call helpers of kilobytes on a 32-bit core.
@@ -615,7 +617,7 @@ mod tests {
     #[test]
     fn rounded_division_by_powers_of_ten_is_the_wide_ones() {
         // The replaced formula, in `u128` (its `i128` form overflowed `2·(n mod p)` for
-        // `n ≥ 2^126`, which no format's 2^frac_bits reaches).
+        // `n ≥ 2^126`, which needs 62 or more fraction bits; no format has them).
         fn wide(n: u128, k: u32) -> u128 {
             match 10u128.checked_pow(k) {
                 Some(p) => n / p + u128::from(2 * (n % p) >= p),
@@ -656,7 +658,8 @@ mod tests {
         }
     }
 
-    /// `to_fixed_bits` against the 128-bit formula it had (products and a quotient),
+    /// `to_fixed_bits` against the 128-bit formula it had (products and a quotient; its
+    /// remainder test in `u128`, where the `i128` one overflowed at 62 fraction bits),
     /// over seeded decimals of every size and the fixed formats' fraction bits.
     #[test]
     fn fixed_bits_are_the_wide_formulas() {

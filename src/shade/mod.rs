@@ -88,8 +88,10 @@ pub(crate) struct PlaneSides<'a, S> {
 
 /// Bits of [`PlaneSides::at_hit`], one per object (bit `i`: object `i`; the fast kernel
 /// takes at most 8): the planes whose side at the hit is positive, and the spheres (whose
-/// entries are place holders). A plane can meet a shadow segment only where its sides at
-/// the hit and at the light differ in sign (`sides_differ`): with these, the planes that
+/// entries are place holders; a shadow segment always tests them, as it would any other
+/// object without a plane, of which the fast kernel has none: `Primary::new` refuses a
+/// surface of revolution). A plane can meet a shadow segment only where its sides at the
+/// hit and at the light differ in sign (`sides_differ`): with these, the planes that
 /// cannot are passed over without a look at their sides.
 /// The first [`SIDE_BITS_LIGHTS`] lights' sides are kept the same way, per frame (a
 /// shadow segment towards a later light looks at every plane). Four bytes: the struct is
