@@ -90,6 +90,10 @@ pub struct Primary<S: Scalar> {
     light_positive: [u8; SIDE_BITS_LIGHTS],
     /// The spheres among the terms, as bits.
     sphere_bits: u8,
+    /// Whether a scanline may draw a block of pixels with one certified winner
+    /// ([`Primary::certify_block`]): every object a plain or tiled plane, in a format
+    /// whose products are exact.
+    blocks: bool,
     /// The spheres' shadow cones from the lights ([`ShadowCone`]).
     cones: Vec<ShadowCone<S>, MAX_CONES>,
     /// Whether a term is a sphere (the scanline then keeps `D·D`).
@@ -109,6 +113,39 @@ pub struct Primary<S: Scalar> {
     /// it does not): a restart's screen x is then a product, not a division.
     x_unit: S,
 }
+
+/// Whether format `S` draws certified blocks ([`Primary::certify_block`]): its products
+/// are exact (its stepped terms are the exact ones, its comparisons exact) and it is a
+/// 32-bit format. A 64-bit format's scanline would carry the block's state and the
+/// lookahead row's frame on a 16 KB chip where I32F32 has a few bytes to spare.
+pub(crate) const fn blocks_for<S: Scalar>() -> bool {
+    S::EXACT_PRODUCTS && core::mem::size_of::<S>() <= 4
+}
+
+/// A scanline's certified block ([`Primary::nearest_in_block`]): the column after it (0:
+/// none) and the term that wins throughout ([`NO_TERM`]: the background).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Block {
+    stop: u16,
+    winner: u8,
+}
+
+impl Default for Block {
+    fn default() -> Self {
+        Self {
+            stop: 0,
+            winner: NO_TERM,
+        }
+    }
+}
+
+/// The pixels drawn from certified blocks so far (the tests check that they ran).
+#[cfg(test)]
+pub(crate) static CERTIFIED: core::sync::atomic::AtomicUsize =
+    core::sync::atomic::AtomicUsize::new(0);
+
+/// No term: a block of the background (a frame has at most [`FAST_OBJECTS`] terms).
+const NO_TERM: u8 = u8::MAX;
 
 /// How many sphere–light shadow cones a frame keeps (beyond, the exact test alone).
 pub const MAX_CONES: usize = 3;
@@ -196,7 +233,7 @@ fn eps_l1_of<S: Scalar>(eps: S, ax: S, dy: S, dz: S) -> Option<S> {
 /// parallel skips the exact squared test (two double-width products), which only planes
 /// within that margin of the epsilon take (`eps_d2` computes `ε·|D|²` for them).
 /// `None` when `ε·|D|²` does not fit (the reference path decides).
-#[inline]
+#[inline(always)]
 fn accepts_bounded<S: Scalar>(
     num: S,
     nd: S,
@@ -456,6 +493,11 @@ impl<S: Scalar> Primary<S> {
                 }
             }
         }
+        let blocks = blocks_for::<S>()
+            && scene
+                .objects
+                .iter()
+                .all(|o| matches!(o.shape, Shape::Plane(_) | Shape::Tiled { .. }));
         let cones = if spheres {
             shadow_cones(scene, &terms)
         } else {
@@ -469,6 +511,7 @@ impl<S: Scalar> Primary<S> {
             cones,
             spheres,
             sphere_bits,
+            blocks,
             still,
             step_x,
             resync_span: S::from_i32(i32::from(RESYNC_PIXELS))
@@ -610,6 +653,30 @@ impl<S: Scalar> Primary<S> {
         row.dir.x.checked_add(self.step_x)
     }
 
+    /// [`Primary::advance`] `m` times in one go, bit for bit: `D.x` and the unrounded
+    /// terms take `m` steps, the terms are rounded once at the end (`None` where a step
+    /// does not fit).
+    fn advance_by(&self, row: &mut Row<S>, m: u16) -> Option<()> {
+        let mut dx = row.dir.x;
+        for _ in 0..m {
+            dx = dx.checked_add(self.step_x)?;
+        }
+        row.dir.x = dx;
+        let terms = row.nd.iter_mut().zip(row.acc.iter_mut()).zip(&self.steps);
+        for (i, ((nd, acc), step)) in terms.enumerate() {
+            if self.still & (1 << i) == 0 {
+                let mut a = *acc;
+                for _ in 0..m {
+                    a = S::acc_add(a, *step)?;
+                }
+                *acc = a;
+                *nd = S::acc_round(a)?;
+            }
+        }
+        row.column = row.column.checked_add(m)?;
+        Some(())
+    }
+
     /// [`Primary::advance`] without the terms: `D.x` and the column only (the terms are
     /// then stale until [`Primary::refresh`]).
     pub(crate) fn advance_dir(&self, row: &mut Row<S>) -> Option<()> {
@@ -704,6 +771,29 @@ impl<S: Scalar> Primary<S> {
         scene: &SceneView<'_, S>,
         row: &Row<S>,
     ) -> Result<Option<FastHit<S>>, ()> {
+        let Some((term, p, q)) = self.search(scene, row)? else {
+            return Ok(None);
+        };
+        let d = row.dir;
+        let (point, t_bound, param) = self.point(scene, p, q, d).ok_or(())?;
+        Ok(Some(FastHit {
+            index: usize::from(term.index),
+            point,
+            t_bound,
+            dir: d,
+            param,
+        }))
+    }
+
+    /// [`Primary::nearest`]'s search: the winning term and its `t' = p/q`, without the
+    /// hit point.
+    #[inline(never)]
+    #[allow(clippy::type_complexity)]
+    fn search(
+        &self,
+        scene: &SceneView<'_, S>,
+        row: &Row<S>,
+    ) -> Result<Option<(&Term<S>, S, S)>, ()> {
         let eps = scene.epsilon;
         let d = row.dir;
         let eps_d2 = || d.dot(d).and_then(|d2| eps.checked_mul(d2));
@@ -762,17 +852,7 @@ impl<S: Scalar> Primary<S> {
             }
             best = Some((term, p, q));
         }
-        let Some((term, p, q)) = best else {
-            return Ok(None);
-        };
-        let (point, t_bound, param) = self.point(scene, p, q, d).ok_or(())?;
-        Ok(Some(FastHit {
-            index: usize::from(term.index),
-            point,
-            t_bound,
-            dir: d,
-            param,
-        }))
+        Ok(best)
     }
 
     /// The nearest plane of scanline `row` when every plane's `N·D` is the same at each
@@ -892,6 +972,149 @@ impl<S: Scalar> Primary<S> {
             positive,
             spheres: self.sphere_bits,
             lights: self.light_positive,
+        })
+    }
+
+    /// The pixels after the row's current one (a resync column, just restarted, whose
+    /// nearest hit was `hit`) up to `last` and at most [`RESYNC_PIXELS`]` − 1` of them,
+    /// if one answer of [`Primary::nearest`] holds at every one of them: `Some((end,
+    /// winner))`, the block's last column and the term that wins throughout (`None`:
+    /// the background throughout). `None` where that is not certain.
+    ///
+    /// Why it holds: inside the block `D.x` steps by a constant, so every plane's unrounded
+    /// `N·D` is linear in the column and its rounded `N·D` monotone. The block's last
+    /// pixel is formed as the scanline would step to it (`advance_dir`, then the exact
+    /// terms: bit for bit the stepped ones in these formats) and its nearest hit found.
+    /// Both ends must agree on the winner. Every plane must keep one side of zero and stay
+    /// at least the epsilon bound away from it at both ends (so that no pixel between
+    /// takes the exact parallel test, and its acceptance, monotone, is the same
+    /// throughout). The winner must beat every other accepted plane at both ends by a
+    /// margin that the roundings of `N·D` cannot eat ([`Scalar::products_clearly_greater`]:
+    /// the comparison with unrounded terms is linear, so it holds between the ends too).
+    #[inline(never)]
+    fn certify_block(
+        &self,
+        scene: &SceneView<'_, S>,
+        a: &Row<S>,
+        hit: Option<&FastHit<S>>,
+        last: u16,
+    ) -> Option<(u16, Option<usize>)> {
+        let m = last.checked_sub(a.column)?.min(RESYNC_PIXELS - 1);
+        if m == 0 || a.nd.len() != self.terms.len() {
+            return None;
+        }
+        let mut e = a.clone();
+        self.advance_by(&mut e, m)?;
+        let end = self.search(scene, &e).ok()?;
+        let winner = hit.map(|h| h.index);
+        if end.map(|(k, _, _)| usize::from(k.index)) != winner {
+            return None;
+        }
+        // Both ends (and so every pixel between: |D.x| is largest at an end) take the
+        // row's epsilon bound.
+        let bound = a.eps_l1;
+        if a.dx_limit < a.dir.x.abs() || a.dx_limit < e.dir.x.abs() {
+            return None;
+        }
+        // A term's position is its object's index (every object is a term).
+        let w = match winner {
+            Some(i) => Some((
+                i,
+                self.terms.get(i)?.num.abs(),
+                *a.nd.get(i)?,
+                *e.nd.get(i)?,
+            )),
+            None => None,
+        };
+        for (k, (term, (&na, &ne))) in self.terms.iter().zip(a.nd.iter().zip(&e.nd)).enumerate() {
+            if na.abs() < bound || ne.abs() < bound || (na > S::ZERO) != (ne > S::ZERO) {
+                return None;
+            }
+            let accepted = ahead(term.num, na);
+            if accepted != ahead(term.num, ne) {
+                return None;
+            }
+            match w {
+                Some((i, pw, wa, we)) if accepted && k != i => {
+                    let pb = term.num.abs();
+                    let clear = S::products_clearly_greater(pb, wa.abs(), pw, na.abs())
+                        && S::products_clearly_greater(pb, we.abs(), pw, ne.abs());
+                    if !clear {
+                        return None;
+                    }
+                }
+                // The background at both ends, yet a plane accepted: cannot be.
+                None if accepted => return None,
+                _ => {}
+            }
+        }
+        Some((e.column, winner))
+    }
+
+    /// The next pixels of a scanline at a resync column (just restarted there, its
+    /// nearest hit `hit`) as a certified block ([`Primary::certify_block`]) into `block`
+    /// where they can be one; `last`: the scanline's last column. Inside the block
+    /// [`Primary::block_hit`] answers for [`Primary::nearest`].
+    #[inline(never)]
+    pub(crate) fn start_block(
+        &self,
+        scene: &SceneView<'_, S>,
+        row: &Row<S>,
+        hit: Option<&FastHit<S>>,
+        last: u16,
+        block: &mut Block,
+    ) {
+        *block = Block::default();
+        if self.blocks
+            && let Some((end, winner)) = self.certify_block(scene, row, hit, last)
+        {
+            #[cfg(test)]
+            CERTIFIED.fetch_add(
+                usize::from(end - row.column),
+                core::sync::atomic::Ordering::Relaxed,
+            );
+            block.stop = end.saturating_add(1);
+            block.winner = winner.and_then(|k| u8::try_from(k).ok()).unwrap_or(NO_TERM);
+        }
+    }
+
+    /// The frame without certified blocks: every pixel searched (the tests' oracle).
+    #[cfg(test)]
+    pub(crate) fn without_blocks(mut self) -> Self {
+        self.blocks = false;
+        self
+    }
+
+    /// [`Primary::nearest`]'s answer at a pixel of the certified block `block`, bit for bit
+    /// (`None`: the pixel is not in the block). Reset `block` at every restart of the
+    /// scanline: a block holds for the pixels stepped from its start.
+    #[inline]
+    pub(crate) fn block_hit(
+        &self,
+        scene: &SceneView<'_, S>,
+        row: &Row<S>,
+        block: &Block,
+    ) -> Option<Result<Option<FastHit<S>>, ()>> {
+        (row.column < block.stop).then(|| match block.winner {
+            NO_TERM => Ok(None),
+            k => self.hit_of(scene, row, usize::from(k)).map(Some).ok_or(()),
+        })
+    }
+
+    /// [`Primary::nearest`]'s hit where term `k` is known to win at the row's current
+    /// pixel ([`Primary::certify_block`]): the same point, bound and `t'`. `None` where
+    /// they do not fit (as `nearest` would say `Err`).
+    fn hit_of(&self, scene: &SceneView<'_, S>, row: &Row<S>, k: usize) -> Option<FastHit<S>> {
+        let term = self.terms.get(k)?;
+        let (p, q) = (term.num.abs(), row.nd.get(k)?.abs());
+        let d = row.dir;
+        let (point, t_bound, param) = self.point(scene, p, q, d)?;
+        Some(FastHit {
+            index: usize::from(term.index),
+            point,
+            t_bound,
+            dir: d,
+            param,
         })
     }
 

@@ -194,6 +194,15 @@ macro_rules! impl_fixed {
                 Some($mul(a.to_bits(), b.to_bits()).cmp(&$mul(c.to_bits(), d.to_bits())))
             }
             #[inline]
+            fn products_clearly_greater(a: Self, b: Self, c: Self, d: Self) -> bool {
+                // Raw units: the products are in DELTA², `|a| + |c|` in DELTA × DELTA.
+                let margin =
+                    <$wide_bits>::from(a.to_bits()).abs() + <$wide_bits>::from(c.to_bits()).abs();
+                $mul(a.to_bits(), b.to_bits())
+                    .checked_sub($mul(c.to_bits(), d.to_bits()))
+                    .is_some_and(|g| g > margin)
+            }
+            #[inline]
             fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
                 let w = |x: Self, y: Self| <$wide>::from_bits($mul(x.to_bits(), y.to_bits()));
                 let diff = <$wide>::from_num(c)
@@ -280,6 +289,81 @@ mod tests {
                 let (x, y) = (I20F12::from_f64(a).unwrap(), I20F12::from_f64(b).unwrap());
                 assert_eq!(Scalar::checked_mul(x, y), x.checked_mul(y), "{a} {b}");
             }
+        }
+    }
+
+    /// `products_clearly_greater` against the same test in 128-bit integers, on the
+    /// edges of both formats and 100,000 seeded cases (I32F32's products need `i128`).
+    #[test]
+    fn clearly_greater_products_are_the_wide_test() {
+        fn wide(a: i64, b: i64, c: i64, d: i64) -> bool {
+            let g = i128::from(a) * i128::from(b) - i128::from(c) * i128::from(d);
+            g > i128::from(a.abs()) + i128::from(c.abs())
+        }
+        let edges = [
+            i32::MIN + 1,
+            -65_536,
+            -3,
+            -1,
+            0,
+            1,
+            2,
+            3,
+            65_535,
+            65_536,
+            i32::MAX,
+        ];
+        let mut x: u64 = 0x0DDB_1A5E_5BAD_5EED;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let mut cases: std::vec::Vec<[i32; 4]> = std::vec::Vec::new();
+        for a in edges {
+            for b in edges {
+                cases.push([a, b, b, a]);
+                cases.push([a, b, a, b.saturating_sub(1)]);
+            }
+        }
+        for _ in 0..100_000 {
+            let shift = u32::try_from(next() % 31).unwrap();
+            let mut v = || {
+                i32::try_from(i64::try_from(next() >> 33).unwrap() - (1 << 30)).unwrap() >> shift
+            };
+            cases.push([v(), v(), v(), v()]);
+        }
+        for [a, b, c, d] in cases {
+            let (a, b, c, d) = (
+                I16F16::from_bits(a),
+                I16F16::from_bits(b),
+                I16F16::from_bits(c),
+                I16F16::from_bits(d),
+            );
+            let expect = wide(
+                i64::from(a.to_bits()),
+                i64::from(b.to_bits()),
+                i64::from(c.to_bits()),
+                i64::from(d.to_bits()),
+            );
+            assert_eq!(
+                Scalar::products_clearly_greater(a, b, c, d),
+                expect,
+                "{a} {b} {c} {d}"
+            );
+            let w = |v: I16F16| I32F32::from_bits(i64::from(v.to_bits()) << 16);
+            let expect = wide(
+                w(a).to_bits(),
+                w(b).to_bits(),
+                w(c).to_bits(),
+                w(d).to_bits(),
+            );
+            assert_eq!(
+                Scalar::products_clearly_greater(w(a), w(b), w(c), w(d)),
+                expect,
+                "{a} {b} {c} {d} in I32F32"
+            );
         }
     }
 

@@ -152,6 +152,16 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// or an infinity times zero), never a silent tie.
     fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> Option<core::cmp::Ordering>;
 
+    /// Whether `a·b − c·d` exceeds `|a| + |c|` in units of `DELTA²`: far enough that `b`
+    /// and `d` each moving by half a `DELTA` (a rounding to nearest) cannot bring `a·b`
+    /// down to `c·d`. Exact in the fixed formats; `false` where the format cannot say
+    /// (the default: floats and the variants), so that a caller only ever skips work.
+    #[inline]
+    fn products_clearly_greater(a: Self, b: Self, c: Self, d: Self) -> bool {
+        let _ = (a, b, c, d);
+        false
+    }
+
     /// `c − a·b`, rounded once like [`Scalar::dot3`]: `None` only when the result does not
     /// fit (`a·b` alone may exceed the range, as for `D' − N·b` with a far eye).
     fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self>;
