@@ -122,7 +122,7 @@ pub(crate) const fn blocks_for<S: Scalar>() -> bool {
     S::EXACT_PRODUCTS && core::mem::size_of::<S>() <= 4
 }
 
-/// A scanline's certified block ([`Primary::nearest_in_block`]): the column after it (0:
+/// A scanline's certified block ([`Primary::start_block`]): the column after it (0:
 /// none) and the term that wins throughout ([`NO_TERM`]: the background).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Block {
@@ -138,11 +138,6 @@ impl Default for Block {
         }
     }
 }
-
-/// The pixels drawn from certified blocks so far (the tests check that they ran).
-#[cfg(test)]
-pub(crate) static CERTIFIED: core::sync::atomic::AtomicUsize =
-    core::sync::atomic::AtomicUsize::new(0);
 
 /// No term: a block of the background (a frame has at most [`FAST_OBJECTS`] terms).
 const NO_TERM: u8 = u8::MAX;
@@ -166,7 +161,7 @@ pub const FAST_OBJECTS: usize = 8;
 const _: () = assert!(FAST_OBJECTS <= 8);
 
 /// What the fast path found at one pixel.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FastHit<S> {
     /// The object.
     pub index: usize,
@@ -983,8 +978,8 @@ impl<S: Scalar> Primary<S> {
     ///
     /// Why it holds: inside the block `D.x` steps by a constant, so every plane's unrounded
     /// `N·D` is linear in the column and its rounded `N·D` monotone. The block's last
-    /// pixel is formed as the scanline would step to it (`advance_dir`, then the exact
-    /// terms: bit for bit the stepped ones in these formats) and its nearest hit found.
+    /// pixel is formed as the scanline would step to it (`advance_by`: the same steps, the
+    /// terms rounded once at the end) and its nearest plane found.
     /// Both ends must agree on the winner. Every plane must keep one side of zero and stay
     /// at least the epsilon bound away from it at both ends (so that no pixel between
     /// takes the exact parallel test, and its acceptance, monotone, is the same
@@ -1027,7 +1022,13 @@ impl<S: Scalar> Primary<S> {
             None => None,
         };
         for (k, (term, (&na, &ne))) in self.terms.iter().zip(a.nd.iter().zip(&e.nd)).enumerate() {
-            if na.abs() < bound || ne.abs() < bound || (na > S::ZERO) != (ne > S::ZERO) {
+            // (Not zero either: a caller may give the view a negative epsilon.)
+            if na.abs() < bound
+                || ne.abs() < bound
+                || na == S::ZERO
+                || ne == S::ZERO
+                || (na > S::ZERO) != (ne > S::ZERO)
+            {
                 return None;
             }
             let accepted = ahead(term.num, na);
@@ -1068,11 +1069,6 @@ impl<S: Scalar> Primary<S> {
         if self.blocks
             && let Some((end, winner)) = self.certify_block(scene, row, hit, last)
         {
-            #[cfg(test)]
-            CERTIFIED.fetch_add(
-                usize::from(end - row.column),
-                core::sync::atomic::Ordering::Relaxed,
-            );
             block.stop = end.saturating_add(1);
             block.winner = winner.and_then(|k| u8::try_from(k).ok()).unwrap_or(NO_TERM);
         }

@@ -153,8 +153,8 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> Option<core::cmp::Ordering>;
 
     /// Whether `a·b − c·d` exceeds `|a| + |c|` in units of `DELTA²`: far enough that `b`
-    /// and `d` each moving by half a `DELTA` (a rounding to nearest) cannot bring `a·b`
-    /// down to `c·d`. Exact in the fixed formats; `false` where the format cannot say
+    /// and `d` each moving by a `DELTA` cannot bring `a·b` down to `c·d` (twice what two
+    /// roundings to nearest can move them). Exact in the fixed formats; `false` where the format cannot say
     /// (the default: floats and the variants), so that a caller only ever skips work.
     #[inline]
     fn products_clearly_greater(a: Self, b: Self, c: Self, d: Self) -> bool {
