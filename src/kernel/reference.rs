@@ -322,6 +322,7 @@ mod tests {
         // The blocks ran (tens of thousands of pixels over these scenes).
         assert!(blocked > 10_000, "{blocked} pixels in certified blocks");
         assert!(blocks_agree::<fixed::types::I20F12>(150) > 10_000);
+        assert!(blocks_agree::<crate::num::variants::I16F16Recip>(60) > 1_000);
         assert_eq!(blocks_agree::<fixed::types::I32F32>(40), 0);
         assert_eq!(blocks_agree::<f32>(20), 0);
     }

@@ -105,6 +105,10 @@ macro_rules! delegate {
                 <$inner>::cmp_products(a.0, b.0, c.0, d.0)
             }
             #[inline]
+            fn products_clearly_greater(a: Self, b: Self, c: Self, d: Self) -> bool {
+                <$inner>::products_clearly_greater(a.0, b.0, c.0, d.0)
+            }
+            #[inline]
             fn ulp(self) -> Self {
                 Self(self.0.ulp())
             }
