@@ -655,21 +655,30 @@ impl<S: Scalar> Primary<S> {
         row.dir.x.checked_add(self.step_x)
     }
 
-    /// [`Primary::advance`] `m` times in one go, bit for bit: `D.x` and the unrounded
-    /// terms take `m` steps, the terms are rounded once at the end (`None` where a step
-    /// does not fit).
+    /// [`Primary::advance`] `m` times in one go, bit for bit in the fixed formats: `D.x`
+    /// and the unrounded terms move by `m` steps, the terms are rounded once at the end
+    /// (`None` where a step does not fit).
     fn advance_by(&self, row: &mut Row<S>, m: u16) -> Option<()> {
-        let mut dx = row.dir.x;
-        for _ in 0..m {
-            dx = dx.checked_add(self.step_x)?;
-        }
-        row.dir.x = dx;
+        // `m` steps as `m·step` (`D.x`) and as the sum of `step`'s doublings picked by
+        // `m`'s bits (the terms): the same integers in the fixed formats, whose sums are
+        // exact, where the blocks are drawn (`blocks_for`). A product or a doubling that
+        // does not fit says `None`: the block is then not certified.
+        row.dir.x = row
+            .dir
+            .x
+            .checked_add(self.step_x.checked_mul_int(i32::from(m))?)?;
         let terms = row.nd.iter_mut().zip(row.acc.iter_mut()).zip(&self.steps);
         for (i, ((nd, acc), step)) in terms.enumerate() {
             if self.still & (1 << i) == 0 {
-                let mut a = *acc;
-                for _ in 0..m {
-                    a = S::acc_add(a, *step)?;
+                let (mut a, mut power, mut bits) = (*acc, *step, m);
+                while bits != 0 {
+                    if bits & 1 != 0 {
+                        a = S::acc_add(a, power)?;
+                    }
+                    bits >>= 1;
+                    if bits != 0 {
+                        power = S::acc_add(power, power)?;
+                    }
                 }
                 *acc = a;
                 *nd = S::acc_round(a)?;
