@@ -297,3 +297,87 @@ fn one_ray_a_pixel<S: Scalar>() {
 fn the_level_plane_kernel_traces_one_primary_ray_a_pixel() {
     fixray::for_each_format!(all: one_ray_a_pixel());
 }
+
+/// A display that takes the first `take` pixels of a scanline and then refuses it (a
+/// driver whose bus failed): its bounding box is one row of the frame.
+struct Refusing {
+    take: usize,
+    row: i32,
+    width: u32,
+}
+
+impl embedded_graphics::geometry::Dimensions for Refusing {
+    fn bounding_box(&self) -> embedded_graphics::primitives::Rectangle {
+        embedded_graphics::primitives::Rectangle::new(
+            embedded_graphics::geometry::Point::new(0, self.row),
+            embedded_graphics::geometry::Size::new(self.width, 1),
+        )
+    }
+}
+
+impl embedded_graphics::draw_target::DrawTarget for Refusing {
+    type Color = Rgb888;
+    type Error = ();
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), ()>
+    where
+        I: IntoIterator<Item = embedded_graphics::Pixel<Rgb888>>,
+    {
+        let _ = pixels.into_iter().take(self.take).count();
+        Err(())
+    }
+
+    fn fill_contiguous<I>(
+        &mut self,
+        _area: &embedded_graphics::primitives::Rectangle,
+        colors: I,
+    ) -> Result<(), ()>
+    where
+        I: IntoIterator<Item = Rgb888>,
+    {
+        let _ = colors.into_iter().take(self.take).count();
+        Err(())
+    }
+}
+
+/// The level-plane kernel's counters count the pixels a display took, not those its
+/// quick runs drew ahead (regression: a scanline stopped after `k` pixels counted up to
+/// 31 more primary rays, shadow rays and diffuse terms).
+fn counts_what_was_taken<S: Scalar>() {
+    let boing = Scene::<S>::parse(include_str!("../scenes/boing.scene")).unwrap();
+    let frame = Frame::new(&boing);
+    let width = boing.camera.width;
+    for row in [4, 20, 40, 60] {
+        if frame.row_kernel(row) != KernelKind::Rows {
+            continue;
+        }
+        let mut whole = fixray::Counters::default();
+        let mut line = vec![Rgb888::new(0, 0, 0); usize::from(width)];
+        frame.render_line_counted(row, &mut line, &mut whole);
+        for take in [1, 2, 7, 33, 40, 100] {
+            let mut counters = fixray::Counters::default();
+            let mut display = Refusing {
+                take,
+                row: i32::from(row),
+                width: u32::from(width),
+            };
+            assert!(frame.draw(&mut display, &mut counters).is_err());
+            let rays = u32::try_from(take).unwrap();
+            assert_eq!(
+                counters.primary_rays,
+                rays,
+                "row {row}, {take} taken, {}",
+                S::NAME
+            );
+            assert!(
+                counters.shadow_rays <= whole.shadow_rays,
+                "row {row}, {take} taken"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_scanline_stopped_early_counts_only_the_pixels_taken() {
+    fixray::for_each_format!(all: counts_what_was_taken());
+}

@@ -547,6 +547,8 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         run: [Rgb888::new(0, 0, 0); RUN],
         run_at: 0,
         run_len: 0,
+        #[cfg(feature = "stats")]
+        run_lit: 0,
     })
 }
 
@@ -584,6 +586,10 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     run: [Rgb888; RUN],
     run_at: u8,
     run_len: u8,
+    /// Which of `run` were lit (bit `i`: `run[i]`): their counts are added as they are
+    /// handed out, so that a caller that stops early counts only the pixels it took.
+    #[cfg(feature = "stats")]
+    run_lit: u32,
 }
 
 /// How many pixels a quick run draws ahead of the one asked for ([`Pixels::quick_run`]).
@@ -598,6 +604,12 @@ impl<S: Scalar, T: Stages> Iterator for Pixels<'_, S, T> {
         if self.run_at < self.run_len
             && let Some(pixel) = self.run.get(usize::from(self.run_at))
         {
+            #[cfg(feature = "stats")]
+            {
+                let lit = (self.run_lit >> self.run_at) & 1 != 0;
+                let tiled = u32::from(self.lean.tiles.is_some());
+                count_quick(self.counters, tiled, lit, true);
+            }
             self.run_at += 1;
             return Some(*pixel);
         }
@@ -704,17 +716,14 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             return None;
         };
         let tiled = u32::from(f.tiles.is_some());
-        // Each pixel's counts, as the general path counts them (`pixel`, `lean_color`,
-        // and `lit` for a shadowed one).
-        // (The first pixel's primary ray was counted by `pixel`, the caller.)
-        let counted = |counters: &mut Counters, lit: bool, ray: bool| {
-            counters_add(&mut counters.primary_rays, u32::from(ray));
-            counters_add(&mut counters.tile_lookups, tiled);
-            count(&mut counters.shadow_rays);
-            counters_add(&mut counters.diffuse, u32::from(lit));
-        };
         let (first, lit) = quick_step(scene, p, l, f, light, &mut self.state, row, column)?;
-        counted(self.counters, lit, false);
+        // (The first pixel's primary ray was counted by `pixel`, the caller; the others'
+        // counts are added as `next` hands them out.)
+        count_quick(self.counters, tiled, lit, false);
+        #[cfg(feature = "stats")]
+        {
+            self.run_lit = 0;
+        }
         let (end, spheres) = (self.columns.end, self.spheres);
         let mut n = 0u8;
         for slot in self.run.iter_mut() {
@@ -726,7 +735,12 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             else {
                 break;
             };
-            counted(self.counters, lit, true);
+            #[cfg(feature = "stats")]
+            {
+                self.run_lit |= u32::from(lit) << n;
+            }
+            #[cfg(not(feature = "stats"))]
+            let _ = lit;
             *slot = pixel;
             n += 1;
             self.columns.start = c + 1;
@@ -1039,6 +1053,17 @@ fn lean_color<S: Scalar>(
     counters_add(&mut counters.shadow_rays, shadow_rays);
     counters_add(&mut counters.diffuse, diffuse);
     Some(Err(color))
+}
+
+/// A quick step's counts, as the general path counts its pixel (`pixel`, `lean_color`,
+/// and `lit` for a shadowed one): its primary ray where `ray`, its tile lookup where the
+/// row is tiled, its shadow ray, and its diffuse term where it is lit.
+#[inline(always)]
+fn count_quick(counters: &mut Counters, tiled: u32, lit: bool, ray: bool) {
+    counters_add(&mut counters.primary_rays, u32::from(ray));
+    counters_add(&mut counters.tile_lookups, tiled);
+    count(&mut counters.shadow_rays);
+    counters_add(&mut counters.diffuse, u32::from(lit));
 }
 
 /// `count` `n` times.
