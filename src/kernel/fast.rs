@@ -782,18 +782,10 @@ impl<S: Scalar> Primary<S> {
         scene: &SceneView<'_, S>,
         row: &Row<S>,
     ) -> Result<Option<FastHit<S>>, ()> {
-        let Some((term, p, q)) = self.search(scene, row)? else {
-            return Ok(None);
-        };
-        let d = row.dir;
-        let (point, t_bound, param) = self.point(scene, p, q, d).ok_or(())?;
-        Ok(Some(FastHit {
-            index: usize::from(term.index),
-            point,
-            t_bound,
-            dir: d,
-            param,
-        }))
+        match self.search(scene, row)? {
+            Some((term, p, q)) => self.hit(scene, row, term, p, q).map(Some).ok_or(()),
+            None => Ok(None),
+        }
     }
 
     /// [`Primary::nearest`]'s search: the winning term and its `t' = p/q`, without the
@@ -992,9 +984,9 @@ impl<S: Scalar> Primary<S> {
 
     /// The pixels after the row's current one (a resync column, just restarted, whose
     /// nearest hit was `hit`) up to `last` and at most [`RESYNC_PIXELS`]` − 1` of them,
-    /// if one answer of [`Primary::nearest`] holds at every one of them: `Some((end,
-    /// winner))`, the block's last column and the term that wins throughout (`None`:
-    /// the background throughout). `None` where that is not certain.
+    /// if one answer of [`Primary::nearest`] holds at every one of them: that block (the
+    /// column after it, and the term that wins throughout or [`NO_TERM`], the background
+    /// throughout). `None` where that is not certain.
     ///
     /// Why it holds: inside the block `D.x` steps by a constant, so every plane's unrounded
     /// `N·D` is linear in the column and its rounded `N·D` monotone. The block's last
@@ -1013,7 +1005,7 @@ impl<S: Scalar> Primary<S> {
         a: &Row<S>,
         hit: Option<&FastHit<S>>,
         last: u16,
-    ) -> Option<(u16, Option<usize>)> {
+    ) -> Option<Block> {
         let m = last.checked_sub(a.column)?.min(RESYNC_PIXELS - 1);
         if m == 0 || a.nd.len() != self.terms.len() {
             return None;
@@ -1069,7 +1061,13 @@ impl<S: Scalar> Primary<S> {
                 _ => {}
             }
         }
-        Some((e.column, winner))
+        Some(Block {
+            stop: e.column.checked_add(1)?,
+            winner: match winner {
+                Some(k) => u8::try_from(k).ok()?,
+                None => NO_TERM,
+            },
+        })
     }
 
     /// The next pixels of a scanline at a resync column (just restarted there, its
@@ -1085,13 +1083,12 @@ impl<S: Scalar> Primary<S> {
         last: u16,
         block: &mut Block,
     ) {
-        *block = Block::default();
-        if self.blocks
-            && let Some((end, winner)) = self.certify_block(scene, row, hit, last)
-        {
-            block.stop = end.saturating_add(1);
-            block.winner = winner.and_then(|k| u8::try_from(k).ok()).unwrap_or(NO_TERM);
-        }
+        *block = if self.blocks {
+            self.certify_block(scene, row, hit, last)
+                .unwrap_or_default()
+        } else {
+            Block::default()
+        };
     }
 
     /// The frame without certified blocks: every pixel searched (the tests' oracle).
@@ -1113,16 +1110,28 @@ impl<S: Scalar> Primary<S> {
     ) -> Option<Result<Option<FastHit<S>>, ()>> {
         (row.column < block.stop).then(|| match block.winner {
             NO_TERM => Ok(None),
-            k => self.hit_of(scene, row, usize::from(k)).map(Some).ok_or(()),
+            // A plane's `t'` as `search` forms it: `|num| / |N·D|`.
+            k => {
+                let k = usize::from(k);
+                let (term, nd) = (self.terms.get(k).ok_or(())?, *row.nd.get(k).ok_or(())?);
+                self.hit(scene, row, term, term.num.abs(), nd.abs())
+                    .map(Some)
+                    .ok_or(())
+            }
         })
     }
 
-    /// [`Primary::nearest`]'s hit where term `k` is known to win at the row's current
-    /// pixel ([`Primary::certify_block`]): the same point, bound and `t'`. `None` where
-    /// they do not fit (as `nearest` would say `Err`).
-    fn hit_of(&self, scene: &SceneView<'_, S>, row: &Row<S>, k: usize) -> Option<FastHit<S>> {
-        let term = self.terms.get(k)?;
-        let (p, q) = (term.num.abs(), row.nd.get(k)?.abs());
+    /// The hit of `term` at the row's current pixel, its `t' = p/q`: the point, its
+    /// distance bound and `t'` ([`Primary::nearest`]'s, and a certified block's winner's).
+    /// `None` where they do not fit (`nearest` then says `Err`).
+    fn hit(
+        &self,
+        scene: &SceneView<'_, S>,
+        row: &Row<S>,
+        term: &Term<S>,
+        p: S,
+        q: S,
+    ) -> Option<FastHit<S>> {
         let d = row.dir;
         let (point, t_bound, param) = self.point(scene, p, q, d)?;
         Some(FastHit {

@@ -146,13 +146,7 @@ mod tests {
 
     /// A seeded random scene of planes only (plain and tiled, any normal: walls with
     /// `N.x ≠ 0` among them), sometimes lit.
-    fn random_scene(seed: &mut u64) -> String {
-        let mut next = || {
-            *seed ^= *seed << 13;
-            *seed ^= *seed >> 7;
-            *seed ^= *seed << 17;
-            *seed
-        };
+    fn random_scene(mut next: impl FnMut() -> u64) -> String {
         // A whole number in `0..n`, and a real in `[lo, hi)`.
         let mut below = |n: u64| u32::try_from(next() % n).unwrap();
         let (w, h) = (16 + below(48), 8 + below(24));
@@ -220,11 +214,11 @@ mod tests {
     /// pixels of whole and partial scanlines with blocks and without. Returns the pixels
     /// the blocks answered.
     fn blocks_agree<S: Scalar>(scenes: usize) -> usize {
-        let mut seed = 0x5EED_2026_1205_u64;
+        let mut next = crate::num::xorshift(0x5EED_2026_1205);
         let mut blocked = 0;
         let mut parsed = 0;
         for case in 0..scenes {
-            let text = random_scene(&mut seed);
+            let text = random_scene(&mut next);
             let scene = match Scene::<S>::parse(&text) {
                 Ok(scene) => scene,
                 // Only a format's range may refuse a scene.

@@ -523,13 +523,7 @@ mod tests {
                 "{sign}{m}e{e}"
             );
         };
-        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut next = move || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
+        let mut next = crate::num::xorshift(0x2545_f491_4f6c_dd1d);
         for i in 0..40_000u32 {
             let digits = next() % 20 + 1;
             let m = next() % 10u64.pow(u32::try_from(digits.min(19)).unwrap()) + 1;
@@ -641,13 +635,7 @@ mod tests {
             (1, 40),
             (u128::from(u64::MAX) << 32, 19),
         ];
-        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
+        let mut next = crate::num::xorshift(0x9E37_79B9_7F4A_7C15);
         for _ in 0..200_000 {
             let n = (u128::from(next()) << 64 | u128::from(next())) >> (next() % 127 + 1);
             let k = u32::try_from(next() % 42).unwrap() + 1;
@@ -680,16 +668,10 @@ mod tests {
             };
             Some(if d.negative { -magnitude } else { magnitude })
         }
-        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
+        let mut next = crate::num::xorshift(0x2545_F491_4F6C_DD1D);
         for _ in 0..100_000 {
             let d = Decimal {
-                negative: next() % 2 == 0,
+                negative: next().is_multiple_of(2),
                 mantissa: next() >> (next() % 64),
                 exponent: i32::try_from(next() % 91).unwrap() - 45,
             };

@@ -313,13 +313,7 @@ mod tests {
             65_536,
             i32::MAX,
         ];
-        let mut x: u64 = 0x0DDB_1A5E_5BAD_5EED;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
+        let mut next = crate::num::xorshift(0x0DDB_1A5E_5BAD_5EED);
         let mut cases: std::vec::Vec<[i32; 4]> = std::vec::Vec::new();
         for a in edges {
             for b in edges {

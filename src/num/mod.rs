@@ -245,6 +245,18 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     }
 }
 
+/// A seeded xorshift64 generator for the unit tests' cases (the same sequence on every
+/// machine).
+#[cfg(test)]
+pub(crate) fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
+    move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        x
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
