@@ -29,12 +29,12 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::fast::{self, FAST_OBJECTS, FastHit, Primary, Row};
 use super::reference::{fast_color, reference_color};
-use crate::geometry::{RowCone, RowTiles, sides_differ, surface_tolerance};
+use crate::geometry::{RowCone, RowTiles, surface_tolerance};
 use crate::shade::color::{add_sat, term, to_pixel};
 use crate::shade::stages::Stages;
 use crate::shade::{
-    Incoming, PlaneSides, SideBits, channel_max, diffuse_falloff, occludes_segment, shade_with,
-    surface,
+    Incoming, PlaneSides, SideBits, channel_max, diffuse_falloff, occluded_among, occludes_segment,
+    shade_with, surface,
 };
 use crate::stats::{Counters, count};
 use crate::{Color, Hit, Rules, Scalar, SceneView, Shape, Tiling, Vec3};
@@ -939,7 +939,9 @@ fn lit<S: Scalar, T: Stages>(
         if T::SHADOWS {
             count(&mut counters.shadow_rays);
             let shadowed = match (sides, l.occluders.get(j)) {
-                (Some(s), Some(&bits)) => occluded(scene, s, j, bits, hit.point, to_light, ll, tol),
+                (Some(s), Some(&bits)) => {
+                    occluded_among(scene, s, j, bits, (hit.point, to_light, ll, tol), |_| false)
+                }
                 _ => None,
             };
             let shadowed = match shadowed {
@@ -981,7 +983,7 @@ fn lit<S: Scalar, T: Stages>(
 /// the format's range, a light whose `|L|²` does not fit or is not positive, a pixel
 /// whose `|L.x|` is beyond half the range where a cone must be tested, and a sphere whose
 /// shadow cone does not clear the pixel (its exact segment test needs the tolerance,
-/// [`occluded`]).
+/// [`occluded_among`]).
 ///
 /// Its colour (`Err`), or its pixel (`Ok`) where the last light's term
 /// `w·(255·N·L/|L|²)` was taken quickly, by [`Scalar::quick_pixel`] (on cores where it
@@ -1156,7 +1158,7 @@ fn quick_step<S: Scalar>(
     }
     let cones = f.cones_at(light, lx)?;
     // A sphere whose cone does not clear the pixel takes its exact segment test, as
-    // `plane_color` takes it (`occluded`, with the tolerance `lit` gives it): where it
+    // `plane_color` takes it (`occluded_among`, with the tolerance `lit` gives it): where it
     // meets the segment the light adds nothing and the pixel is the ambient colour's.
     let mut shadowed = false;
     for (k, cone) in cones.iter().enumerate() {
@@ -1181,7 +1183,7 @@ fn quick_step<S: Scalar>(
 
 /// Whether the sphere of the light's `cone`-th cone shadows a lean row's hit at `x` from
 /// the row's one light (`L = (lx, L.y, L.z)`, `|L|² = ll`): its exact segment test with the segments'
-/// tolerance at the hit, what `plane_color` decides there (`lit` → `occluded`: the hit's
+/// tolerance at the hit, what `plane_color` decides there (`lit` → `occluded_among`: the hit's
 /// distance bound `t'·2|D|∞`, `segment_tolerance`, the sides of light 0). `None` where a
 /// quantity does not fit (the general path then draws the pixel).
 #[inline(never)]
@@ -1298,48 +1300,4 @@ fn segment_tolerance<S: Scalar>(
             Some(tol)
         }
     }
-}
-
-/// `occludes_segment` for a row's hit with the planes' sides known and no light on a
-/// surface, over the row's occluders of light `j` only (`bits`): a plane whose sides
-/// differ beyond the tolerance, or a sphere whose shadow cone does not clear the point,
-/// takes its exact segment test. `None` when the sides are not all there (the caller
-/// then asks `occludes_segment`).
-#[allow(clippy::too_many_arguments)]
-#[inline(never)]
-fn occluded<S: Scalar>(
-    scene: &SceneView<'_, S>,
-    sides: PlaneSides<'_, S>,
-    j: usize,
-    bits: u8,
-    from: Vec3<S>,
-    l: Vec3<S>,
-    ll: S,
-    tol: S,
-) -> Option<bool> {
-    let n = sides.at_hit.len();
-    let at_light = sides.at_lights.get(j * n..)?.get(..n)?;
-    let mut bits = bits;
-    while bits != 0 {
-        let i = usize::try_from(bits.trailing_zeros()).ok()?;
-        bits &= bits - 1;
-        let (o, &a0, &a1) = (
-            scene.objects.get(i)?,
-            sides.at_hit.get(i)?,
-            at_light.get(i)?,
-        );
-        let maybe = match o.shape {
-            Shape::Sphere(_) => !sides.cones.iter().any(|c| {
-                usize::from(c.light) == j && usize::from(c.object) == i && c.clears(l, ll)
-            }),
-            _ => sides_differ(a0, a1, tol),
-        };
-        if maybe
-            && o.shape
-                .meets_segment_with(Some((a0, a1)), from, l, ll, tol, scene.epsilon)
-        {
-            return Some(true);
-        }
-    }
-    Some(false)
 }

@@ -200,79 +200,84 @@ pub(crate) fn occludes_segment<S: Scalar>(
     tol: S,
     light: Vec3<S>,
 ) -> bool {
-    let eps = scene.epsilon;
     let spared = |shape: &Shape<S>| spared(scene, from, l, light, shape);
-    // The kernel's sides of every object at the hit and at this light, if it has them.
-    let known = sides.and_then(|(s, j)| {
-        let n = s.at_hit.len();
-        // j < lights and n ≤ MAX_OBJECTS: the product is small (a checked one would call
-        // the 64-bit multiply helper on a Cortex-M0).
-        let at_light = s.at_lights.get(j * n..)?.get(..n)?;
-        // One bit per object (`SideBits`): at most 8 objects.
-        // Without the frame's bits of this light, every plane is looked at.
-        let light_positive = s.bits.lights.get(j).copied();
-        (n == scene.objects.len()).then_some((
-            s.at_hit,
-            at_light,
-            s.cones,
-            j,
-            s.bits,
-            light_positive,
-        ))
-    });
-    match known {
-        Some((at_hit, at_light, cones, j, bits, light_positive)) => {
-            // A sphere whose shadow cone from this light clearly misses `from` is passed
-            // over (`ShadowCone::clears`): what its exact test would decide.
-            let clear = |i: usize| {
-                cones.iter().any(|c| {
-                    usize::from(c.light) == j && usize::from(c.object) == i && c.clears(l, ll)
-                })
-            };
-            // A plane whose sides at the hit and at the light have one sign (or are zero)
-            // cannot meet the segment (`sides_differ` asks that first): only the others,
-            // and the spheres, are looked at, in object order.
-            let mut candidates = match light_positive {
-                Some(lp) => ((bits.positive ^ lp) & !bits.spheres) | bits.spheres,
-                None => u8::MAX,
-            };
-            while candidates != 0 {
-                let i = candidates.trailing_zeros();
-                candidates &= candidates - 1;
-                let Ok(i) = usize::try_from(i) else {
-                    break;
-                };
-                let (Some(o), Some(&a0), Some(&a1)) =
-                    (scene.objects.get(i), at_hit.get(i), at_light.get(i))
-                else {
-                    break;
-                };
-                let maybe = match o.shape {
-                    Shape::Sphere(_) => !clear(i),
-                    // Both ends on one side of the plane (or one on it): no crossing,
-                    // as `crossing_of_sides` decides first (here without the calls).
-                    Shape::Plane(_)
-                    | Shape::Tiled { .. }
-                    | Shape::Finite(_)
-                    | Shape::Textured(_)
-                    | Shape::Triangle(_) => sides_differ(a0, a1, tol),
-                    Shape::Revsurf(_) => true,
-                };
-                if maybe
-                    && o.shape
-                        .meets_segment_with(Some((a0, a1)), from, l, ll, tol, eps)
-                    && !spared(&o.shape)
-                {
-                    return true;
-                }
-            }
-            false
+    // The kernel's sides of every object at the hit and at this light, if it has them: a
+    // plane whose sides at the hit and at the light have one sign (or are zero) cannot
+    // meet the segment (`sides_differ` asks that first), so only the others and the
+    // spheres are looked at. Without the frame's bits of this light, every object is.
+    if let Some((s, j)) = sides {
+        let bits = match s.bits.lights.get(j) {
+            Some(lp) => ((s.bits.positive ^ lp) & !s.bits.spheres) | s.bits.spheres,
+            None => u8::MAX,
+        };
+        if let Some(shadowed) = occluded_among(scene, s, j, bits, (from, l, ll, tol), spared) {
+            return shadowed;
         }
-        None => scene
-            .objects
-            .iter()
-            .any(|o| o.shape.meets_segment_with(None, from, l, ll, tol, eps) && !spared(&o.shape)),
     }
+    let eps = scene.epsilon;
+    scene
+        .objects
+        .iter()
+        .any(|o| o.shape.meets_segment_with(None, from, l, ll, tol, eps) && !spared(&o.shape))
+}
+
+/// The shadow test of the segment `(from, l)` (`ll = |l|²`, tolerance `tol`) towards
+/// light `j` over the objects of `bits` (bit `i`: object `i`), in object order, with the
+/// kernel's sides: a sphere whose shadow cone from the light clearly misses `from` is
+/// passed over (`ShadowCone::clears`), a plane whose sides do not differ beyond the
+/// tolerance too (`sides_differ`), and the others take their exact segment test, unless
+/// `spared` (a light on a surface, `occludes_segment`). `None` when the sides are not
+/// every object's (the caller then tests without them). For `occludes_segment` and the
+/// level-plane kernel's rows, whose bits are their occluders. Inlined into both, as
+/// their own loops were (each caller is a call of its own).
+#[inline(always)]
+pub(crate) fn occluded_among<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    sides: PlaneSides<'_, S>,
+    j: usize,
+    bits: u8,
+    (from, l, ll, tol): (Vec3<S>, Vec3<S>, S, S),
+    spared: impl Fn(&Shape<S>) -> bool,
+) -> Option<bool> {
+    let n = sides.at_hit.len();
+    if n != scene.objects.len() {
+        return None;
+    }
+    // j < lights and n ≤ FAST_OBJECTS: the product is small (a checked one would call
+    // the 64-bit multiply helper on a Cortex-M0).
+    let at_light = sides.at_lights.get(j * n..)?.get(..n)?;
+    // Only the scene's objects (at most 8: `SideBits`).
+    let mut bits = bits & u8::MAX.checked_shr(u32::try_from(8 - n.min(8)).ok()?)?;
+    while bits != 0 {
+        let i = usize::try_from(bits.trailing_zeros()).ok()?;
+        bits &= bits - 1;
+        let (o, &a0, &a1) = (
+            scene.objects.get(i)?,
+            sides.at_hit.get(i)?,
+            at_light.get(i)?,
+        );
+        let maybe = match o.shape {
+            Shape::Sphere(_) => !sides.cones.iter().any(|c| {
+                usize::from(c.light) == j && usize::from(c.object) == i && c.clears(l, ll)
+            }),
+            // Both ends on one side of the plane (or one on it): no crossing, as
+            // `crossing_of_sides` decides first (here without the calls).
+            Shape::Plane(_)
+            | Shape::Tiled { .. }
+            | Shape::Finite(_)
+            | Shape::Textured(_)
+            | Shape::Triangle(_) => sides_differ(a0, a1, tol),
+            Shape::Revsurf(_) => true,
+        };
+        if maybe
+            && o.shape
+                .meets_segment_with(Some((a0, a1)), from, l, ll, tol, scene.epsilon)
+            && !spared(&o.shape)
+        {
+            return Some(true);
+        }
+    }
+    Some(false)
 }
 
 impl RuleSet for Fixray {

@@ -31,7 +31,7 @@ use color::to_pixel;
 use rules::{Tracer, with_rules};
 use stages::{Stages, shading_for, with_stages};
 
-pub(crate) use fixray::{occludes_segment, shade as shade_with};
+pub(crate) use fixray::{occluded_among, occludes_segment, shade as shade_with};
 pub(crate) use light::{channel_max, diffuse_falloff};
 
 /// How deep mirror reflections go: a ray reflected this many times sees no further
