@@ -1124,6 +1124,7 @@ impl<S: Scalar> Primary<S> {
     /// The hit of `term` at the row's current pixel, its `t' = p/q`: the point, its
     /// distance bound and `t'` ([`Primary::nearest`]'s, and a certified block's winner's).
     /// `None` where they do not fit (`nearest` then says `Err`).
+    #[inline(always)]
     fn hit(
         &self,
         scene: &SceneView<'_, S>,
