@@ -160,20 +160,20 @@ fn absent_effects_cost_nothing_on_the_chip() {
     report.push_str("\n| cargo features | flash bytes (M0, i16f16) | planes scene instructions (M0) |\n|---|---|---|\n");
     let mut flash = Vec::new();
     for features in [
-        Some(""),
-        Some("lighting"),
-        Some("lighting,spheres"),
-        Some("lighting,spheres,reflection"),
+        Some("kernels"),
+        Some("kernels,lighting"),
+        Some("kernels,lighting,spheres"),
+        Some("kernels,lighting,spheres,reflection"),
         None,
+        Some(""),
+        Some("lighting,spheres,reflection"),
     ] {
         let run =
             qemu::run_with_features("thumbv6m-none-eabi", "i16f16", "planes", features).unwrap();
-        let name = features.map_or("all (default: with `course`)", |f| {
-            if f.is_empty() {
-                "none: planes + ambient"
-            } else {
-                f
-            }
+        let name = features.map_or("all (default: with `course`)", |f| match f {
+            "kernels" => "kernels: planes + ambient",
+            "" => "none: planes + ambient, the reference path only",
+            f => f,
         });
         writeln!(
             report,
@@ -215,10 +215,121 @@ fn absent_effects_cost_nothing_on_the_chip() {
         "the sphere code is {} bytes: is it gated by its feature? {flash:?}",
         flash[2].0 - flash[1].0
     );
+    // Without the kernels none of their code is linked (the reference path draws every
+    // frame: `every_effect_without_the_kernels_fits_64_kb`).
+    for (lean, fast) in [(flash[5], flash[0]), (flash[6], flash[3])] {
+        assert!(
+            fast.0.saturating_sub(lean.0) >= 16 * 1024,
+            "the kernels are {} bytes: are they gated by their feature? {flash:?}",
+            fast.0.saturating_sub(lean.0)
+        );
+    }
     // The full renderer on an ambient-only scene: within 5 % of the compiled-out one.
     let ratio = full.1 as f64 / bare.1 as f64;
     println!("ambient-only scene, full renderer / stages compiled out: {ratio:.4}");
     assert!(ratio <= 1.05, "{ratio}");
+}
+
+/// The host's hash of a scene drawn by the reference path, pixel by pixel
+/// ([`fixray::trace_pixel`], the definition): what a firmware without the kernels draws.
+fn reference_hash<S: Scalar>(scene: &Scene<S>) -> u32 {
+    let mut hash = FrameHash::new();
+    for row in 0..scene.camera.height {
+        for column in 0..scene.camera.width {
+            hash.push(fixray::to_rgb888(
+                fixray::trace_pixel(scene, column, row).color,
+            ));
+        }
+    }
+    hash.value()
+}
+
+/// Every effect of the crate's rules without the fast kernels (issue 25; cargo feature
+/// `kernels` off, the firmware that fits a 64 KB chip: its flash is asserted in
+/// `absent_effects_cost_nothing_on_the_chip`): the M0 I16F16 firmware with lighting,
+/// spheres and reflection draws every shipped scene of the crate's rules (the boing
+/// ball's 16 frames among them) with the hash of the host's reference path, and the
+/// firmware with the kernels with the hash of the host's kernels. Their instructions per
+/// pixel go to stdout and `target/lean-report.md`.
+#[test]
+#[ignore = "needs qemu-system-arm and the thumb targets; run by .ci/run"]
+fn every_effect_draws_the_definition_without_the_kernels() {
+    assert!(
+        qemu::qemu_available_for("thumbv6m-none-eabi"),
+        "qemu-system-arm is not installed"
+    );
+    let scenes: [(&str, &str); 10] = [
+        ("default", include_str!("../scenes/default.scene")),
+        ("planes", include_str!("../scenes/planes.scene")),
+        ("horizon", include_str!("../scenes/horizon.scene")),
+        ("spheres", include_str!("../scenes/spheres.scene")),
+        ("tiles", include_str!("../scenes/tiles.scene")),
+        ("specular", include_str!("../scenes/specular.scene")),
+        ("spotlight", include_str!("../scenes/spotlight.scene")),
+        ("mirror", include_str!("../scenes/mirror.scene")),
+        ("triangles", include_str!("../scenes/triangles.scene")),
+        ("boing", include_str!("../scenes/boing.scene")),
+    ];
+    let names: Vec<&str> = scenes.iter().map(|(n, _)| *n).collect();
+    let names = names.join(",");
+    let lean = "lighting,spheres,reflection";
+    let fast = format!("kernels,{lean}");
+    let lean_run = qemu::run_with_features("thumbv6m-none-eabi", "i16f16", &names, Some(lean))
+        .unwrap_or_else(|e| panic!("without the kernels: {e}"));
+    let fast_run = qemu::run_with_features("thumbv6m-none-eabi", "i16f16", &names, Some(&fast))
+        .unwrap_or_else(|e| panic!("with the kernels: {e}"));
+    let mut report = String::from(
+        "| scene (M0, I16F16) | instructions/pixel without the kernels | with them | \
+         hashes equal to the host's |\n|---|---|---|---|\n",
+    );
+    let mut mismatches = Vec::new();
+    let mut frames = lean_run.frames.iter().zip(&fast_run.frames);
+    for (name, text) in scenes {
+        let mut scene = Scene::<fixray::I16F16>::parse(text).unwrap();
+        let bounce =
+            (name == "boing").then(|| fixray::anim::Bounce::boing(&scene.objects).unwrap());
+        for k in 0..bounce.map_or(1, |b| b.frames()) {
+            if let Some(b) = bounce {
+                b.apply(&mut scene, k).unwrap();
+            }
+            let host = (reference_hash(&scene), frame_hash(&scene));
+            let (lean, fast) = frames
+                .next()
+                .unwrap_or_else(|| panic!("{name}: frame {k} was not reported"));
+            assert_eq!((lean.get("scene"), fast.get("scene")), (name, name));
+            let equal = (lean.hash(), fast.hash()) == host;
+            let label = match bounce {
+                Some(_) => format!("{name} frame {k}"),
+                None => name.to_string(),
+            };
+            writeln!(
+                report,
+                "| {label} | {} | {} | {} |",
+                lean.get("per_pixel"),
+                fast.get("per_pixel"),
+                if equal { "yes" } else { "no" }
+            )
+            .unwrap();
+            if !equal {
+                mismatches.push(format!(
+                    "{label}: host (reference, kernels) 0x{:08x}, 0x{:08x}; \
+                     firmware 0x{:08x}, 0x{:08x}",
+                    host.0,
+                    host.1,
+                    lean.hash(),
+                    fast.hash()
+                ));
+            }
+        }
+    }
+    assert!(frames.next().is_none(), "more frames than scenes");
+    println!("{report}");
+    std::fs::write(
+        concat!(env!("CARGO_MANIFEST_DIR"), "/target/lean-report.md"),
+        &report,
+    )
+    .unwrap();
+    assert!(mismatches.is_empty(), "{mismatches:#?}");
 }
 
 /// The course's entities on the chips (issue 15): one shipped scene each (translucency,
@@ -261,7 +372,7 @@ fn course_entities_on_the_chips() {
                 target,
                 format,
                 &names,
-                Some("lighting,spheres,reflection,course,textures"),
+                Some("kernels,lighting,spheres,reflection,course,textures"),
             )
             .unwrap();
             assert_eq!(
@@ -340,7 +451,7 @@ fn i32f32_fits_the_cortex_m0_in_every_shipped_scene() {
         (names.as_slice(), None, M0_RAM_BUDGET),
         (
             textured.as_slice(),
-            Some("lighting,spheres,reflection,course,textures"),
+            Some("kernels,lighting,spheres,reflection,course,textures"),
             16 * 1024,
         ),
     ];

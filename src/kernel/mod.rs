@@ -36,6 +36,12 @@ use rows::Rows;
 
 pub(crate) use reference::scanline;
 
+/// Whether this build has the kernels (cargo feature `kernels`). Without them every frame
+/// is drawn by the reference path, the definition (the kernels draw it within their
+/// stated budgets, `tests/fast.rs`), at 1.5 to 30 times the instructions, and none of
+/// their code is linked: every effect of the crate's rules on a 64 KB chip.
+const KERNELS: bool = cfg!(feature = "kernels");
+
 /// What a frame computes once for all its scanlines: the kernel [`select`] chose.
 #[derive(Debug, Clone)]
 pub(crate) enum Kernel<S: Scalar> {
@@ -125,7 +131,7 @@ pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan
     // the window's corners: only the reference path draws them. The fast kernel draws
     // every scene under the crate's rules (shading takes its unnormalised direction:
     // `shade::Incoming`).
-    let fast = scene.rules() == Rules::Fixray;
+    let fast = KERNELS && scene.rules() == Rules::Fixray;
     // Pure geometry: only infinite planes, and stages that show ambient colours only.
     let flat = fast && !T::LIGHTING && !T::REFLECTION && plan.planes_only;
     let mut drawing = Drawing {
@@ -162,7 +168,7 @@ pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan
 /// cheaper one (what the tests of the level-plane kernel compare with, bit for bit); the
 /// reference path where it cannot be formed.
 pub(crate) fn fast_only<S: Scalar>(scene: &SceneView<'_, S>) -> Drawing<S> {
-    let fast = scene.rules() == Rules::Fixray;
+    let fast = KERNELS && scene.rules() == Rules::Fixray;
     let kernel = match fast.then(|| Primary::new(scene)).flatten() {
         Some(p) => Kernel::Fast(p),
         None => Kernel::Reference,
@@ -181,6 +187,9 @@ pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
 ) {
     let width = line.len().min(usize::from(scene.camera.width));
     let line = &mut line[..width];
+    if !KERNELS {
+        return primary_line::<S, T, C>(scene, None, row, line, counters);
+    }
     let primary = match &drawing.kernel {
         Kernel::Flat(flat) => {
             if flat_line(scene, flat, mode, row, line) {
@@ -249,6 +258,9 @@ where
     C: From<Rgb888> + Clone,
     K: RowSink<C>,
 {
+    if !KERNELS {
+        return sink.fill(scanline::<S, T, C>(scene, None, row, columns, counters));
+    }
     let fallback;
     let (primary, counters) = match &drawing.kernel {
         Kernel::Flat(flat) => match flat.row(scene, row) {

@@ -34,7 +34,9 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
     let last = columns.end.saturating_sub(1);
     columns.map(move |column| {
         count(&mut counters.primary_rays);
-        let found = primary.and_then(|p| {
+        // Without the kernels (cargo feature `kernels`) the fast kernel's code is not
+        // linked: the test is a constant here, where each pixel reads `primary`.
+        let found = primary.filter(|_| super::KERNELS).and_then(|p| {
             match state.as_mut() {
                 Some(r)
                     if Primary::column(r).checked_add(1) == Some(column)

@@ -35,7 +35,7 @@ const ENTITY_SCENES: [(&str, &str, &str); 5] = [
 ];
 
 /// The firmware features with the course's entities.
-const FEATURES: &str = "lighting,spheres,reflection,course,textures";
+const FEATURES: &str = "kernels,lighting,spheres,reflection,course,textures";
 
 /// Host median time of one frame, in ms.
 struct FrameTime<'a> {
