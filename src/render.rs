@@ -65,6 +65,7 @@ impl<'a, S: Scalar> Frame<'a, S> {
         let plan = scene.plan();
         scene.lights_on_surfaces = plan.lights_on_surfaces;
         let shading = shading_for(&plan);
+        scene.shadows = shading.shadows();
         let drawing = with_stages!(shading, kernel::select::<S>(&scene, &plan));
         Self {
             scene,

@@ -235,6 +235,11 @@ pub struct SceneView<'a, S> {
     /// scene ([`Scene::view`]); a frame sets it from its plan ([`Plan`]'s
     /// `lights_on_surfaces`), so that a scene without such a light pays nothing for them.
     pub(crate) lights_on_surfaces: bool,
+    /// Whether the light loop casts shadows: the stage set's, set where a set is chosen
+    /// for the view (`shade::stages::staged`); `true` for a view of a scene (the compiled
+    /// set then decides alone). A build with one compiled set (cargo feature `kernels`
+    /// off) draws every scene with it and asks this instead.
+    pub(crate) shadows: bool,
 }
 
 /// How close to a surface a light counts as lying on it ([`crate::Shape::shadows`]): the
@@ -289,6 +294,7 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
             epsilon: self.epsilon,
             rules: self.rules,
             lights_on_surfaces: true,
+            shadows: true,
         }
     }
 

@@ -188,7 +188,7 @@ fn trace<S: Scalar, T: Stages>(
                 hit,
                 normal: n,
                 specular: false,
-                stages: LightStages::of::<T>(),
+                stages: LightStages::of::<T, S>(scene),
             };
             if let Some((point, moved)) = light_with::<S, Course>(at, &mut own, counters) {
                 (from, normal) = (point, Some(moved));

@@ -133,7 +133,7 @@ fn own_color<S: Scalar, T: Stages>(
             hit: *hit,
             normal: facing,
             specular: false,
-            stages: LightStages::of::<T>(),
+            stages: LightStages::of::<T, S>(scene),
         };
         // The crate's hits never move.
         let _ = light_with::<S, Fixray>(at, &mut color, counters);

@@ -252,6 +252,11 @@ fn projected<S: Scalar>(
     let Beam::Projector(i) = light.beam else {
         return Some(None);
     };
+    // Without the `textures` feature no scene has a projector (the parser refuses them):
+    // the texel lookup is not linked.
+    if !cfg!(feature = "textures") {
+        return None;
+    }
     count(&mut counters.texel_lookups);
     let slide = scene.projectors.get(usize::from(i))?;
     let plane = slide.frame.plane();

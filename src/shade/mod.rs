@@ -29,7 +29,7 @@ use crate::{
 };
 use color::to_pixel;
 use rules::{Tracer, with_rules};
-use stages::{Stages, shading_for, with_stages};
+use stages::{Stages, shading_for, staged, with_stages};
 
 pub(crate) use fixray::{occluded_among, occludes_segment, shade as shade_with};
 pub(crate) use light::{channel_max, diffuse_falloff};
@@ -184,14 +184,20 @@ pub(crate) fn surface<'a, S: Scalar>(
     let object = scene.objects.get(index)?;
     let material = material_at(object, point, scene.rules(), counters);
     let material = scene.materials.get(usize::from(material))?;
-    Some(if let Shape::Textured(slide) = &object.shape {
-        (
-            object,
-            texture::textured(material, texture::texel(scene, slide, point)),
-        )
-    } else {
-        (object, *material)
-    })
+    // Without the `textures` feature no scene has a textured plane (the parser refuses
+    // them): the texel lookup is not linked.
+    Some(
+        if cfg!(feature = "textures")
+            && let Shape::Textured(slide) = &object.shape
+        {
+            (
+                object,
+                texture::textured(material, texture::texel(scene, slide, point)),
+            )
+        } else {
+            (object, *material)
+        },
+    )
 }
 
 /// The colour of a hit on `objects[index]`, lit by the scene's lights, in channel units
@@ -203,11 +209,13 @@ pub fn shade<S: Scalar>(
     index: usize,
     hit: &Hit<S>,
 ) -> Color<S> {
-    let scene = &scene.view();
+    let scene = scene.view();
+    let shading = shading_for(&scene.plan());
+    let scene = &staged(scene, shading);
     let counters = &mut Counters::default();
     let ray = &Incoming::from(ray);
     with_stages!(
-        shading_for(&scene.plan()),
+        shading,
         fixray::shade::<S>(scene, ray, index, hit, counters)
     )
 }
@@ -244,12 +252,11 @@ fn trace_pixel_by<S: Scalar, R: Tracer, T: Stages>(
 
 /// Traces one ray: its nearest hit and colour, with the stages the scene's plan needs.
 pub fn trace<S: Scalar>(scene: &impl AsView<S>, ray: &Ray<S>) -> Traced<S> {
-    let scene = &scene.view();
+    let scene = scene.view();
+    let shading = shading_for(&scene.plan());
+    let scene = &staged(scene, shading);
     let counters = &mut Counters::default();
-    with_stages!(
-        shading_for(&scene.plan()),
-        trace_one::<S>(scene, ray, counters)
-    )
+    with_stages!(shading, trace_one::<S>(scene, ray, counters))
 }
 
 fn trace_one<S: Scalar, T: Stages>(
@@ -273,11 +280,12 @@ fn trace_by<S: Scalar, R: Tracer, T: Stages>(
 /// sees the background. It works out the scene's plan on every call: for many pixels,
 /// [`crate::Frame::trace_pixel`] does that once per frame.
 pub fn trace_pixel<S: Scalar>(scene: &impl AsView<S>, column: u16, row: u16) -> Traced<S> {
-    let scene = &scene.view();
-    trace_pixel_with(scene, shading_for(&scene.plan()), column, row)
+    let scene = scene.view();
+    let shading = shading_for(&scene.plan());
+    trace_pixel_with(&staged(scene, shading), shading, column, row)
 }
 
-/// [`trace_pixel`] with the stage set already chosen.
+/// [`trace_pixel`] with the stage set already chosen (`scene` [`staged`] for it).
 pub(crate) fn trace_pixel_with<S: Scalar>(
     scene: &SceneView<'_, S>,
     shading: stages::Shading,

@@ -1,6 +1,6 @@
 //! Stage sets: the shading loop is compiled once per set, and the plan picks one.
 
-use crate::Plan;
+use crate::{Plan, SceneView};
 
 /// A set of shading stages, fixed at compile time: the renderer is instantiated once per
 /// set, and a stage that is `false` is not in that loop at all (no per-pixel test). The
@@ -39,10 +39,12 @@ pub(crate) struct LightStages {
 }
 
 impl LightStages {
-    /// The lighting stages of the set `T`.
-    pub(crate) const fn of<T: Stages>() -> Self {
+    /// The lighting stages of the set `T` for `scene`: its shadows are also the chosen
+    /// set's ([`staged`]) where one compiled set draws every scene (elsewhere `T` is the
+    /// chosen set).
+    pub(crate) const fn of<T: Stages, S>(scene: &SceneView<'_, S>) -> Self {
         Self {
-            shadows: T::SHADOWS,
+            shadows: T::SHADOWS && (cfg!(feature = "kernels") || scene.shadows),
             cones: T::CONES,
             specular: T::SPECULAR,
             transparency: T::TRANSPARENCY,
@@ -92,7 +94,7 @@ impl Stages for Full {
     const TRANSPARENCY: bool = true;
 }
 
-/// Which compiled stage set a plan needs.
+/// Which stage set a plan needs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Shading {
     /// [`AmbientOnly`].
@@ -103,6 +105,39 @@ pub(crate) enum Shading {
     DiffuseShadows,
     /// [`Full`].
     Full,
+}
+
+impl Shading {
+    /// Whether the set casts shadows (what a view drawn with it is set to,
+    /// `SceneView::shadows`, where the set is chosen: [`staged`]).
+    pub(crate) const fn shadows(self) -> bool {
+        match self {
+            Shading::AmbientOnly => AmbientOnly::SHADOWS,
+            Shading::Diffuse => Diffuse::SHADOWS,
+            Shading::DiffuseShadows => DiffuseShadows::SHADOWS,
+            Shading::Full => Full::SHADOWS,
+        }
+    }
+
+    /// The set compiled for this one: itself, or [`Full`] in a build without the kernels
+    /// (cargo feature `kernels` off), which compiles one set for flash. [`Full`] then
+    /// draws what the chosen set draws: its other stages ask the scene (a glint, a cone,
+    /// a mirror, a translucent material per light or material, no lights at all), and
+    /// its shadows the view ([`staged`]).
+    pub(crate) const fn compiled(self) -> Self {
+        if cfg!(feature = "kernels") {
+            self
+        } else {
+            Shading::Full
+        }
+    }
+}
+
+/// `view` set up for drawing with the stage set `shading` (its shadows): where a set is
+/// chosen for a view, before anything is drawn with it.
+pub(crate) fn staged<S>(mut view: SceneView<'_, S>, shading: Shading) -> SceneView<'_, S> {
+    view.shadows = shading.shadows();
+    view
 }
 
 /// The smallest stage set that covers a plan.
@@ -119,11 +154,12 @@ pub(crate) fn shading_for(plan: &Plan) -> Shading {
 }
 
 /// `with_stages!(shading, f::<S, More…>(args))` calls `f::<S, Set, More…>(args)` for the
-/// stage set `Set` that `shading` names: the plan is looked at once per call, never per
-/// pixel. The one 4-way dispatch of the crate.
+/// stage set `Set` compiled for the one `shading` names ([`Shading::compiled`]): the plan
+/// is looked at once per call, never per pixel. The one 4-way dispatch of the crate. The
+/// view `f` draws must be [`staged`] for `shading`.
 macro_rules! with_stages {
     ($shading:expr, $($f:ident)::+::<$s:ty $(, $more:ty)*>($($arg:expr),*)) => {
-        match $shading {
+        match $crate::shade::stages::Shading::compiled($shading) {
             $crate::shade::stages::Shading::AmbientOnly => {
                 $($f)::+::<$s, $crate::shade::stages::AmbientOnly $(, $more)*>($($arg),*)
             }

@@ -25,53 +25,59 @@ impl<'a> Lexer<'a> {
         }
     }
 
-    fn advance(&mut self, c: char) {
-        // `c` is the first char of `rest`: the cut is on a char boundary (`get` keeps the
-        // impossible panic path, and its formatting code, out of the firmware).
-        self.rest = self.rest.get(c.len_utf8()..).unwrap_or("");
-        if c == '\n' {
+    /// Moves the position over byte `c` of the text: a new line at `\n`, a column at the
+    /// first byte of every other character (columns count characters).
+    fn step(&mut self, c: u8) {
+        if c == b'\n' {
             self.pos.line = self.pos.line.saturating_add(1);
             self.pos.column = 1;
-        } else {
+        } else if c & 0xC0 != 0x80 {
             self.pos.column = self.pos.column.saturating_add(1);
         }
     }
 
+    /// The next token. Byte by byte: every separator is ASCII, so a token starts and ends
+    /// on a character boundary (`get` keeps the impossible panic path, and its formatting
+    /// code, out of the firmware).
     pub(super) fn next_token(&mut self) -> Option<Token<'a>> {
+        let b = self.rest.as_bytes();
+        let mut i = 0;
         // Skip white space and comments.
         loop {
-            let c = self.rest.chars().next()?;
-            if c == '#' {
-                while let Some(c) = self.rest.chars().next() {
-                    if c == '\n' {
-                        break;
-                    }
-                    self.advance(c);
+            let &c = b.get(i)?;
+            if c == b'#' {
+                while let Some(&c) = b.get(i).filter(|&&c| c != b'\n') {
+                    self.step(c);
+                    i += 1;
                 }
-            } else if c.is_whitespace() {
-                self.advance(c);
+            } else if is_space(c) {
+                self.step(c);
+                i += 1;
             } else {
                 break;
             }
         }
-        let start = self.rest;
-        let pos = self.pos;
-        let first = start.chars().next()?;
-        self.advance(first);
-        if first != '{' && first != '}' {
-            while let Some(c) = self.rest.chars().next() {
-                if c.is_whitespace() || c == '{' || c == '}' || c == '#' {
-                    break;
-                }
-                self.advance(c);
+        let (start, pos) = (i, self.pos);
+        // A brace is a token of its own.
+        let brace = matches!(b.get(start), Some(b'{' | b'}'));
+        while let Some(&c) = b.get(i) {
+            if i > start && (brace || is_space(c) || matches!(c, b'{' | b'}' | b'#')) {
+                break;
             }
+            self.step(c);
+            i += 1;
         }
-        let len = start.len() - self.rest.len();
-        Some(Token {
-            text: start.get(..len).unwrap_or(""),
-            pos,
-        })
+        let text = self.rest.get(start..i).unwrap_or("");
+        self.rest = self.rest.get(i..).unwrap_or("");
+        Some(Token { text, pos })
     }
+}
+
+/// Whether `c` separates tokens: the white space of the course's C reader (`scanf`'s
+/// `%s`, `isspace` in the C locale), ASCII only. A no-break space or another Unicode space
+/// is part of a token there, and here. (Unicode's table would also cost a chip 350 bytes.)
+fn is_space(c: u8) -> bool {
+    matches!(c, b' ' | b'\t' | b'\n' | 0x0B | 0x0C | b'\r')
 }
 
 pub(super) fn quote(text: &str) -> Quoted {
@@ -145,6 +151,16 @@ mod tests {
             lx.next_token().map(|t| t.pos),
             Some(Pos { line: 2, column: 3 })
         );
+    }
+
+    /// The separators are C's `isspace` (the course's reader): the six ASCII ones, vertical
+    /// tab and form feed among them; a no-break space is part of a word, as in C.
+    #[test]
+    fn tokens_are_separated_by_the_c_white_space() {
+        let mut lx = Lexer::new("a\tb\x0Bc\x0Cd\re\u{a0}f g");
+        let toks: [&str; 6] = core::array::from_fn(|_| lx.next_token().map_or("", |t| t.text));
+        assert_eq!(toks, ["a", "b", "c", "d", "e\u{a0}f", "g"]);
+        assert!(lx.next_token().is_none());
     }
 
     #[test]

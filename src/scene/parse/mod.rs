@@ -67,6 +67,7 @@ struct Block<'a> {
 
 impl<'a> Block<'a> {
     /// The value of an attribute; `None` when it is optional and absent.
+    #[inline(never)]
     fn get(&self, attribute: &'static str) -> Option<&Value<'a>> {
         let i = self
             .entity
@@ -78,6 +79,7 @@ impl<'a> Block<'a> {
 
     /// The value of a required attribute (its presence was checked when the block was
     /// read; the error covers a mismatch between the tables and the code).
+    #[inline(never)]
     fn required(&self, attribute: &'static str) -> Result<&Value<'a>> {
         self.get(attribute).ok_or_else(|| {
             self.pos.error(SceneErrorKind::MissingAttribute {
@@ -124,6 +126,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
             .ok_or_else(|| end.error(SceneErrorKind::UnexpectedEnd(what)))
     }
 
+    #[inline(never)]
     fn number(&mut self) -> Result<Number<'a>> {
         let t = self.expect("a number")?;
         match Decimal::parse(t.text) {
@@ -197,6 +200,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                     v.name = Some(t);
                 }
                 Arity::Numbers(n) => {
+                    let n = usize::from(n);
                     for slot in v.nums.iter_mut().take(n) {
                         *slot = self.number()?;
                     }

@@ -32,7 +32,7 @@ pub(super) enum Arity {
     /// A file path: any token but a brace.
     Path,
     /// This many numbers.
-    Numbers(usize),
+    Numbers(u8),
     /// One number, or three under the course rules (`specular R G B`, the course's
     /// older files).
     OneOrThree,
@@ -41,31 +41,36 @@ pub(super) enum Arity {
 /// One attribute of an entity.
 pub(super) struct AttrSpec {
     pub(super) name: &'static str,
-    /// Another spelling real files use (`dimension` / `dimensions`).
-    pub(super) alias: Option<&'static str>,
     pub(super) arity: Arity,
     pub(super) required: bool,
+    /// Real files also spell it with a final `s` added or dropped (`dimension` /
+    /// `dimensions`). A flag, not the other spelling: the table is in a chip's flash, and
+    /// without a second string an entry takes 12 bytes instead of 28.
+    pub(super) either_number: bool,
 }
 
 impl AttrSpec {
     /// Whether `word` names this attribute.
     pub(super) fn is(&self, word: &str) -> bool {
-        self.name == word || self.alias == Some(word)
+        self.name == word
+            || self.either_number
+                && (word.strip_suffix('s') == Some(self.name)
+                    || self.name.strip_suffix('s') == Some(word))
     }
 }
 
-const fn numbers(name: &'static str, n: usize) -> AttrSpec {
+const fn numbers(name: &'static str, n: u8) -> AttrSpec {
     AttrSpec {
         name,
-        alias: None,
+        either_number: false,
         arity: Arity::Numbers(n),
         required: true,
     }
 }
-const fn optional(name: &'static str, n: usize) -> AttrSpec {
+const fn optional(name: &'static str, n: u8) -> AttrSpec {
     AttrSpec {
         name,
-        alias: None,
+        either_number: false,
         arity: Arity::Numbers(n),
         required: false,
     }
@@ -73,7 +78,7 @@ const fn optional(name: &'static str, n: usize) -> AttrSpec {
 const fn material(name: &'static str) -> AttrSpec {
     AttrSpec {
         name,
-        alias: None,
+        either_number: false,
         arity: Arity::Name,
         required: true,
     }
@@ -82,16 +87,16 @@ const fn material(name: &'static str) -> AttrSpec {
 const fn texname() -> AttrSpec {
     AttrSpec {
         name: "texname",
-        alias: None,
+        either_number: false,
         arity: Arity::Name,
         required: true,
     }
 }
-/// Two numbers that real files spell either way.
-const fn dimensions(name: &'static str, alias: &'static str) -> AttrSpec {
+/// Two numbers that real files spell either way (`dimension`, `dimensions`).
+const fn dimensions(name: &'static str) -> AttrSpec {
     AttrSpec {
         name,
-        alias: Some(alias),
+        either_number: true,
         arity: Arity::Numbers(2),
         required: true,
     }
@@ -123,7 +128,7 @@ pub(super) const SCHEMA: [EntitySpec; 14] = [
             optional("diffuse", 3),
             AttrSpec {
                 name: "specular",
-                alias: None,
+                either_number: false,
                 arity: Arity::OneOrThree,
                 required: false,
             },
@@ -175,7 +180,7 @@ pub(super) const SCHEMA: [EntitySpec; 14] = [
             numbers("point", 3),
             // Optional: without it the tiles lie on world x/z (the course's older form).
             optional("xdir", 3),
-            dimensions("dimension", "dimensions"),
+            dimensions("dimension"),
         ],
     },
     EntitySpec {
@@ -186,7 +191,7 @@ pub(super) const SCHEMA: [EntitySpec; 14] = [
             numbers("normal", 3),
             numbers("point", 3),
             numbers("xdir", 3),
-            dimensions("dimensions", "dimension"),
+            dimensions("dimensions"),
         ],
     },
     EntitySpec {
@@ -217,7 +222,7 @@ pub(super) const SCHEMA: [EntitySpec; 14] = [
         keyword: "texture",
         attributes: &[AttrSpec {
             name: "filename",
-            alias: None,
+            either_number: false,
             arity: Arity::Path,
             required: true,
         }],
@@ -230,7 +235,7 @@ pub(super) const SCHEMA: [EntitySpec; 14] = [
             numbers("normal", 3),
             numbers("point", 3),
             numbers("xdir", 3),
-            dimensions("dimensions", "dimension"),
+            dimensions("dimensions"),
             texname(),
             // 0 (fit) when absent, as the course's zeroed structures read it.
             optional("mode", 1),
@@ -245,7 +250,7 @@ pub(super) const SCHEMA: [EntitySpec; 14] = [
             numbers("point", 3),
             numbers("normal", 3),
             numbers("xdir", 3),
-            dimensions("dimensions", "dimension"),
+            dimensions("dimensions"),
             texname(),
             optional("mode", 1),
         ],
@@ -309,7 +314,8 @@ pub(super) const MAX_NUMBERS: usize = {
         let mut j = 0;
         while j < SCHEMA[i].attributes.len() {
             let n = match SCHEMA[i].attributes[j].arity {
-                Arity::Numbers(n) => n,
+                // Lossless (`usize::from` is not const).
+                Arity::Numbers(n) => n as usize,
                 Arity::OneOrThree => 3,
                 Arity::Name | Arity::Path => 0,
             };
