@@ -17,7 +17,7 @@ use embedded_graphics_core::primitives::Rectangle;
 
 use crate::kernel::flat::PlaneMode;
 use crate::kernel::{self, Drawing, KernelKind, RowSink};
-use crate::shade::stages::{Shading, Stages, shading_for, with_stages};
+use crate::shade::stages::{Shading, Stages, shading_for, stage, with_stages};
 use crate::stats::Counters;
 use crate::{AsView, Scalar, SceneView, Traced};
 
@@ -65,7 +65,7 @@ impl<'a, S: Scalar> Frame<'a, S> {
         let plan = scene.plan();
         scene.lights_on_surfaces = plan.lights_on_surfaces;
         let shading = shading_for(&plan);
-        scene.shadows = shading.shadows();
+        stage(&mut scene, shading);
         let drawing = with_stages!(shading, kernel::select::<S>(&scene, &plan));
         Self {
             scene,

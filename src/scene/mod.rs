@@ -236,7 +236,7 @@ pub struct SceneView<'a, S> {
     /// `lights_on_surfaces`), so that a scene without such a light pays nothing for them.
     pub(crate) lights_on_surfaces: bool,
     /// Whether the light loop casts shadows: the stage set's, set where a set is chosen
-    /// for the view (`shade::stages::staged`); `true` for a view of a scene (the compiled
+    /// for the view (`shade::stages::stage`); `true` for a view of a scene (the compiled
     /// set then decides alone). A build with one compiled set (cargo feature `kernels`
     /// off) draws every scene with it and asks this instead.
     pub(crate) shadows: bool,

@@ -40,7 +40,7 @@ pub(crate) struct LightStages {
 
 impl LightStages {
     /// The lighting stages of the set `T` for `scene`: its shadows are also the chosen
-    /// set's ([`staged`]) where one compiled set draws every scene (elsewhere `T` is the
+    /// set's ([`stage`]) where one compiled set draws every scene (elsewhere `T` is the
     /// chosen set).
     pub(crate) const fn of<T: Stages, S>(scene: &SceneView<'_, S>) -> Self {
         Self {
@@ -109,8 +109,8 @@ pub(crate) enum Shading {
 
 impl Shading {
     /// Whether the set casts shadows (what a view drawn with it is set to,
-    /// `SceneView::shadows`, where the set is chosen: [`staged`]).
-    pub(crate) const fn shadows(self) -> bool {
+    /// `SceneView::shadows`, by [`stage`]).
+    const fn shadows(self) -> bool {
         match self {
             Shading::AmbientOnly => AmbientOnly::SHADOWS,
             Shading::Diffuse => Diffuse::SHADOWS,
@@ -123,7 +123,7 @@ impl Shading {
     /// (cargo feature `kernels` off), which compiles one set for flash. [`Full`] then
     /// draws what the chosen set draws: its other stages ask the scene (a glint, a cone,
     /// a mirror, a translucent material per light or material, no lights at all), and
-    /// its shadows the view ([`staged`]).
+    /// its shadows the view ([`stage`]).
     pub(crate) const fn compiled(self) -> Self {
         if cfg!(feature = "kernels") {
             self
@@ -133,11 +133,10 @@ impl Shading {
     }
 }
 
-/// `view` set up for drawing with the stage set `shading` (its shadows): where a set is
+/// Sets `view` up for drawing with the stage set `shading` (its shadows): where a set is
 /// chosen for a view, before anything is drawn with it.
-pub(crate) fn staged<S>(mut view: SceneView<'_, S>, shading: Shading) -> SceneView<'_, S> {
+pub(crate) fn stage<S>(view: &mut SceneView<'_, S>, shading: Shading) {
     view.shadows = shading.shadows();
-    view
 }
 
 /// The smallest stage set that covers a plan.
@@ -156,7 +155,7 @@ pub(crate) fn shading_for(plan: &Plan) -> Shading {
 /// `with_stages!(shading, f::<S, More…>(args))` calls `f::<S, Set, More…>(args)` for the
 /// stage set `Set` compiled for the one `shading` names ([`Shading::compiled`]): the plan
 /// is looked at once per call, never per pixel. The one 4-way dispatch of the crate. The
-/// view `f` draws must be [`staged`] for `shading`.
+/// view `f` draws must be set up for `shading` ([`stage`]).
 macro_rules! with_stages {
     ($shading:expr, $($f:ident)::+::<$s:ty $(, $more:ty)*>($($arg:expr),*)) => {
         match $crate::shade::stages::Shading::compiled($shading) {
