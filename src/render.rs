@@ -79,7 +79,8 @@ impl<'a, S: Scalar> Frame<'a, S> {
     /// renderer's only choice of kernel): the flat kernel for pure geometry of infinite
     /// planes, the fast kernel for other scenes under the crate's rules, the reference
     /// path for the course's rules (and where a fast kernel's per-frame quantity does
-    /// not fit the format).
+    /// not fit the format). Always the reference path in a build without the cargo
+    /// feature `kernels` (on by default).
     ///
     /// ```
     /// use fixray::{Frame, KernelKind, Scene, I16F16};

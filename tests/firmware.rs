@@ -251,7 +251,7 @@ fn reference_hash<S: Scalar>(scene: &Scene<S>) -> u32 {
     hash.value()
 }
 
-/// Every effect of the crate's rules without the fast kernels (issue 25; cargo feature
+/// Every effect of the crate's rules without the kernels (issue 25; cargo feature
 /// `kernels` off, the firmware that fits a 64 KB chip: its flash is asserted in
 /// `absent_effects_cost_nothing_on_the_chip`): the M0 I16F16 firmware with lighting,
 /// spheres and reflection draws every shipped scene of the crate's rules (the boing

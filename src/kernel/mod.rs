@@ -38,7 +38,7 @@ pub(crate) use reference::scanline;
 
 /// Whether this build has the kernels (cargo feature `kernels`). Without them every frame
 /// is drawn by the reference path, the definition (the kernels draw it within their
-/// stated budgets, `tests/fast.rs`), at 1.5 to 30 times the instructions, and none of
+/// stated budgets, `tests/fast.rs`), at 1.7 to 36 times the instructions, and none of
 /// their code is linked: every effect of the crate's rules on a 64 KB chip.
 const KERNELS: bool = cfg!(feature = "kernels");
 
@@ -57,7 +57,8 @@ pub(crate) enum Kernel<S: Scalar> {
 
 /// Which primary-ray kernel draws a frame or a scanline ([`crate::Frame::kernel`],
 /// [`crate::Frame::row_kernel`]): the renderer picks the cheapest that draws the scene's
-/// definition, once per frame.
+/// definition, once per frame; without the cargo feature `kernels` (on by default) it is
+/// always [`KernelKind::Reference`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum KernelKind {
     /// Pure geometry (infinite planes, ambient colours only): no division per pixel

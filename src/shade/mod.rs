@@ -184,8 +184,9 @@ pub(crate) fn surface<'a, S: Scalar>(
     let object = scene.objects.get(index)?;
     let material = material_at(object, point, scene.rules(), counters);
     let material = scene.materials.get(usize::from(material))?;
-    // Without the `textures` feature no scene has a textured plane (the parser refuses
-    // them): the texel lookup is not linked.
+    // Without the `textures` feature the texel lookup is not linked: a textured plane
+    // (only a scene built in code can have one then: the parser refuses them) shows its
+    // material as it is.
     Some(
         if cfg!(feature = "textures")
             && let Shape::Textured(slide) = &object.shape

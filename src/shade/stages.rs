@@ -5,7 +5,10 @@ use crate::{Plan, SceneView};
 /// A set of shading stages, fixed at compile time: the renderer is instantiated once per
 /// set, and a stage that is `false` is not in that loop at all (no per-pixel test). The
 /// plan of a scene picks the set (`shading_for`). Each stage is also compiled out of
-/// every set when its cargo feature (`lighting`, `reflection`) is off.
+/// every set when its cargo feature (`lighting`, `reflection`) is off. Without the cargo
+/// feature `kernels` one set, [`Full`], is compiled and draws every scene
+/// ([`Shading::compiled`]): its stages then ask the scene, per light or material, and
+/// the view for its shadows ([`stage`]).
 pub trait Stages {
     /// Diffuse lighting.
     const LIGHTING: bool;
@@ -40,11 +43,11 @@ pub(crate) struct LightStages {
 
 impl LightStages {
     /// The lighting stages of the set `T` for `scene`: its shadows are also the chosen
-    /// set's ([`stage`]) where one compiled set draws every scene (elsewhere `T` is the
-    /// chosen set).
+    /// set's ([`stage`]; the same as `T`'s where `T` is the chosen set, and what one
+    /// compiled set drawing every scene needs).
     pub(crate) const fn of<T: Stages, S>(scene: &SceneView<'_, S>) -> Self {
         Self {
-            shadows: T::SHADOWS && (cfg!(feature = "kernels") || scene.shadows),
+            shadows: T::SHADOWS && scene.shadows,
             cones: T::CONES,
             specular: T::SPECULAR,
             transparency: T::TRANSPARENCY,
@@ -175,3 +178,57 @@ macro_rules! with_stages {
     };
 }
 pub(crate) use with_stages;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shade::trace_pixel_ray;
+    use crate::stats::Counters;
+    use crate::{Color, I16F16, Scene};
+
+    /// Every pixel of `view` traced on the reference path with the set `T`, and what was
+    /// counted.
+    fn traced<T: Stages>(view: &SceneView<'_, I16F16>) -> (Vec<Color<I16F16>>, Counters) {
+        let mut counters = Counters::default();
+        let mut pixels = Vec::new();
+        for row in 0..view.camera.height {
+            for column in 0..view.camera.width {
+                let pixel = view
+                    .camera
+                    .screen_y(row)
+                    .and_then(|y| view.camera.pixel_ray_at(column, y))
+                    .expect("the ray forms");
+                pixels.push(trace_pixel_ray::<I16F16, T>(view, &pixel, &mut counters).color);
+            }
+        }
+        (pixels, counters)
+    }
+
+    /// One compiled set draws what the chosen one draws (a build without the `kernels`
+    /// feature draws every scene with `Full`): a plane under a light (the `Diffuse` set:
+    /// a lone plane casts no shadow) traced by `Full` on a view set up for `Diffuse` gives
+    /// every pixel that `Diffuse` gives and casts no shadow; set up for `Full`, it casts
+    /// them (counted with the `stats` feature, on in the tests).
+    #[test]
+    fn full_on_a_view_set_up_for_another_set_draws_that_set() {
+        let text = "rules fixray\n\
+            camera c { pixeldim 16 12 worlddim 8 6 viewpoint 4 3 6 }\n\
+            material m { ambient 0.1 0.1 0.1 diffuse 0.8 0.7 0.6 }\n\
+            light l { location 4 5 -3 emissivity 6 6 6 }\n\
+            plane floor { material m normal 0 1 0 point 0 0 0 }\n";
+        let scene = Scene::<I16F16>::parse(text).unwrap();
+        let mut view = scene.view();
+        let shading = shading_for(&view.plan());
+        assert_eq!(shading, Shading::Diffuse);
+        stage(&mut view, shading);
+        let (diffuse, _) = traced::<Diffuse>(&view);
+        let (full, counted) = traced::<Full>(&view);
+        assert_eq!(full, diffuse);
+        assert!(counted.diffuse > 0, "{counted:?}");
+        assert_eq!(counted.shadow_rays, 0, "{counted:?}");
+        stage(&mut view, Shading::Full);
+        let (full, counted) = traced::<Full>(&view);
+        assert_eq!(full, diffuse);
+        assert!(counted.shadow_rays > 0, "{counted:?}");
+    }
+}

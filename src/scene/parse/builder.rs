@@ -18,6 +18,7 @@ use crate::{
 };
 
 impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '_, S, O, M, L> {
+    // Out of line: one copy, not one per call (flash; issue 25).
     #[inline(never)]
     pub(super) fn entity(&mut self, b: &Block<'a>) -> Result<()> {
         match b.entity {
@@ -340,6 +341,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
         self.push(b, Shape::Triangle(triangle), material)
     }
 
+    // Out of line: one copy, not one per call (flash; issue 25).
     #[inline(never)]
     fn push(&mut self, b: &Block<'a>, shape: Shape<S>, material: u8) -> Result<()> {
         self.scene
@@ -394,6 +396,7 @@ fn cone<S: Scalar>(b: &Block<'_>, location: Vec3<S>) -> Result<Cone<S>> {
 }
 
 /// Converts a number into the format, times `scale` (exact, in decimal).
+// Out of line: one copy, not one per call (flash; issue 25).
 #[inline(never)]
 fn convert<S: Scalar>(n: &Number<'_>, scale: u64) -> Result<S> {
     S::from_decimal(n.value.times(scale)).ok_or_else(|| {
@@ -404,6 +407,7 @@ fn convert<S: Scalar>(n: &Number<'_>, scale: u64) -> Result<S> {
     })
 }
 
+// Out of line: one copy, not one per call (flash; issue 25).
 #[inline(never)]
 fn vector<S: Scalar>(v: &Value<'_>) -> Result<Vec3<S>> {
     Ok(Vec3::new(
@@ -437,6 +441,7 @@ fn in_domain(
 }
 
 /// A number that must be > 0 and stay > 0 in the format.
+// Out of line: one copy, not one per call (flash; issue 25).
 #[inline(never)]
 fn positive<S: Scalar>(n: &Number<'_>, attribute: &'static str) -> Result<S> {
     in_domain(n, positive_value, attribute, "> 0")?;
@@ -499,6 +504,7 @@ pub(super) fn channel_colour<S: Scalar>(
     Ok(c)
 }
 
+// Out of line: one copy, not one per call (flash; issue 25).
 #[inline(never)]
 fn camera<S: Scalar>(b: &Block<'_>) -> Result<Camera<S>> {
     let pixeldim = b.required("pixeldim")?;
@@ -589,6 +595,7 @@ fn material_of<S: Scalar>(b: &Block<'_>, rules: Rules) -> Result<Material<S>> {
 
 /// A material's share in [0, 1] that only the rule set `own` has (`reflective`: the
 /// crate's, `transparency`: the course's); `None` when the block has none.
+// Out of line: one copy, not one per call (flash; issue 25).
 #[inline(never)]
 fn share<S: Scalar>(
     b: &Block<'_>,

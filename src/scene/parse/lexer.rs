@@ -44,7 +44,11 @@ impl<'a> Lexer<'a> {
         let mut i = 0;
         // Skip white space and comments.
         loop {
-            let &c = b.get(i)?;
+            let Some(&c) = b.get(i) else {
+                // At the end: nothing left to skip again (the position stays).
+                self.rest = "";
+                return None;
+            };
             if c == b'#' {
                 while let Some(&c) = b.get(i).filter(|&&c| c != b'\n') {
                     self.step(c);
@@ -161,6 +165,26 @@ mod tests {
         let toks: [&str; 6] = core::array::from_fn(|_| lx.next_token().map_or("", |t| t.text));
         assert_eq!(toks, ["a", "b", "c", "d", "e\u{a0}f", "g"]);
         assert!(lx.next_token().is_none());
+    }
+
+    /// Columns count characters, not bytes; the end of the text is the end for good.
+    #[test]
+    fn columns_count_characters_and_the_end_stays_put() {
+        let mut lx = Lexer::new("é x\na\u{a0}b c # note\n  ");
+        let toks: [(&str, u32, u32); 3] = core::array::from_fn(|_| {
+            lx.next_token()
+                .map_or(("", 0, 0), |t| (t.text, t.pos.line, t.pos.column))
+        });
+        assert_eq!(toks, [("é", 1, 1), ("x", 1, 3), ("a\u{a0}b", 2, 1)]);
+        assert_eq!(
+            lx.next_token().map(|t| (t.text, t.pos.column)),
+            Some(("c", 5))
+        );
+        assert!(lx.next_token().is_none());
+        let end = lx.pos;
+        assert_eq!(end, Pos { line: 3, column: 3 });
+        assert!(lx.next_token().is_none());
+        assert_eq!(lx.pos, end);
     }
 
     #[test]

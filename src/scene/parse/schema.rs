@@ -52,11 +52,13 @@ pub(super) struct AttrSpec {
 impl AttrSpec {
     /// Whether `word` names this attribute.
     pub(super) fn is(&self, word: &str) -> bool {
-        self.name == word
-            || self.either_number
-                && (word.strip_suffix('s') == Some(self.name)
-                    || self.name.strip_suffix('s') == Some(word))
+        self.name == word || self.either_number && stem(self.name) == stem(word)
     }
+}
+
+/// A word without its final `s`, if it has one.
+fn stem(word: &str) -> &str {
+    word.strip_suffix('s').unwrap_or(word)
 }
 
 const fn numbers(name: &'static str, n: u8) -> AttrSpec {
@@ -385,6 +387,10 @@ mod tests {
                 .filter(|a| a.is("dimension") && a.is("dimensions"))
                 .collect();
             assert_eq!(dims.len(), 1, "{}", entity.keyword());
+            // Only those two spellings.
+            for other in ["dimensionss", "dimensio", "s", "", "Dimension"] {
+                assert!(!dims[0].is(other), "{} {other}", entity.keyword());
+            }
         }
     }
 
