@@ -129,10 +129,8 @@ impl<S: Scalar> Drawing<S> {
 #[inline(never)]
 pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan) -> Drawing<S> {
     // The course rules divide every colour by the distance travelled and look through
-    // the window's corners: only the reference path draws them. The fast kernel draws
-    // every scene under the crate's rules (shading takes its unnormalised direction:
-    // `shade::Incoming`).
-    let fast = KERNELS && scene.rules() == Rules::Fixray;
+    // the window's corners: only the reference path draws them.
+    let fast = fast_draws(scene);
     // Pure geometry: only infinite planes, and stages that show ambient colours only.
     let flat = fast && !T::LIGHTING && !T::REFLECTION && plan.planes_only;
     let mut drawing = Drawing {
@@ -165,11 +163,17 @@ pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan
     drawing
 }
 
+/// Whether the fast kernel draws `scene`: every scene under the crate's rules (shading
+/// takes its unnormalised direction: `shade::Incoming`), in a build with the kernels.
+fn fast_draws<S: Scalar>(scene: &SceneView<'_, S>) -> bool {
+    KERNELS && scene.rules() == Rules::Fixray
+}
+
 /// The fast kernel for a frame of the crate's rules where [`select`] would pick a
 /// cheaper one (what the tests of the level-plane kernel compare with, bit for bit); the
 /// reference path where it cannot be formed.
 pub(crate) fn fast_only<S: Scalar>(scene: &SceneView<'_, S>) -> Drawing<S> {
-    let fast = KERNELS && scene.rules() == Rules::Fixray;
+    let fast = fast_draws(scene);
     let kernel = match fast.then(|| Primary::new(scene)).flatten() {
         Some(p) => Kernel::Fast(p),
         None => Kernel::Reference,

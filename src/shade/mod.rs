@@ -29,7 +29,7 @@ use crate::{
 };
 use color::to_pixel;
 use rules::{Tracer, with_rules};
-use stages::{Stages, shading_for, stage, with_stages};
+use stages::{Stages, planned, with_stages};
 
 pub(crate) use fixray::{occluded_among, occludes_segment, shade as shade_with};
 pub(crate) use light::{channel_max, diffuse_falloff};
@@ -210,9 +210,7 @@ pub fn shade<S: Scalar>(
     index: usize,
     hit: &Hit<S>,
 ) -> Color<S> {
-    let mut scene = scene.view();
-    let shading = shading_for(&scene.plan());
-    stage(&mut scene, shading);
+    let (scene, shading) = planned(scene);
     let scene = &scene;
     let counters = &mut Counters::default();
     let ray = &Incoming::from(ray);
@@ -254,9 +252,7 @@ fn trace_pixel_by<S: Scalar, R: Tracer, T: Stages>(
 
 /// Traces one ray: its nearest hit and colour, with the stages the scene's plan needs.
 pub fn trace<S: Scalar>(scene: &impl AsView<S>, ray: &Ray<S>) -> Traced<S> {
-    let mut scene = scene.view();
-    let shading = shading_for(&scene.plan());
-    stage(&mut scene, shading);
+    let (scene, shading) = planned(scene);
     let scene = &scene;
     let counters = &mut Counters::default();
     with_stages!(shading, trace_one::<S>(scene, ray, counters))
@@ -283,13 +279,12 @@ fn trace_by<S: Scalar, R: Tracer, T: Stages>(
 /// sees the background. It works out the scene's plan on every call: for many pixels,
 /// [`crate::Frame::trace_pixel`] does that once per frame.
 pub fn trace_pixel<S: Scalar>(scene: &impl AsView<S>, column: u16, row: u16) -> Traced<S> {
-    let mut scene = scene.view();
-    let shading = shading_for(&scene.plan());
-    stage(&mut scene, shading);
+    let (scene, shading) = planned(scene);
     trace_pixel_with(&scene, shading, column, row)
 }
 
-/// [`trace_pixel`] with the stage set already chosen (`scene` set up for it, [`stage`]).
+/// [`trace_pixel`] with the stage set already chosen (`scene` set up for it,
+/// [`stages::stage`]).
 pub(crate) fn trace_pixel_with<S: Scalar>(
     scene: &SceneView<'_, S>,
     shading: stages::Shading,

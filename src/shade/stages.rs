@@ -1,6 +1,6 @@
 //! Stage sets: the shading loop is compiled once per set, and the plan picks one.
 
-use crate::{Plan, SceneView};
+use crate::{AsView, Plan, Scalar, SceneView};
 
 /// A set of shading stages, fixed at compile time: the renderer is instantiated once per
 /// set, and a stage that is `false` is not in that loop at all (no per-pixel test). The
@@ -140,6 +140,15 @@ impl Shading {
 /// chosen for a view, before anything is drawn with it.
 pub(crate) fn stage<S>(view: &mut SceneView<'_, S>, shading: Shading) {
     view.shadows = shading.shadows();
+}
+
+/// A view of `scene` set up for the stage set its plan needs ([`stage`]), and that set:
+/// where a call that draws without a `Frame` starts (it works out the plan).
+pub(crate) fn planned<S: Scalar>(scene: &impl AsView<S>) -> (SceneView<'_, S>, Shading) {
+    let mut view = scene.view();
+    let shading = shading_for(&view.plan());
+    stage(&mut view, shading);
+    (view, shading)
 }
 
 /// The smallest stage set that covers a plan.
