@@ -982,55 +982,52 @@ impl<S: Scalar> Primary<S> {
         })
     }
 
-    /// The pixels after the row's current one (a resync column, just restarted, whose
-    /// nearest hit was `hit`) up to `last` and at most [`RESYNC_PIXELS`]` − 1` of them,
-    /// if one answer of [`Primary::nearest`] holds at every one of them: that block (the
-    /// column after it, and the term that wins throughout or [`NO_TERM`], the background
-    /// throughout). `None` where that is not certain.
+    /// The row's current pixel (a resync column, just restarted) and the pixels after it
+    /// up to `last`, at most [`RESYNC_PIXELS`] in all, if [`Primary::nearest`] answers
+    /// `winner` (an object's index, `None`: the background) at every one of them: that
+    /// block (the column after it, and the term that wins throughout or [`NO_TERM`]).
+    /// `None` where that is not certain. `winner` may be a guess (the last pixel's): the
+    /// checks below are `nearest`'s own tests at both ends, so a block is certified only
+    /// where it is that pixel's answer too.
     ///
     /// Why it holds: inside the block `D.x` steps by a constant, so every plane's unrounded
     /// `N·D` is linear in the column and its rounded `N·D` monotone. The block's last
     /// pixel is formed as the scanline would step to it (`advance_by`: the same steps, the
-    /// terms rounded once at the end) and its nearest plane found.
-    /// Both ends must agree on the winner. Every plane must keep one side of zero and stay
+    /// terms rounded once at the end). Every plane must keep one side of zero and stay
     /// at least the epsilon bound away from it at both ends (so that no pixel between
     /// takes the exact parallel test, and its acceptance, monotone, is the same
     /// throughout). The winner must beat every other accepted plane at both ends by a
     /// margin that the roundings of `N·D` cannot eat ([`Scalar::products_clearly_greater`]:
     /// the comparison with unrounded terms is linear, so it holds between the ends too).
     #[inline(never)]
-    fn certify_block(
-        &self,
-        scene: &SceneView<'_, S>,
-        a: &Row<S>,
-        hit: Option<&FastHit<S>>,
-        last: u16,
-    ) -> Option<Block> {
+    fn certify_block(&self, a: &Row<S>, winner: Option<usize>, last: u16) -> Option<Block> {
         let m = last.checked_sub(a.column)?.min(RESYNC_PIXELS - 1);
         if m == 0 || a.nd.len() != self.terms.len() {
             return None;
         }
         let mut e = a.clone();
         self.advance_by(&mut e, m)?;
-        let end = self.search(scene, &e).ok()?;
-        let winner = hit.map(|h| h.index);
-        if end.map(|(k, _, _)| usize::from(k.index)) != winner {
-            return None;
-        }
+        // No search at the block's end: the checks below are its tests there (every
+        // plane beyond the epsilon bound, so accepted by `ahead` alone; the winner
+        // accepted; every other accepted plane clearly farther, so that neither order
+        // of the tie rule lets it win), so they imply its answer.
         // Both ends (and so every pixel between: |D.x| is largest at an end) take the
         // row's epsilon bound.
         let bound = a.eps_l1;
         if a.dx_limit < a.dir.x.abs() || a.dx_limit < e.dir.x.abs() {
             return None;
         }
-        // A term's position is its object's index (every object is a term).
+        // A term's position is its object's index (every object is a term). The winner
+        // must be accepted (at the start; the loop below makes both ends agree): a guess
+        // may name a plane behind the eye, whose `|t'|` would win the comparisons.
         let w = match winner {
-            Some(i) => Some((
-                i,
-                self.terms.get(i)?.num.abs(),
-                *a.nd.get(i)?,
-                *e.nd.get(i)?,
-            )),
+            Some(i) => {
+                let (num, na) = (self.terms.get(i)?.num, *a.nd.get(i)?);
+                if !ahead(num, na) {
+                    return None;
+                }
+                Some((i, num.abs(), na, *e.nd.get(i)?))
+            }
             None => None,
         };
         for (k, (term, (&na, &ne))) in self.terms.iter().zip(a.nd.iter().zip(&e.nd)).enumerate() {
@@ -1070,22 +1067,20 @@ impl<S: Scalar> Primary<S> {
         })
     }
 
-    /// The next pixels of a scanline at a resync column (just restarted there, its
-    /// nearest hit `hit`) as a certified block ([`Primary::certify_block`]) into `block`
-    /// where they can be one; `last`: the scanline's last column. Inside the block
-    /// [`Primary::block_hit`] answers for [`Primary::nearest`].
+    /// The pixels of a scanline from a resync column (just restarted there) as a
+    /// certified block of `winner` ([`Primary::certify_block`]) into `block` where they
+    /// can be one (else an empty block); `last`: the scanline's last column. Inside the
+    /// block [`Primary::block_hit`] answers for [`Primary::nearest`].
     #[inline(never)]
     pub(crate) fn start_block(
         &self,
-        scene: &SceneView<'_, S>,
         row: &Row<S>,
-        hit: Option<&FastHit<S>>,
+        winner: Option<usize>,
         last: u16,
         block: &mut Block,
     ) {
         *block = if self.blocks {
-            self.certify_block(scene, row, hit, last)
-                .unwrap_or_default()
+            self.certify_block(row, winner, last).unwrap_or_default()
         } else {
             Block::default()
         };

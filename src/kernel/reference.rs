@@ -28,9 +28,11 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
     let mut state: Option<Row<S>> = None;
     // The planes' sides at the current pixel's hit (see `Primary::sides_at`).
     let mut at_hit = heapless::Vec::new();
-    // A block of pixels after a resync column whose winner is certified
-    // (`Primary::start_block`, `Primary::block_hit`).
+    // A block of pixels from a resync column whose winner is certified
+    // (`Primary::start_block`, `Primary::block_hit`), and the last pixel's winner (the
+    // guess a resync column certifies first: `None` where there is none).
     let mut block = fast::Block::default();
+    let mut guess: Option<Option<usize>> = None;
     let last = columns.end.saturating_sub(1);
     columns.map(move |column| {
         count(&mut counters.primary_rays);
@@ -68,10 +70,27 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
             if column % fast::RESYNC_PIXELS != 0 {
                 return p.nearest(scene, r).ok();
             }
+            // A resync column: the last pixel's winner certified first (no search where
+            // it holds), else the searched one (unless that was the guess).
+            if let Some(w) = guess {
+                p.start_block(r, w, last, &mut block);
+                if let Some(hit) = p.block_hit(scene, r, &block) {
+                    return hit.ok();
+                }
+            }
             let hit = p.nearest(scene, r).ok()?;
-            p.start_block(scene, r, hit.as_ref(), last, &mut block);
+            let winner = hit.as_ref().map(|h| h.index);
+            if guess != Some(winner) {
+                p.start_block(r, winner, last, &mut block);
+            }
             Some(hit)
         });
+        if fast::blocks_for::<S>() {
+            guess = match &found {
+                Some(h) => Some(h.as_ref().map(|h| h.index)),
+                None => None,
+            };
+        }
         let color = match found {
             Some(Some(h)) => match state.as_ref() {
                 Some(r) => fast_color::<S, T>(scene, primary, r, &h, &mut at_hit, counters),
@@ -218,6 +237,7 @@ mod tests {
     fn blocks_agree<S: Scalar>(scenes: usize) -> usize {
         let mut next = crate::num::xorshift(0x5EED_2026_1205);
         let mut blocked = 0;
+        let mut guessed = 0;
         let mut parsed = 0;
         for case in 0..scenes {
             let text = random_scene(&mut next);
@@ -268,7 +288,21 @@ mod tests {
                             if column % fast::RESYNC_PIXELS == 0
                                 && let Some(h) = &hit
                             {
-                                p.start_block(&view, r, h.as_ref(), w - 1, &mut block);
+                                // Any guess of the winner (as `scanline` guesses the last
+                                // pixel's) is certified only where it is the answer.
+                                let n = view.objects.len();
+                                let mut certified = 0;
+                                for guess in (0..n).map(Some).chain([None]) {
+                                    let mut trial = fast::Block::default();
+                                    p.start_block(r, guess, w - 1, &mut trial);
+                                    if let Some(g) = p.block_hit(&view, r, &trial) {
+                                        certified += 1;
+                                        assert_eq!(g.ok(), want, "{} case {case}", S::NAME);
+                                    }
+                                }
+                                assert!(certified <= 1, "{} case {case}", S::NAME);
+                                guessed += certified;
+                                p.start_block(r, h.as_ref().map(|h| h.index), w - 1, &mut block);
                             }
                             hit
                         }
@@ -306,6 +340,12 @@ mod tests {
         assert!(
             parsed * 10 >= scenes * 9,
             "{parsed} of {scenes} scenes parsed"
+        );
+        // Guesses were certified (the right ones) wherever blocks were.
+        assert_eq!(
+            guessed > 0,
+            blocked > 0,
+            "{guessed} guesses, {blocked} pixels"
         );
         blocked
     }
