@@ -531,7 +531,8 @@ impl<S: Scalar> Primary<S> {
             yz: S::acc_mul(S::ZERO, S::ZERO)?,
             dir: Vec3::new(S::ZERO, S::ZERO, S::ZERO),
             column,
-            row,
+            // No row yet (rows are below `u16::MAX`): `restart` forms its `D.y`.
+            row: u16::MAX,
             eps_l1: S::ZERO,
             dx_limit: S::ZERO,
         };
@@ -558,7 +559,13 @@ impl<S: Scalar> Primary<S> {
             r.nd.clear();
             r.acc.clear();
         }
-        self.restart_dir(scene, row, column, r)?;
+        // The same scanline keeps its `D.y` (`restart_dir_in_row` sets `D` and the row
+        // together): no division for it.
+        if r.row == row {
+            self.restart_dir_in_row(scene, row, r.dir.y, column, r)?;
+        } else {
+            self.restart_dir(scene, row, column, r)?;
+        }
         if self.spheres && !keep {
             r.yz = S::acc_add(S::acc_mul(r.dir.y, r.dir.y)?, S::acc_mul(r.dir.z, r.dir.z)?)?;
         }
@@ -751,6 +758,13 @@ impl<S: Scalar> Primary<S> {
     /// The row's current unnormalised direction `D`.
     pub(crate) fn dir(row: &Row<S>) -> Vec3<S> {
         row.dir
+    }
+
+    /// The row's `N·D` of object `index` at its current pixel (its term's position is
+    /// its index: every object is a term).
+    #[inline(always)]
+    pub(crate) fn nd(row: &Row<S>, index: usize) -> Option<S> {
+        row.nd.get(index).copied()
     }
 
     /// Moves a scanline to its next pixel: `D.x` grows by the pixel step (rounded once

@@ -6,11 +6,15 @@
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::fast::{self, Primary, Row};
-use crate::shade::color::to_pixel;
+use crate::geometry::surface_tolerance;
+use crate::shade::color::{add_sat, term, to_pixel};
 use crate::shade::stages::Stages;
-use crate::shade::{Incoming, PlaneSides, shade_with, trace_pixel_ray};
+use crate::shade::{
+    Incoming, PlaneSides, channel_max, diffuse_falloff, occludes_segment, shade_with, surface,
+    trace_pixel_ray,
+};
 use crate::stats::{Counters, count};
-use crate::{Color, Hit, Scalar, SceneView};
+use crate::{Beam, Color, Hit, Scalar, SceneView, Shape};
 
 /// The pixels of columns `columns` of scanline `row` traced with the stage set `T`, one
 /// per step, as the caller (a `fill_contiguous` or a line buffer) pulls them. With a
@@ -86,10 +90,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
             Some(hit)
         });
         if fast::blocks_for::<S>() {
-            guess = match &found {
-                Some(h) => Some(h.as_ref().map(|h| h.index)),
-                None => None,
-            };
+            guess = found.as_ref().map(|h| h.as_ref().map(|h| h.index));
         }
         let color = match found {
             Some(Some(h)) => match state.as_ref() {
@@ -108,6 +109,27 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
 /// need no more of it than its side), shadow segments taking the planes' sides from the
 /// kernel's terms (`at_hit`: a buffer the scanline keeps).
 pub(crate) fn fast_color<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    primary: Option<&Primary<S>>,
+    r: &Row<S>,
+    h: &fast::FastHit<S>,
+    at_hit: &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+    counters: &mut Counters,
+) -> Color<S> {
+    // (The test is the function's own, repeated where the call is made: no call at all
+    // for the other stage sets and formats.)
+    if lit_planes::<S, T>()
+        && let Some(p) = primary
+        && let Some(color) = lit_plane_color::<S, T>(scene, p, r, h, at_hit, counters)
+    {
+        return color;
+    }
+    general_color::<S, T>(scene, primary, r, h, at_hit, counters)
+}
+
+/// [`fast_color`] by the general shading (`shade_with`).
+#[inline(always)]
+fn general_color<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     primary: Option<&Primary<S>>,
     r: &Row<S>,
@@ -137,6 +159,110 @@ pub(crate) fn fast_color<S: Scalar, T: Stages>(
         point: h.point,
     };
     shade_with::<S, T>(scene, &incoming, h.index, &hit, counters)
+}
+
+/// Whether [`lit_plane_color`] draws the fast kernel's plane hits with the stage set `T`
+/// in format `S`: diffuse lights (with or without shadows: no glint, cone, mirror or
+/// translucence), in a format whose products are exact (the hit's facing normal is then
+/// read off the row's `N·D`, which is the shading's `D·N` itself).
+const fn lit_planes<S: Scalar, T: Stages>() -> bool {
+    S::EXACT_PRODUCTS
+        && T::LIGHTING
+        && !T::SPECULAR
+        && !T::CONES
+        && !T::REFLECTION
+        && !T::TRANSPARENCY
+}
+
+/// The colour of the fast kernel's hit `h` on a plain or tiled plane under a stage set
+/// of [`lit_planes`] (`None` for any other): the crate's shading of it (`own_color`, `light_with` and
+/// `segment_terms` of `shade/`) flattened to what such a hit needs: the same operations
+/// in the same order, so the same colour bit for bit (tested against [`fast_color`]'s
+/// general shading), without building the general case's light loop state. The normal
+/// facing the ray is the plane's, turned by the sign of the row's `N·D`. `None` where the
+/// pixel needs the general shading: another shape, a light on a surface, a projector,
+/// a light whose `|L|²` does not fit or is not positive (the general path's ray terms;
+/// the statistics then count the earlier lights twice, as the level-plane kernel's do),
+/// or a segments' tolerance that does not fit.
+#[inline(never)]
+fn lit_plane_color<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    r: &Row<S>,
+    h: &fast::FastHit<S>,
+    at_hit: &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+    counters: &mut Counters,
+) -> Option<Color<S>> {
+    if !lit_planes::<S, T>() {
+        return None;
+    }
+    let object = scene.objects.get(h.index)?;
+    if !matches!(object.shape, Shape::Plane(_) | Shape::Tiled { .. })
+        || scene.lights_on_surfaces
+        || scene
+            .lights
+            .iter()
+            .any(|l| matches!(l.beam, Beam::Projector(_)))
+    {
+        return None;
+    }
+    let normal = object.shape.plane()?.normal();
+    // The segments' tolerance (`Fixray::segment_tolerance`), before anything is counted.
+    let shadows = T::SHADOWS && scene.shadows;
+    let tol = if shadows {
+        let m = scene.camera.viewpoint.max_abs().max(h.point.max_abs());
+        surface_tolerance(h.t_bound, m)?
+    } else {
+        S::ZERO
+    };
+    let Some((_, material)) = surface(scene, h.index, h.point, counters) else {
+        return Some([S::ZERO; 3]);
+    };
+    let mut color = material.ambient;
+    if scene.lights.is_empty() || material.diffuse == [S::ZERO; 3] {
+        return Some(color);
+    }
+    // A term's position is its object's index (every object is a term): the row's `N·D`
+    // of the plane is the shading's `D·N` (the exact products' sum, rounded once).
+    let facing = if Primary::nd(r, h.index)? > S::ZERO {
+        normal.checked_neg().unwrap_or(normal)
+    } else {
+        normal
+    };
+    let sides = match T::SHADOWS && !p.at_lights().is_empty() {
+        true => p.sides_at(r, h.param, at_hit).map(|bits| PlaneSides {
+            at_hit,
+            at_lights: p.at_lights(),
+            cones: p.cones(),
+            bits,
+        }),
+        false => None,
+    };
+    let k = channel_max::<S>();
+    for (j, light) in scene.lights.iter().enumerate() {
+        let Some(to_light) = light.location.diff(h.point) else {
+            continue;
+        };
+        let ll = to_light.dot(to_light).filter(|ll| *ll > S::ZERO)?;
+        let Some(nl) = to_light.dot_axis(facing).filter(|c| *c > S::ZERO) else {
+            continue;
+        };
+        if shadows {
+            count(&mut counters.shadow_rays);
+            let sides = sides.map(|s| (s, j));
+            if occludes_segment(scene, sides, h.point, to_light, ll, tol, light.location) {
+                continue;
+            }
+        }
+        let falloff = diffuse_falloff(nl, nl.checked_mul(k), ll);
+        count(&mut counters.diffuse);
+        for ((c, diffuse), emissivity) in
+            color.iter_mut().zip(material.diffuse).zip(light.emissivity)
+        {
+            *c = add_sat(*c, term([emissivity, diffuse, falloff]));
+        }
+    }
+    Some(color)
 }
 
 /// The colour of pixel `column` of the scanline at screen `y` on the reference path (the
@@ -348,6 +474,79 @@ mod tests {
             "{guessed} guesses, {blocked} pixels"
         );
         blocked
+    }
+
+    /// Every fast-kernel hit of `scenes` random plane scenes (and the default scene) in
+    /// format `S`, lit by the stage set `T`: [`lit_plane_color`]'s colour is the general
+    /// shading's ([`general_color`]) bit for bit wherever it draws one. Returns how many
+    /// hits it drew.
+    fn lit_planes_agree<S: Scalar, T: Stages>(scenes: usize) -> usize {
+        let mut next = crate::num::xorshift(0x5EED_2026_1206);
+        let mut drawn = 0;
+        let texts = (0..scenes)
+            .map(|_| random_scene(&mut next))
+            .chain([String::from(include_str!("../../scenes/default.scene"))]);
+        for (case, text) in texts.enumerate() {
+            let Ok(scene) = Scene::<S>::parse(&text) else {
+                continue;
+            };
+            // As a frame sets its view up (`render.rs`): a light on a surface is the
+            // plan's to find.
+            let mut view = scene.view();
+            view.lights_on_surfaces = view.plan().lights_on_surfaces;
+            let Some(p) = Primary::new(&view) else {
+                continue;
+            };
+            let mut at_hit = heapless::Vec::new();
+            for row in 0..view.camera.height {
+                let mut state: Option<Row<S>> = None;
+                for column in 0..view.camera.width {
+                    let stepped = match state.as_mut() {
+                        Some(r) if column % fast::RESYNC_PIXELS != 0 => p.advance(r).is_some(),
+                        _ => {
+                            state = p.row(&view, row, column);
+                            state.is_some()
+                        }
+                    };
+                    let Some(r) = state.as_ref().filter(|_| stepped) else {
+                        state = None;
+                        continue;
+                    };
+                    let Ok(Some(h)) = p.nearest(&view, r) else {
+                        continue;
+                    };
+                    let (mut c1, mut c2) = (Counters::default(), Counters::default());
+                    let lit = lit_plane_color::<S, T>(&view, &p, r, &h, &mut at_hit, &mut c1);
+                    let general =
+                        general_color::<S, T>(&view, Some(&p), r, &h, &mut at_hit, &mut c2);
+                    if let Some(lit) = lit {
+                        drawn += 1;
+                        assert_eq!(
+                            lit,
+                            general,
+                            "{} case {case} ({row}, {column}):\n{text}",
+                            S::NAME
+                        );
+                    }
+                }
+            }
+        }
+        drawn
+    }
+
+    /// The fast kernel's flattened plane shading (`lit_plane_color`) draws the general
+    /// shading's colours, with shadows and without, in the formats that take it.
+    #[test]
+    fn lit_planes_draw_the_general_shading() {
+        use crate::shade::stages::Diffuse;
+        // (Tens of thousands of hits each.)
+        assert!(lit_planes_agree::<fixed::types::I16F16, DiffuseShadows>(60) > 40_000);
+        assert!(lit_planes_agree::<fixed::types::I16F16, Diffuse>(30) > 25_000);
+        assert!(lit_planes_agree::<fixed::types::I20F12, DiffuseShadows>(30) > 25_000);
+        assert!(lit_planes_agree::<fixed::types::I32F32, DiffuseShadows>(20) > 20_000);
+        assert!(lit_planes_agree::<crate::num::variants::I16F16Recip, DiffuseShadows>(20) > 20_000);
+        // Not in the float formats (the facing normal would not be the row's `N·D`).
+        assert_eq!(lit_planes_agree::<f32, DiffuseShadows>(5), 0);
     }
 
     /// The certified blocks (`Primary::certify_block`) answer what a search of every pixel
