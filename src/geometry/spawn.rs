@@ -39,6 +39,19 @@ pub(crate) fn surface_tolerance<S: Scalar>(t: S, m: S) -> Option<S> {
         .checked_mul(m.ulp())
 }
 
+/// Whether [`surface_tolerance`]`(t, m)` fits the format, without forming it, in the
+/// fixed formats (`Scalar::EXACT_SUMS`; `false` in the others: form it), whose `ulp` is
+/// `DELTA` at every magnitude: the tolerance is then `(t + c)·DELTA`, no larger than
+/// `t + c` for `t ≥ 0`, and fits wherever that sum does.
+#[inline]
+pub(crate) fn surface_tolerance_fits<S: Scalar>(t: S) -> bool {
+    S::EXACT_SUMS
+        && t >= S::ZERO
+        && S::from_i32(RESIDUAL_ULPS + SPAWN_MARGIN_ULPS)
+            .and_then(|c| t.checked_add(c))
+            .is_some()
+}
+
 /// Moves `point` along the unit `normal`, to the side `dir` points to, by `bound` plus
 /// [`SPAWN_MARGIN_ULPS`] (at magnitude `m`): the base of a secondary ray that cannot
 /// meet the surface it leaves. A `dir` tangent to the surface keeps the point.

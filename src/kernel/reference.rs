@@ -6,12 +6,12 @@
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::fast::{self, Primary, Row};
-use crate::geometry::surface_tolerance;
+use crate::geometry::{surface_tolerance, surface_tolerance_fits};
 use crate::shade::color::{add_sat, term, to_pixel};
 use crate::shade::stages::Stages;
 use crate::shade::{
-    Incoming, PlaneSides, channel_max, diffuse_falloff, occludes_segment, shade_with, surface,
-    trace_pixel_ray,
+    Incoming, PlaneSides, channel_max, diffuse_falloff, occluded_among, occludes_segment,
+    shade_with, surface, trace_pixel_ray,
 };
 use crate::stats::{Counters, count};
 use crate::{Beam, Color, Hit, Scalar, SceneView, Shape};
@@ -207,14 +207,24 @@ fn lit_plane_color<S: Scalar, T: Stages>(
         return None;
     }
     let normal = object.shape.plane()?.normal();
-    // The segments' tolerance (`Fixray::segment_tolerance`), before anything is counted.
+    // The segments' tolerance (`Fixray::segment_tolerance`): formed where a segment test
+    // needs it, once it is known to fit (the general path takes its ray terms where it
+    // does not), before anything is counted.
     let shadows = T::SHADOWS && scene.shadows;
-    let tol = if shadows {
-        let m = scene.camera.viewpoint.max_abs().max(h.point.max_abs());
-        surface_tolerance(h.t_bound, m)?
-    } else {
-        S::ZERO
+    let mut tolerance = None;
+    let mut tol = || -> Option<S> {
+        if !shadows {
+            return Some(S::ZERO);
+        }
+        if tolerance.is_none() {
+            let m = scene.camera.viewpoint.max_abs().max(h.point.max_abs());
+            tolerance = surface_tolerance(h.t_bound, m);
+        }
+        tolerance
     };
+    if shadows && !surface_tolerance_fits(h.t_bound) {
+        tol()?;
+    }
     let Some((_, material)) = surface(scene, h.index, h.point, counters) else {
         return Some([S::ZERO; 3]);
     };
@@ -249,8 +259,37 @@ fn lit_plane_color<S: Scalar, T: Stages>(
         };
         if shadows {
             count(&mut counters.shadow_rays);
-            let sides = sides.map(|s| (s, j));
-            if occludes_segment(scene, sides, h.point, to_light, ll, tol, light.location) {
+            // The objects that may stand between the hit and the light, as
+            // `occludes_segment` picks them, less the hit's own plane: its side at the hit
+            // is `num − t'·(N·D)` with `t'` within a DELTA of `num/(N·D)` (an exact
+            // quotient), so it lies within `(|N·D| + 1)·DELTA` of zero, inside the
+            // tolerance `(t'·2|D|∞ + 12)·DELTA` (`t' ≥ 1`, `|N·D| ≤ √3|D|∞`), and
+            // `sides_differ` passes it over. Where none remains, no tolerance is formed.
+            let shadowed = match sides {
+                Some(s) if S::EXACT_QUOTIENTS && s.at_hit.len() == scene.objects.len() => {
+                    let own = 1u8.checked_shl(u32::try_from(h.index).ok()?).unwrap_or(0);
+                    let bits = match s.bits.lights.get(j) {
+                        Some(lp) => ((s.bits.positive ^ lp) & !s.bits.spheres) | s.bits.spheres,
+                        None => u8::MAX,
+                    } & !own;
+                    if bits == 0 {
+                        Some(false)
+                    } else {
+                        let segment = (h.point, to_light, ll, tol()?);
+                        occluded_among(scene, s, j, bits, segment, |_| false)
+                    }
+                }
+                _ => None,
+            };
+            let shadowed = match shadowed {
+                Some(v) => v,
+                None => {
+                    let sides = sides.map(|s| (s, j));
+                    let tol = tol()?;
+                    occludes_segment(scene, sides, h.point, to_light, ll, tol, light.location)
+                }
+            };
+            if shadowed {
                 continue;
             }
         }

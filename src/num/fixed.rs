@@ -103,6 +103,9 @@ macro_rules! impl_fixed {
             const DELTA: Self = <$t>::DELTA;
             const EXACT_SUMS: bool = true;
             const EXACT_PRODUCTS: bool = true;
+            // `fixed`'s division and `recip::exact_div` (bit for bit the same) truncate
+            // the exact quotient.
+            const EXACT_QUOTIENTS: bool = true;
             const DEFAULT_EPSILON: Self = <$t>::from_bits(EPSILON_DELTAS as $bits);
             const INT_BITS: u32 = <$t>::INT_NBITS;
 

@@ -189,6 +189,12 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// `self × k` for an integer `k`, exact, or `None` on overflow.
     fn checked_mul_int(self, k: i32) -> Option<Self>;
 
+    /// Whether [`Scalar::checked_div`]'s quotient is always within one `DELTA` of the
+    /// exact one (the fixed formats' division, truncated; not a division through an
+    /// approximate reciprocal, nor a float's): a kernel may then bound what its hits' own
+    /// planes' sides can be.
+    const EXACT_QUOTIENTS: bool = false;
+
     /// Whether [`Scalar::quick_pixel`] can answer on this target (a kernel leaves its
     /// shortcut out entirely where it cannot).
     const QUICK_PIXEL: bool = false;
