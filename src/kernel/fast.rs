@@ -149,6 +149,44 @@ impl Default for Block {
 /// No term: a block of the background (a frame has at most [`FAST_OBJECTS`] terms).
 const NO_TERM: u8 = u8::MAX;
 
+/// The last pixel's winner, which a scanline's resync column certifies first
+/// ([`Primary::start_block`]): an object's index, [`NO_TERM`] for the background, or
+/// none known. One byte (an I32F32 scanline on a 16 KB chip has a few to spare).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Guess(u8);
+
+/// No winner known ([`Guess`]).
+const UNKNOWN: u8 = u8::MAX - 1;
+
+// An object's index is never taken for one of the two marks.
+const _: () = assert!(FAST_OBJECTS < UNKNOWN as usize);
+
+impl Default for Guess {
+    fn default() -> Self {
+        Self(UNKNOWN)
+    }
+}
+
+impl Guess {
+    /// The guess of a pixel's answer (`None`: not known; `Some(None)`: the background).
+    pub(crate) fn of(found: Option<Option<usize>>) -> Self {
+        Self(match found {
+            Some(Some(i)) => u8::try_from(i).ok().filter(|i| *i < UNKNOWN).unwrap_or(UNKNOWN),
+            Some(None) => NO_TERM,
+            None => UNKNOWN,
+        })
+    }
+
+    /// The guessed winner (`Some(None)`: the background), if one is known.
+    pub(crate) fn winner(self) -> Option<Option<usize>> {
+        match self.0 {
+            UNKNOWN => None,
+            NO_TERM => Some(None),
+            i => Some(Some(usize::from(i))),
+        }
+    }
+}
+
 /// How many sphere–light shadow cones a frame keeps (beyond, the exact test alone).
 pub const MAX_CONES: usize = 3;
 

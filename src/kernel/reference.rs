@@ -36,7 +36,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
     // (`Primary::start_block`, `Primary::block_hit`), and the last pixel's winner (the
     // guess a resync column certifies first: `None` where there is none).
     let mut block = fast::Block::default();
-    let mut guess: Option<Option<usize>> = None;
+    let mut guess = fast::Guess::default();
     let last = columns.end.saturating_sub(1);
     columns.map(move |column| {
         count(&mut counters.primary_rays);
@@ -76,7 +76,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
             }
             // A resync column: the last pixel's winner certified first (no search where
             // it holds), else the searched one (unless that was the guess).
-            if let Some(w) = guess {
+            if let Some(w) = guess.winner() {
                 p.start_block(r, w, last, &mut block);
                 if let Some(hit) = p.block_hit(scene, r, &block) {
                     return hit.ok();
@@ -84,13 +84,13 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
             }
             let hit = p.nearest(scene, r).ok()?;
             let winner = hit.as_ref().map(|h| h.index);
-            if guess != Some(winner) {
+            if guess.winner() != Some(winner) {
                 p.start_block(r, winner, last, &mut block);
             }
             Some(hit)
         });
         if fast::blocks_for::<S>() {
-            guess = found.as_ref().map(|h| h.as_ref().map(|h| h.index));
+            guess = fast::Guess::of(found.as_ref().map(|h| h.as_ref().map(|h| h.index)));
         }
         let color = match found {
             Some(Some(h)) => match state.as_ref() {
