@@ -51,8 +51,8 @@ pub use revsurf::{CONE_BASE_RADIUS, Revsurf, RevsurfError};
 pub use shape::Shape;
 #[cfg(feature = "course")]
 pub(crate) use shape::{SPHERES, unit_ray};
-pub(crate) use spawn::{surface_tolerance, surface_tolerance_fits};
 pub use spawn::{RESIDUAL_ULPS, SPAWN_MARGIN_ULPS};
+pub(crate) use spawn::{surface_tolerance, surface_tolerance_fits};
 pub(crate) use sphere::{RowCone, ShadowCone};
 pub use sphere::{Sphere, SphereError};
 pub use triangle::{EDGE_SLACK_ULPS, Triangle, TriangleError};

@@ -171,7 +171,10 @@ impl Guess {
     /// The guess of a pixel's answer (`None`: not known; `Some(None)`: the background).
     pub(crate) fn of(found: Option<Option<usize>>) -> Self {
         Self(match found {
-            Some(Some(i)) => u8::try_from(i).ok().filter(|i| *i < UNKNOWN).unwrap_or(UNKNOWN),
+            Some(Some(i)) => u8::try_from(i)
+                .ok()
+                .filter(|i| *i < UNKNOWN)
+                .unwrap_or(UNKNOWN),
             Some(None) => NO_TERM,
             None => UNKNOWN,
         })
@@ -204,6 +207,31 @@ pub const FAST_OBJECTS: usize = 8;
 
 // A frame's still terms and a row's occluders are bits of a `u8`, one per object.
 const _: () = assert!(FAST_OBJECTS <= 8);
+
+/// A scanline's memo of its last still plane's hit ([`Primary::point_in`]): the key
+/// (object, `|N·D|`, `D.y`) and its `t'`, `y` and `z`, and the distance bound for the
+/// last `2|D|∞`. Kept by the stage sets whose scanlines keep a plane memo
+/// (`Stages::Memo`).
+#[derive(Debug, Clone)]
+pub(crate) struct HitMemo<S> {
+    key: Option<(u8, S, S)>,
+    t: S,
+    y: S,
+    z: S,
+    bound: Option<(S, S)>,
+}
+
+impl<S: Scalar> Default for HitMemo<S> {
+    fn default() -> Self {
+        Self {
+            key: None,
+            t: S::ZERO,
+            y: S::ZERO,
+            z: S::ZERO,
+            bound: None,
+        }
+    }
+}
 
 /// What the fast path found at one pixel.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -834,8 +862,20 @@ impl<S: Scalar> Primary<S> {
         scene: &SceneView<'_, S>,
         row: &Row<S>,
     ) -> Result<Option<FastHit<S>>, ()> {
+        self.nearest_with(scene, row, None)
+    }
+
+    /// [`Primary::nearest`] with a scanline's [`HitMemo`] (the same answer).
+    #[allow(clippy::result_unit_err)]
+    #[inline(always)]
+    pub(crate) fn nearest_with(
+        &self,
+        scene: &SceneView<'_, S>,
+        row: &Row<S>,
+        memo: Option<&mut HitMemo<S>>,
+    ) -> Result<Option<FastHit<S>>, ()> {
         match self.search(scene, row)? {
-            Some((term, p, q)) => self.hit(scene, row, term, p, q).map(Some).ok_or(()),
+            Some((term, p, q)) => self.hit(scene, row, term, p, q, memo).map(Some).ok_or(()),
             None => Ok(None),
         }
     }
@@ -1148,22 +1188,29 @@ impl<S: Scalar> Primary<S> {
     /// [`Primary::nearest`]'s answer at a pixel of the certified block `block`, bit for bit
     /// (`None`: the pixel is not in the block). Reset `block` at every restart of the
     /// scanline: a block holds for the pixels stepped from its start.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn block_hit(
         &self,
         scene: &SceneView<'_, S>,
         row: &Row<S>,
         block: &Block,
+        memo: Option<&mut HitMemo<S>>,
     ) -> Option<Result<Option<FastHit<S>>, ()>> {
-        (row.column < block.stop).then(|| match block.winner {
+        if row.column >= block.stop {
+            return None;
+        }
+        Some(match block.winner {
             NO_TERM => Ok(None),
             // A plane's `t'` as `search` forms it: `|num| / |N·D|`.
             k => {
                 let k = usize::from(k);
-                let (term, nd) = (self.terms.get(k).ok_or(())?, *row.nd.get(k).ok_or(())?);
-                self.hit(scene, row, term, term.num.abs(), nd.abs())
-                    .map(Some)
-                    .ok_or(())
+                match (self.terms.get(k), row.nd.get(k)) {
+                    (Some(term), Some(nd)) => self
+                        .hit(scene, row, term, term.num.abs(), nd.abs(), memo)
+                        .map(Some)
+                        .ok_or(()),
+                    _ => Err(()),
+                }
             }
         })
     }
@@ -1179,9 +1226,14 @@ impl<S: Scalar> Primary<S> {
         term: &Term<S>,
         p: S,
         q: S,
+        memo: Option<&mut HitMemo<S>>,
     ) -> Option<FastHit<S>> {
         let d = row.dir;
-        let (point, t_bound, param) = self.point(scene, p, q, d)?;
+        let still = self.still & 1u8.checked_shl(u32::from(term.index)).unwrap_or(0) != 0;
+        let (point, t_bound, param) = match memo {
+            Some(m) if still => self.point_in(scene, term.index, p, q, d, m)?,
+            _ => self.point(scene, p, q, d)?,
+        };
         Some(FastHit {
             index: usize::from(term.index),
             point,
@@ -1189,6 +1241,46 @@ impl<S: Scalar> Primary<S> {
             dir: d,
             param,
         })
+    }
+
+    /// [`Primary::point`] for a still term (`N.x = 0`, object `index`), with a scanline's
+    /// memo of the last one: the same operations, bit for bit, where the memo holds
+    /// this term's `t' = p/q` for this `q` and `D.y` (along a scanline a still plane's
+    /// `N·D` does not change, a back wall's nowhere in the frame): its `t'` and the
+    /// hit's `y` and `z` are kept, and the distance bound for the last `2|D|∞`; a pixel
+    /// forms its hit's `x` alone.
+    #[inline(never)]
+    fn point_in(
+        &self,
+        scene: &SceneView<'_, S>,
+        index: u8,
+        p: S,
+        q: S,
+        d: Vec3<S>,
+        memo: &mut HitMemo<S>,
+    ) -> Option<(Vec3<S>, S, S)> {
+        let eye = scene.camera.viewpoint;
+        if memo.key != Some((index, q, d.y)) {
+            memo.key = None;
+            let t = p.checked_div(q)?;
+            memo.y = eye.y.checked_add(t.checked_mul(d.y)?)?;
+            memo.z = eye.z.checked_add(t.checked_mul(d.z)?)?;
+            memo.t = t;
+            memo.bound = None;
+            memo.key = Some((index, q, d.y));
+        }
+        let t = memo.t;
+        let x = eye.x.checked_add(t.checked_mul(d.x)?)?;
+        let twice = d.max_abs().checked_add(d.max_abs())?;
+        let t_bound = match memo.bound {
+            Some((k, b)) if k == twice => b,
+            _ => {
+                let b = t.checked_mul(twice)?;
+                memo.bound = Some((twice, b));
+                b
+            }
+        };
+        Some((Vec3::new(x, memo.y, memo.z), t_bound, t))
     }
 
     /// The hit point `eye + t'·D` of a term, a bound on its world distance, and `t'`.

@@ -35,6 +35,7 @@ use flat::{Flat, PlaneMode};
 use rows::Rows;
 
 pub(crate) use reference::scanline;
+pub use reference::{MemoSlot, PlaneMemo};
 
 /// Whether this build has the kernels (cargo feature `kernels`). Without them every frame
 /// is drawn by the reference path, the definition (the kernels draw it within their

@@ -10,8 +10,8 @@ use crate::geometry::{surface_tolerance, surface_tolerance_fits};
 use crate::shade::color::{add_sat, term, to_pixel};
 use crate::shade::stages::Stages;
 use crate::shade::{
-    Incoming, PlaneSides, channel_max, diffuse_falloff, occluded_among, occludes_segment,
-    shade_with, surface, trace_pixel_ray,
+    Incoming, PlaneSides, channel_max, diffuse_falloff, material_at, occluded_among,
+    occludes_segment, shade_with, trace_pixel_ray,
 };
 use crate::stats::{Counters, count};
 use crate::{Beam, Color, Hit, Scalar, SceneView, Shape};
@@ -37,6 +37,8 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
     // guess a resync column certifies first: `None` where there is none).
     let mut block = fast::Block::default();
     let mut guess = fast::Guess::default();
+    // What the stage set's plane hits keep from pixel to pixel (`Stages::Memo`).
+    let mut memo = T::Memo::<S>::default();
     let last = columns.end.saturating_sub(1);
     columns.map(move |column| {
         count(&mut counters.primary_rays);
@@ -63,26 +65,28 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                 }
             }
             let r = state.as_ref()?;
+            // The still planes' hits the stage set's memo keeps (`fast::HitMemo`).
+            let mut hits = memo.memo().map(|m| &mut m.hits);
             // Certified blocks: only in the formats that take them (compiled out of the
             // others, `fast::blocks_for`).
             if !fast::blocks_for::<S>() {
-                return p.nearest(scene, r).ok();
+                return p.nearest_with(scene, r, hits).ok();
             }
-            if let Some(hit) = p.block_hit(scene, r, &block) {
+            if let Some(hit) = p.block_hit(scene, r, &block, hits.as_deref_mut()) {
                 return hit.ok();
             }
             if column % fast::RESYNC_PIXELS != 0 {
-                return p.nearest(scene, r).ok();
+                return p.nearest_with(scene, r, hits).ok();
             }
             // A resync column: the last pixel's winner certified first (no search where
             // it holds), else the searched one (unless that was the guess).
             if let Some(w) = guess.winner() {
                 p.start_block(r, w, last, &mut block);
-                if let Some(hit) = p.block_hit(scene, r, &block) {
+                if let Some(hit) = p.block_hit(scene, r, &block, hits.as_deref_mut()) {
                     return hit.ok();
                 }
             }
-            let hit = p.nearest(scene, r).ok()?;
+            let hit = p.nearest_with(scene, r, hits).ok()?;
             let winner = hit.as_ref().map(|h| h.index);
             if guess.winner() != Some(winner) {
                 p.start_block(r, winner, last, &mut block);
@@ -94,7 +98,10 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
         }
         let color = match found {
             Some(Some(h)) => match state.as_ref() {
-                Some(r) => fast_color::<S, T>(scene, primary, r, &h, &mut at_hit, counters),
+                Some(r) => {
+                    let at = (&mut at_hit, memo.memo());
+                    fast_color::<S, T>(scene, primary, r, &h, at, counters)
+                }
                 None => scene.background,
             },
             Some(None) => scene.background,
@@ -113,14 +120,17 @@ pub(crate) fn fast_color<S: Scalar, T: Stages>(
     primary: Option<&Primary<S>>,
     r: &Row<S>,
     h: &fast::FastHit<S>,
-    at_hit: &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+    (at_hit, memo): (
+        &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+        Option<&mut PlaneMemo<S>>,
+    ),
     counters: &mut Counters,
 ) -> Color<S> {
     // (The test is the function's own, repeated where the call is made: no call at all
     // for the other stage sets and formats.)
     if lit_planes::<S, T>()
         && let Some(p) = primary
-        && let Some(color) = lit_plane_color::<S, T>(scene, p, r, h, at_hit, counters)
+        && let Some(color) = lit_plane_color::<S, T>(scene, p, r, h, (at_hit, memo), counters)
     {
         return color;
     }
@@ -190,7 +200,10 @@ fn lit_plane_color<S: Scalar, T: Stages>(
     p: &Primary<S>,
     r: &Row<S>,
     h: &fast::FastHit<S>,
-    at_hit: &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+    (at_hit, memo): (
+        &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+        Option<&mut PlaneMemo<S>>,
+    ),
     counters: &mut Counters,
 ) -> Option<Color<S>> {
     if !lit_planes::<S, T>() {
@@ -225,13 +238,18 @@ fn lit_plane_color<S: Scalar, T: Stages>(
     if shadows && !surface_tolerance_fits(h.t_bound) {
         tol()?;
     }
-    let Some((_, material)) = surface(scene, h.index, h.point, counters) else {
+    // As `surface` (no texture: a plain or tiled plane), with the material's index.
+    let index = material_at(object, h.point, scene.rules(), counters);
+    let Some(material) = scene.materials.get(usize::from(index)) else {
         return Some([S::ZERO; 3]);
     };
     let mut color = material.ambient;
     if scene.lights.is_empty() || material.diffuse == [S::ZERO; 3] {
         return Some(color);
     }
+    // The first lights' `emissivity × diffuse`, the first product of each term, kept
+    // for the material (`PlaneMemo`).
+    let weights = memo.map(|m| m.weights(scene, index, material));
     // A term's position is its object's index (every object is a term): the row's `N·D`
     // of the plane is the shading's `D·N` (the exact products' sum, rounded once).
     let facing = if Primary::nd(r, h.index)? > S::ZERO {
@@ -295,13 +313,112 @@ fn lit_plane_color<S: Scalar, T: Stages>(
         }
         let falloff = diffuse_falloff(nl, nl.checked_mul(k), ll);
         count(&mut counters.diffuse);
-        for ((c, diffuse), emissivity) in
-            color.iter_mut().zip(material.diffuse).zip(light.emissivity)
-        {
-            *c = add_sat(*c, term([emissivity, diffuse, falloff]));
+        match weights.as_ref().and_then(|(w, _)| w.get(j)) {
+            // `term([e, d, falloff])` is `(e·d)·falloff`, saturating (as where `e·d`
+            // overflowed: its bit in the memo's `overflow`).
+            Some(w) => {
+                let overflow = weights.as_ref().map_or(0, |(_, o)| *o >> (3 * j));
+                for (k, (c, w)) in color.iter_mut().zip(w).enumerate() {
+                    let t = match overflow & (1 << k) {
+                        0 => w.checked_mul(falloff).unwrap_or(S::MAX),
+                        _ => S::MAX,
+                    };
+                    *c = add_sat(*c, t);
+                }
+            }
+            None => {
+                for ((c, diffuse), emissivity) in
+                    color.iter_mut().zip(material.diffuse).zip(light.emissivity)
+                {
+                    *c = add_sat(*c, term([emissivity, diffuse, falloff]));
+                }
+            }
         }
     }
     Some(color)
+}
+
+/// How many lights' weights a [`PlaneMemo`] keeps (the others' terms take both products).
+const MEMO_LIGHTS: usize = 2;
+
+/// What a fast-kernel scanline of a diffuse stage set keeps from pixel to pixel for its
+/// lit plane hits ([`lit_plane_color`]; `Stages::Memo`): the material last shaded and,
+/// for the first [`MEMO_LIGHTS`] lights, `emissivity × diffuse` per channel, the first
+/// product of every term, the same for every hit that shows that material (bit
+/// `3 × light + channel` of `overflow`: the product does not fit, the term saturates);
+/// and the last still plane's hit.
+#[derive(Debug, Clone)]
+pub struct PlaneMemo<S> {
+    /// The material (`None`: none yet).
+    material: Option<u8>,
+    overflow: u8,
+    weights: [[S; 3]; MEMO_LIGHTS],
+    /// The last still plane's hit (`fast::HitMemo`).
+    hits: fast::HitMemo<S>,
+}
+
+impl<S: Scalar> Default for PlaneMemo<S> {
+    fn default() -> Self {
+        Self {
+            material: None,
+            overflow: 0,
+            weights: [[S::ZERO; 3]; MEMO_LIGHTS],
+            hits: fast::HitMemo::default(),
+        }
+    }
+}
+
+impl<S: Scalar> PlaneMemo<S> {
+    /// The weights of material `index` (`material`), formed where the memo holds
+    /// another: one per light of the first [`MEMO_LIGHTS`].
+    #[inline(always)]
+    fn weights(
+        &mut self,
+        scene: &SceneView<'_, S>,
+        index: u8,
+        material: &crate::Material<S>,
+    ) -> (&[[S; 3]], u8) {
+        if self.material != Some(index) {
+            self.overflow = 0;
+            for (j, (w, light)) in self.weights.iter_mut().zip(scene.lights).enumerate() {
+                for (k, ((w, e), d)) in w
+                    .iter_mut()
+                    .zip(light.emissivity)
+                    .zip(material.diffuse)
+                    .enumerate()
+                {
+                    match e.checked_mul(d) {
+                        Some(v) => *w = v,
+                        None => self.overflow |= 1 << (3 * j + k),
+                    }
+                }
+            }
+            self.material = Some(index);
+        }
+        let n = scene.lights.len().min(MEMO_LIGHTS);
+        (self.weights.get(..n).unwrap_or(&[]), self.overflow)
+    }
+}
+
+/// A stage set's room for a [`PlaneMemo`] (`Stages::Memo`): the memo itself, or `()`
+/// where the set's plane hits take the general shading.
+pub trait MemoSlot<S>: Default {
+    /// The memo, if the set keeps one.
+    fn memo(&mut self) -> Option<&mut PlaneMemo<S>>;
+}
+
+impl<S> MemoSlot<S> for () {
+    #[inline(always)]
+    fn memo(&mut self) -> Option<&mut PlaneMemo<S>> {
+        None
+    }
+}
+
+impl<S: Scalar> MemoSlot<S> for PlaneMemo<S> {
+    #[inline(always)]
+    fn memo(&mut self) -> Option<&mut PlaneMemo<S>> {
+        Some(self)
+    }
 }
 
 /// The colour of pixel `column` of the scanline at screen `y` on the reference path (the
@@ -443,7 +560,7 @@ mod tests {
                     }
                     let Some(r) = state.as_ref() else { continue };
                     let want = plain.nearest(&view, r).ok();
-                    let got = match p.block_hit(&view, r, &block) {
+                    let got = match p.block_hit(&view, r, &block, None) {
                         Some(hit) => {
                             blocked += 1;
                             hit.ok()
@@ -460,7 +577,7 @@ mod tests {
                                 for guess in (0..n).map(Some).chain([None]) {
                                     let mut trial = fast::Block::default();
                                     p.start_block(r, guess, w - 1, &mut trial);
-                                    if let Some(g) = p.block_hit(&view, r, &trial) {
+                                    if let Some(g) = p.block_hit(&view, r, &trial, None) {
                                         certified += 1;
                                         assert_eq!(g.ok(), want, "{} case {case}", S::NAME);
                                     }
@@ -516,9 +633,10 @@ mod tests {
     }
 
     /// Every fast-kernel hit of `scenes` random plane scenes (and the default scene) in
-    /// format `S`, lit by the stage set `T`: [`lit_plane_color`]'s colour is the general
-    /// shading's ([`general_color`]) bit for bit wherever it draws one. Returns how many
-    /// hits it drew.
+    /// format `S`, lit by the stage set `T`: the hits found with a scanline's memo of its
+    /// still planes (`fast::HitMemo`) are the hits, and [`lit_plane_color`]'s colour is
+    /// the general shading's ([`general_color`]) bit for bit wherever it draws one.
+    /// Returns how many hits it drew.
     fn lit_planes_agree<S: Scalar, T: Stages>(scenes: usize) -> usize {
         let mut next = crate::num::xorshift(0x5EED_2026_1206);
         let mut drawn = 0;
@@ -537,6 +655,9 @@ mod tests {
                 continue;
             };
             let mut at_hit = heapless::Vec::new();
+            // One memo for the whole frame, as a scanline keeps one for its pixels.
+            let mut memo = PlaneMemo::default();
+            let mut hits = fast::HitMemo::default();
             for row in 0..view.camera.height {
                 let mut state: Option<Row<S>> = None;
                 for column in 0..view.camera.width {
@@ -551,11 +672,16 @@ mod tests {
                         state = None;
                         continue;
                     };
-                    let Ok(Some(h)) = p.nearest(&view, r) else {
+                    // The still planes' hits from the memo are the hits themselves.
+                    let found = p.nearest(&view, r);
+                    let memoized = p.nearest_with(&view, r, Some(&mut hits));
+                    assert_eq!(found, memoized, "{} case {case} ({row}, {column})", S::NAME);
+                    let Ok(Some(h)) = found else {
                         continue;
                     };
                     let (mut c1, mut c2) = (Counters::default(), Counters::default());
-                    let lit = lit_plane_color::<S, T>(&view, &p, r, &h, &mut at_hit, &mut c1);
+                    let at = (&mut at_hit, Some(&mut memo));
+                    let lit = lit_plane_color::<S, T>(&view, &p, r, &h, at, &mut c1);
                     let general =
                         general_color::<S, T>(&view, Some(&p), r, &h, &mut at_hit, &mut c2);
                     if let Some(lit) = lit {

@@ -802,12 +802,13 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
     /// fast kernel's way.
     #[inline(never)]
     fn other(&mut self, h: &FastHit<S>) -> Color<S> {
+        // (A sphere: no plane memo.)
         fast_color::<S, T>(
             self.scene,
             Some(self.p),
             &self.state,
             h,
-            &mut self.at_hit,
+            (&mut self.at_hit, None),
             self.counters,
         )
     }
