@@ -1053,11 +1053,29 @@ impl<S: Scalar> Primary<S> {
         param: S,
         sides: &mut Vec<S, FAST_OBJECTS>,
     ) -> Option<SideBits> {
+        self.sides_but(row, param, usize::MAX, sides)
+    }
+
+    /// [`Primary::sides_at`] but for object `own` (the hit's own plane), whose side is
+    /// left zero without its product (and its bit clear) where it fits for certain
+    /// (`|num| < MAX/2`: `t'·(N·D)` lies within a few DELTAs of `num`, so that
+    /// `sides_at` would not have failed on it): for a caller that leaves the hit's own
+    /// plane out of its shadow tests (`reference::lit_plane_color`).
+    #[inline(always)]
+    pub(crate) fn sides_but(
+        &self,
+        row: &Row<S>,
+        param: S,
+        own: usize,
+        sides: &mut Vec<S, FAST_OBJECTS>,
+    ) -> Option<SideBits> {
         sides.clear();
         let mut positive = 0u8;
         for (i, (term, &nd)) in self.terms.iter().zip(&row.nd).enumerate() {
             let side = if term.sphere {
                 // Not read for a sphere (see `Primary::new`).
+                S::ZERO
+            } else if i == own && S::MAX.checked_sub(term.num.abs())? > term.num.abs() {
                 S::ZERO
             } else {
                 term.num.checked_sub(param.checked_mul(nd)?)?

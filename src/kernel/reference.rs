@@ -257,8 +257,10 @@ fn lit_plane_color<S: Scalar, T: Stages>(
     } else {
         normal
     };
+    // (The own plane's side is not formed where the shadow tests leave it out, below.)
+    let own = if S::EXACT_QUOTIENTS { h.index } else { usize::MAX };
     let sides = match T::SHADOWS && !p.at_lights().is_empty() {
-        true => p.sides_at(r, h.param, at_hit).map(|bits| PlaneSides {
+        true => p.sides_but(r, h.param, own, at_hit).map(|bits| PlaneSides {
             at_hit,
             at_lights: p.at_lights(),
             cones: p.cones(),
