@@ -99,8 +99,19 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
         let color = match found {
             Some(Some(h)) => match state.as_ref() {
                 Some(r) => {
-                    let at = (&mut at_hit, memo.memo());
-                    fast_color::<S, T>(scene, primary, r, &h, at, counters)
+                    // The flattened plane shading first (not called at all for the
+                    // other stage sets and formats), else the general one.
+                    let lit = match primary {
+                        Some(p) if lit_planes::<S, T>() => {
+                            let at = (&mut at_hit, memo.memo());
+                            lit_plane_color::<S, T>(scene, p, r, &h, at, counters)
+                        }
+                        _ => None,
+                    };
+                    match lit {
+                        Some(color) => color,
+                        None => fast_color::<S, T>(scene, primary, r, &h, &mut at_hit, counters),
+                    }
                 }
                 None => scene.background,
             },
@@ -111,35 +122,12 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
     })
 }
 
-/// The colour of the fast kernel's hit `h` at the row's current pixel: shaded with the
+/// The colour of the fast kernel's hit `h` at the row's current pixel by the general
+/// shading (`shade_with`; the scanline tries [`lit_plane_color`] first): shaded with the
 /// unnormalised direction (see `Incoming`; the fast kernel takes only stage sets that
 /// need no more of it than its side), shadow segments taking the planes' sides from the
 /// kernel's terms (`at_hit`: a buffer the scanline keeps).
 pub(crate) fn fast_color<S: Scalar, T: Stages>(
-    scene: &SceneView<'_, S>,
-    primary: Option<&Primary<S>>,
-    r: &Row<S>,
-    h: &fast::FastHit<S>,
-    (at_hit, memo): (
-        &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
-        Option<&mut PlaneMemo<S>>,
-    ),
-    counters: &mut Counters,
-) -> Color<S> {
-    // (The test is the function's own, repeated where the call is made: no call at all
-    // for the other stage sets and formats.)
-    if lit_planes::<S, T>()
-        && let Some(p) = primary
-        && let Some(color) = lit_plane_color::<S, T>(scene, p, r, h, (at_hit, memo), counters)
-    {
-        return color;
-    }
-    general_color::<S, T>(scene, primary, r, h, at_hit, counters)
-}
-
-/// [`fast_color`] by the general shading (`shade_with`).
-#[inline(always)]
-fn general_color<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     primary: Option<&Primary<S>>,
     r: &Row<S>,
@@ -172,11 +160,13 @@ fn general_color<S: Scalar, T: Stages>(
 }
 
 /// Whether [`lit_plane_color`] draws the fast kernel's plane hits with the stage set `T`
-/// in format `S`: diffuse lights (with or without shadows: no glint, cone, mirror or
+/// in format `S` (in a build with the kernels: without them its code is not linked):
+/// diffuse lights (with or without shadows: no glint, cone, mirror or
 /// translucence), in a format whose products are exact (the hit's facing normal is then
 /// read off the row's `N·D`, which is the shading's `D·N` itself).
 const fn lit_planes<S: Scalar, T: Stages>() -> bool {
-    S::EXACT_PRODUCTS
+    super::KERNELS
+        && S::EXACT_PRODUCTS
         && T::LIGHTING
         && !T::SPECULAR
         && !T::CONES
@@ -194,13 +184,13 @@ const fn lit_planes<S: Scalar, T: Stages>() -> bool {
 /// a light whose `|L|²` does not fit or is not positive (the general path's ray terms;
 /// the statistics then count the earlier lights twice, as the level-plane kernel's do),
 /// or a segments' tolerance that does not fit.
-#[inline(never)]
+#[inline(always)]
 fn lit_plane_color<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     p: &Primary<S>,
     r: &Row<S>,
     h: &fast::FastHit<S>,
-    (at_hit, memo): (
+    at: (
         &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
         Option<&mut PlaneMemo<S>>,
     ),
@@ -209,6 +199,24 @@ fn lit_plane_color<S: Scalar, T: Stages>(
     if !lit_planes::<S, T>() {
         return None;
     }
+    lit_plane_with(scene, p, r, h, at, T::SHADOWS, counters)
+}
+
+/// [`lit_plane_color`] with the stage set's shadows as a value: one copy per format for
+/// both diffuse sets (flash).
+#[inline(never)]
+fn lit_plane_with<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    r: &Row<S>,
+    h: &fast::FastHit<S>,
+    (at_hit, memo): (
+        &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+        Option<&mut PlaneMemo<S>>,
+    ),
+    set_shadows: bool,
+    counters: &mut Counters,
+) -> Option<Color<S>> {
     let object = scene.objects.get(h.index)?;
     if !matches!(object.shape, Shape::Plane(_) | Shape::Tiled { .. })
         || scene.lights_on_surfaces
@@ -223,7 +231,7 @@ fn lit_plane_color<S: Scalar, T: Stages>(
     // The segments' tolerance (`Fixray::segment_tolerance`): formed where a segment test
     // needs it, once it is known to fit (the general path takes its ray terms where it
     // does not), before anything is counted.
-    let shadows = T::SHADOWS && scene.shadows;
+    let shadows = set_shadows && scene.shadows;
     let mut tolerance = None;
     let mut tol = || -> Option<S> {
         if !shadows {
@@ -258,8 +266,12 @@ fn lit_plane_color<S: Scalar, T: Stages>(
         normal
     };
     // (The own plane's side is not formed where the shadow tests leave it out, below.)
-    let own = if S::EXACT_QUOTIENTS { h.index } else { usize::MAX };
-    let sides = match T::SHADOWS && !p.at_lights().is_empty() {
+    let own = if S::EXACT_QUOTIENTS {
+        h.index
+    } else {
+        usize::MAX
+    };
+    let sides = match set_shadows && !p.at_lights().is_empty() {
         true => p.sides_but(r, h.param, own, at_hit).map(|bits| PlaneSides {
             at_hit,
             at_lights: p.at_lights(),
@@ -637,7 +649,7 @@ mod tests {
     /// Every fast-kernel hit of `scenes` random plane scenes (and the default scene) in
     /// format `S`, lit by the stage set `T`: the hits found with a scanline's memo of its
     /// still planes (`fast::HitMemo`) are the hits, and [`lit_plane_color`]'s colour is
-    /// the general shading's ([`general_color`]) bit for bit wherever it draws one.
+    /// the general shading's ([`fast_color`]) bit for bit wherever it draws one.
     /// Returns how many hits it drew.
     fn lit_planes_agree<S: Scalar, T: Stages>(scenes: usize) -> usize {
         let mut next = crate::num::xorshift(0x5EED_2026_1206);
@@ -684,8 +696,7 @@ mod tests {
                     let (mut c1, mut c2) = (Counters::default(), Counters::default());
                     let at = (&mut at_hit, Some(&mut memo));
                     let lit = lit_plane_color::<S, T>(&view, &p, r, &h, at, &mut c1);
-                    let general =
-                        general_color::<S, T>(&view, Some(&p), r, &h, &mut at_hit, &mut c2);
+                    let general = fast_color::<S, T>(&view, Some(&p), r, &h, &mut at_hit, &mut c2);
                     if let Some(lit) = lit {
                         drawn += 1;
                         assert_eq!(

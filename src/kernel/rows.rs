@@ -802,13 +802,12 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
     /// fast kernel's way.
     #[inline(never)]
     fn other(&mut self, h: &FastHit<S>) -> Color<S> {
-        // (A sphere: no plane memo.)
         fast_color::<S, T>(
             self.scene,
             Some(self.p),
             &self.state,
             h,
-            (&mut self.at_hit, None),
+            &mut self.at_hit,
             self.counters,
         )
     }
