@@ -69,8 +69,12 @@ fn axis_of<S: Scalar>(scene: &SceneView<'_, S>, index: u8) -> Option<Vec3<S>> {
 
 /// How many pixels a scanline steps `D.x` by addition before restarting from the exact
 /// screen coordinate (one `mul_ratio`, a 64-bit division): the trade between the drift of
-/// the stepped coordinate (≤ ½ DELTA per step) and the cost of the exact one.
-pub const RESYNC_PIXELS: u16 = 8;
+/// the stepped coordinate (≤ ½ DELTA per step), the cost of the exact one, and how long
+/// a certified block can be ([`Primary::certify_block`]: at most this many pixels).
+/// Measured on the Cortex-M0, I16F16, default scene: 8 → 16 pixels, 2,681 → 2,571
+/// instructions a pixel (fewer restarts, half as many blocks to certify); 32: 2,677
+/// (more blocks hold a crossing, and fail).
+pub const RESYNC_PIXELS: u16 = 16;
 
 /// The per-frame part of the fast path; `None` from [`Primary::new`] when the scene is not
 /// made of planes and spheres (the eye outside them) or a per-frame quantity does not fit
@@ -377,10 +381,11 @@ fn sphere_rows<S: Scalar>(scene: &SceneView<'_, S>, oc: Vec3<S>, rr: S, dz: S) -
 /// `x` and `y` exchanged. A column's rays `D = (dx, y − eye.y, dz)` all lie in the plane
 /// through the eye with normal `(dz, 0, −dx)`, and the same test, margin and guard
 /// decide. A pixel's `D.x` is stepped along its scanline, off the column's exact
-/// `dx` by at most `RESYNC_PIXELS` DELTAs (the step is rounded once per frame): that
-/// moves the ray's squared distance from the centre by about `16 r DELTA |oc|/|dz|`, far
-/// inside the `r²/8` margin the guard leaves (`r ≥ 16 √DELTA (1 + 2|oc|∞/|dz|)`). Bit
-/// for bit, as the rows. (The test is [`sphere_rows`]' own, written out again: a shared
+/// `dx` by at most `RESYNC_PIXELS` (16) DELTAs (the step is rounded once per frame):
+/// that moves the ray's squared distance from the centre by about
+/// `2·RESYNC_PIXELS·r·DELTA·|oc|/|dz|`, inside the `r²/8` margin the guard leaves:
+/// `r ≥ 16 √DELTA (1 + 2|oc|∞/|dz|) ≥ 32 √DELTA |oc|/|dz|`, at least
+/// `256 DELTA |oc|/|dz|` for every format's `DELTA ≤ 2⁻⁶`. Bit for bit, as the rows. (The test is [`sphere_rows`]' own, written out again: a shared
 /// helper made the frames of three-sphere scenes 9 instructions a pixel dearer on the M0.)
 fn sphere_columns<S: Scalar>(scene: &SceneView<'_, S>, oc: Vec3<S>, rr: S, dz: S) -> (u16, u16) {
     let all = (0, scene.camera.width.saturating_sub(1));
