@@ -210,7 +210,7 @@ fn lit_plane_with<S: Scalar>(
     p: &Primary<S>,
     r: &Row<S>,
     h: &fast::FastHit<S>,
-    (at_hit, memo): (
+    (at_hit, mut memo): (
         &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
         Option<&mut PlaneMemo<S>>,
     ),
@@ -255,6 +255,13 @@ fn lit_plane_with<S: Scalar>(
     if scene.lights.is_empty() || material.diffuse == [S::ZERO; 3] {
         return Some(color);
     }
+    // Where every other plane is quiet (`Primary::quiet_planes`), no segment test can
+    // find a shadow: none is made, and no side formed.
+    let quiet = shadows
+        && S::EXACT_QUOTIENTS
+        && memo
+            .as_deref_mut()
+            .is_some_and(|m| quiet_hit(scene, p, r, h, m));
     // The first lights' `emissivity × diffuse`, the first product of each term, kept
     // for the material (`PlaneMemo`).
     let weights = memo.map(|m| m.weights(scene, index, material));
@@ -271,7 +278,7 @@ fn lit_plane_with<S: Scalar>(
     } else {
         usize::MAX
     };
-    let sides = match set_shadows && !p.at_lights().is_empty() {
+    let sides = match set_shadows && !p.at_lights().is_empty() && !quiet {
         true => p.sides_but(r, h.param, own, at_hit).map(|bits| PlaneSides {
             at_hit,
             at_lights: p.at_lights(),
@@ -289,7 +296,9 @@ fn lit_plane_with<S: Scalar>(
         let Some(nl) = to_light.dot_axis(facing).filter(|c| *c > S::ZERO) else {
             continue;
         };
-        if shadows {
+        if shadows && quiet {
+            count(&mut counters.shadow_rays);
+        } else if shadows {
             count(&mut counters.shadow_rays);
             // The objects that may stand between the hit and the light, as
             // `occludes_segment` picks them, less the hit's own plane: its side at the hit
@@ -352,6 +361,29 @@ fn lit_plane_with<S: Scalar>(
     Some(color)
 }
 
+/// Whether every plane but the hit's own is quiet for the hit `h` of the row's current
+/// pixel ([`Primary::quiet_planes`]: its `t'` within their bound, every plane out of the
+/// epsilon's margin), so that no shadow segment from it can be stopped (a frame of plain
+/// and tiled planes only; the caller's format has exact quotients).
+#[inline(always)]
+fn quiet_hit<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    r: &Row<S>,
+    h: &fast::FastHit<S>,
+    memo: &mut PlaneMemo<S>,
+) -> bool {
+    let q = memo.quiet(scene, p, r);
+    let n = u32::try_from(scene.objects.len()).unwrap_or(u32::MAX);
+    let all = u8::MAX.checked_shr(8u32.saturating_sub(n)).unwrap_or(0);
+    let own = u32::try_from(h.index)
+        .ok()
+        .and_then(|i| 1u8.checked_shl(i))
+        .unwrap_or(0);
+    let others = all & !own;
+    q.planes & others == others && h.param <= q.t_max && Primary::clear_of_margin(r, h.index)
+}
+
 /// How many lights' weights a [`PlaneMemo`] keeps (the others' terms take both products).
 const MEMO_LIGHTS: usize = 2;
 
@@ -369,6 +401,8 @@ pub struct PlaneMemo<S> {
     weights: [[S; 3]; MEMO_LIGHTS],
     /// The last still plane's hit (`fast::HitMemo`).
     hits: fast::HitMemo<S>,
+    /// The quiet planes (`Primary::quiet_planes`) of the scanline it last looked at.
+    quiet: Option<(u16, fast::Quiet<S>)>,
 }
 
 impl<S: Scalar> Default for PlaneMemo<S> {
@@ -378,11 +412,26 @@ impl<S: Scalar> Default for PlaneMemo<S> {
             overflow: 0,
             weights: [[S::ZERO; 3]; MEMO_LIGHTS],
             hits: fast::HitMemo::default(),
+            quiet: None,
         }
     }
 }
 
 impl<S: Scalar> PlaneMemo<S> {
+    /// The quiet planes of `r`'s scanline, looked for at its first lit plane hit.
+    #[inline(always)]
+    fn quiet(&mut self, scene: &SceneView<'_, S>, p: &Primary<S>, r: &Row<S>) -> fast::Quiet<S> {
+        let row = Primary::row_index(r);
+        match self.quiet {
+            Some((k, q)) if k == row => q,
+            _ => {
+                let q = p.quiet_planes(scene, r);
+                self.quiet = Some((row, q));
+                q
+            }
+        }
+    }
+
     /// The weights of material `index` (`material`), formed where the memo holds
     /// another: one per light of the first [`MEMO_LIGHTS`].
     #[inline(always)]
@@ -651,9 +700,9 @@ mod tests {
     /// still planes (`fast::HitMemo`) are the hits, and [`lit_plane_color`]'s colour is
     /// the general shading's ([`fast_color`]) bit for bit wherever it draws one.
     /// Returns how many hits it drew.
-    fn lit_planes_agree<S: Scalar, T: Stages>(scenes: usize) -> usize {
+    fn lit_planes_agree<S: Scalar, T: Stages>(scenes: usize) -> (usize, usize) {
         let mut next = crate::num::xorshift(0x5EED_2026_1206);
-        let mut drawn = 0;
+        let (mut drawn, mut quiet) = (0, 0);
         let texts = (0..scenes)
             .map(|_| random_scene(&mut next))
             .chain([String::from(include_str!("../../scenes/default.scene"))]);
@@ -699,6 +748,9 @@ mod tests {
                     let general = fast_color::<S, T>(&view, Some(&p), r, &h, &mut at_hit, &mut c2);
                     if let Some(lit) = lit {
                         drawn += 1;
+                        if T::SHADOWS && quiet_hit(&view, &p, r, &h, &mut memo) {
+                            quiet += 1;
+                        }
                         assert_eq!(
                             lit,
                             general,
@@ -709,7 +761,7 @@ mod tests {
                 }
             }
         }
-        drawn
+        (drawn, quiet)
     }
 
     /// The fast kernel's flattened plane shading (`lit_plane_color`) draws the general
@@ -717,14 +769,20 @@ mod tests {
     #[test]
     fn lit_planes_draw_the_general_shading() {
         use crate::shade::stages::Diffuse;
-        // (Tens of thousands of hits each.)
-        assert!(lit_planes_agree::<fixed::types::I16F16, DiffuseShadows>(60) > 40_000);
-        assert!(lit_planes_agree::<fixed::types::I16F16, Diffuse>(30) > 25_000);
-        assert!(lit_planes_agree::<fixed::types::I20F12, DiffuseShadows>(30) > 25_000);
-        assert!(lit_planes_agree::<fixed::types::I32F32, DiffuseShadows>(20) > 20_000);
-        assert!(lit_planes_agree::<crate::num::variants::I16F16Recip, DiffuseShadows>(20) > 20_000);
+        // (Tens of thousands of hits each; with shadows, thousands of them where every
+        // other plane is quiet.)
+        let (drawn, quiet) = lit_planes_agree::<fixed::types::I16F16, DiffuseShadows>(60);
+        assert!(drawn > 40_000 && quiet > 5_000, "{drawn} {quiet}");
+        assert!(lit_planes_agree::<fixed::types::I16F16, Diffuse>(30).0 > 25_000);
+        let (drawn, quiet) = lit_planes_agree::<fixed::types::I20F12, DiffuseShadows>(30);
+        assert!(drawn > 25_000 && quiet > 2_000, "{drawn} {quiet}");
+        let (drawn, quiet) = lit_planes_agree::<fixed::types::I32F32, DiffuseShadows>(20);
+        assert!(drawn > 20_000 && quiet > 2_000, "{drawn} {quiet}");
+        assert!(
+            lit_planes_agree::<crate::num::variants::I16F16Recip, DiffuseShadows>(20).0 > 20_000
+        );
         // Not in the float formats (the facing normal would not be the row's `N·D`).
-        assert_eq!(lit_planes_agree::<f32, DiffuseShadows>(5), 0);
+        assert_eq!(lit_planes_agree::<f32, DiffuseShadows>(5).0, 0);
     }
 
     /// The certified blocks (`Primary::certify_block`) answer what a search of every pixel
