@@ -218,6 +218,10 @@ const _: () = assert!(FAST_OBJECTS <= 8);
 /// (`Stages::Memo`).
 #[derive(Debug, Clone)]
 pub(crate) struct HitMemo<S> {
+    /// Whether the last hit was a certified block's: every plane then lies out of the
+    /// epsilon's margin at its pixel ([`Primary::certify_block`] checks both ends, and
+    /// `|N·D|` is monotone between them).
+    pub(crate) certified: bool,
     key: Option<(u8, S, S)>,
     t: S,
     y: S,
@@ -228,6 +232,7 @@ pub(crate) struct HitMemo<S> {
 impl<S: Scalar> Default for HitMemo<S> {
     fn default() -> Self {
         Self {
+            certified: false,
             key: None,
             t: S::ZERO,
             y: S::ZERO,
@@ -903,6 +908,10 @@ impl<S: Scalar> Primary<S> {
         row: &Row<S>,
         memo: Option<&mut HitMemo<S>>,
     ) -> Result<Option<FastHit<S>>, ()> {
+        let memo = memo.map(|m| {
+            m.certified = false;
+            m
+        });
         match self.search(scene, row)? {
             Some((term, p, q)) => self.hit(scene, row, term, p, q, memo).map(Some).ok_or(()),
             None => Ok(None),
@@ -1324,6 +1333,10 @@ impl<S: Scalar> Primary<S> {
         if row.column >= block.stop {
             return None;
         }
+        let memo = memo.map(|m| {
+            m.certified = true;
+            m
+        });
         Some(match block.winner {
             NO_TERM => Ok(None),
             // A plane's `t'` as `search` forms it: `|num| / |N·D|`.

@@ -363,7 +363,7 @@ fn lit_plane_with<S: Scalar>(
 
 /// Whether every plane but the hit's own is quiet for the hit `h` of the row's current
 /// pixel ([`Primary::quiet_planes`]: its `t'` within their bound, every plane out of the
-/// epsilon's margin), so that no shadow segment from it can be stopped (a frame of plain
+/// epsilon's margin, as at every pixel of a certified block), so that no shadow segment from it can be stopped (a frame of plain
 /// and tiled planes only; the caller's format has exact quotients).
 #[inline(always)]
 fn quiet_hit<S: Scalar>(
@@ -381,7 +381,10 @@ fn quiet_hit<S: Scalar>(
         .and_then(|i| 1u8.checked_shl(i))
         .unwrap_or(0);
     let others = all & !own;
-    q.planes & others == others && h.param <= q.t_max && Primary::clear_of_margin(r, h.index)
+    // (Every plane of a certified block's pixel is out of the margin: `HitMemo::certified`.)
+    q.planes & others == others
+        && h.param <= q.t_max
+        && (memo.hits.certified || Primary::clear_of_margin(r, h.index))
 }
 
 /// How many lights' weights a [`PlaneMemo`] keeps (the others' terms take both products).
