@@ -908,10 +908,10 @@ impl<S: Scalar> Primary<S> {
         row: &Row<S>,
         memo: Option<&mut HitMemo<S>>,
     ) -> Result<Option<FastHit<S>>, ()> {
-        let memo = memo.map(|m| {
+        let mut memo = memo;
+        if let Some(m) = memo.as_deref_mut() {
             m.certified = false;
-            m
-        });
+        }
         match self.search(scene, row)? {
             Some((term, p, q)) => self.hit(scene, row, term, p, q, memo).map(Some).ok_or(()),
             None => Ok(None),
@@ -1333,10 +1333,10 @@ impl<S: Scalar> Primary<S> {
         if row.column >= block.stop {
             return None;
         }
-        let memo = memo.map(|m| {
+        let mut memo = memo;
+        if let Some(m) = memo.as_deref_mut() {
             m.certified = true;
-            m
-        });
+        }
         Some(match block.winner {
             NO_TERM => Ok(None),
             // A plane's `t'` as `search` forms it: `|num| / |N·D|`.
