@@ -66,28 +66,50 @@ impl<S: Scalar> Vec3<S> {
     /// three double-width products (issue 25). Other axes: [`Vec3::dot`].
     #[inline(always)]
     pub(crate) fn dot_axis(self, axis: Self) -> Option<S> {
+        match axis.world_axis() {
+            Some(along) => self.along(along),
+            None => self.dot(axis),
+        }
+    }
+
+    /// The world axis `self` lies along, if it does: `±1` on one coordinate (its index,
+    /// and whether `−1`) and `0` on the others ([`Vec3::dot_axis`]).
+    #[inline(always)]
+    pub(crate) fn world_axis(self) -> Option<(u8, bool)> {
         let zero = S::ZERO;
-        let signed = |c: S, value: S| {
+        let signed = |k: u8, c: S| {
             if c == S::ONE {
-                Some(Some(value))
+                Some((k, false))
             } else if c.checked_neg() == Some(S::ONE) {
-                Some(value.checked_neg())
+                Some((k, true))
             } else {
                 None
             }
         };
-        let along = if axis.y == zero && axis.z == zero {
-            signed(axis.x, self.x)
-        } else if axis.x == zero && axis.z == zero {
-            signed(axis.y, self.y)
-        } else if axis.x == zero && axis.y == zero {
-            signed(axis.z, self.z)
+        if self.y == zero && self.z == zero {
+            signed(0, self.x)
+        } else if self.x == zero && self.z == zero {
+            signed(1, self.y)
+        } else if self.x == zero && self.y == zero {
+            signed(2, self.z)
         } else {
             None
+        }
+    }
+
+    /// `self·axis` for an `axis` along the world axis `(k, negative)`
+    /// ([`Vec3::world_axis`]): `±self[k]`, exactly.
+    #[inline(always)]
+    pub(crate) fn along(self, (k, negative): (u8, bool)) -> Option<S> {
+        let value = match k {
+            0 => self.x,
+            1 => self.y,
+            _ => self.z,
         };
-        match along {
-            Some(value) => value,
-            None => self.dot(axis),
+        if negative {
+            value.checked_neg()
+        } else {
+            Some(value)
         }
     }
 

@@ -14,7 +14,7 @@ use crate::shade::{
     occludes_segment, shade_with, trace_pixel_ray,
 };
 use crate::stats::{Counters, count};
-use crate::{Beam, Color, Hit, Scalar, SceneView, Shape};
+use crate::{Beam, Color, Hit, Scalar, SceneView, Shape, Vec3};
 
 /// The pixels of columns `columns` of scanline `row` traced with the stage set `T`, one
 /// per step, as the caller (a `fill_contiguous` or a line buffer) pulls them. With a
@@ -247,7 +247,10 @@ fn lit_plane_with<S: Scalar>(
         tol()?;
     }
     // As `surface` (no texture: a plain or tiled plane), with the material's index.
-    let index = material_at(object, h.point, scene.rules(), counters);
+    let index = match object.shape {
+        Shape::Plane(_) => object.material,
+        _ => material_at(object, h.point, scene.rules(), counters),
+    };
     let Some(material) = scene.materials.get(usize::from(index)) else {
         return Some([S::ZERO; 3]);
     };
@@ -262,16 +265,33 @@ fn lit_plane_with<S: Scalar>(
         && memo
             .as_deref_mut()
             .is_some_and(|m| quiet_hit(scene, p, r, h, m));
+    // A term's position is its object's index (every object is a term): the row's `N·D`
+    // of the plane is the shading's `D·N` (the exact products' sum, rounded once). Its
+    // sign is `num`'s wherever the plane is hit (`ahead`), so the facing normal, and the
+    // world axis it may lie along (`Vec3::dot_axis`), are the plane's for the frame:
+    // kept for the last plane (`PlaneMemo`).
+    let facing_of = || -> Option<(Vec3<S>, Option<(u8, bool)>)> {
+        let facing = if Primary::nd(r, h.index)? > S::ZERO {
+            normal.checked_neg().unwrap_or(normal)
+        } else {
+            normal
+        };
+        Some((facing, facing.world_axis()))
+    };
+    let (facing, axis) = match memo.as_deref_mut() {
+        Some(m) => match m.facing {
+            Some((k, f, a)) if usize::from(k) == h.index => (f, a),
+            _ => {
+                let (f, a) = facing_of()?;
+                m.facing = u8::try_from(h.index).ok().map(|k| (k, f, a));
+                (f, a)
+            }
+        },
+        None => facing_of()?,
+    };
     // The first lights' `emissivity × diffuse`, the first product of each term, kept
     // for the material (`PlaneMemo`).
     let weights = memo.map(|m| m.weights(scene, index, material));
-    // A term's position is its object's index (every object is a term): the row's `N·D`
-    // of the plane is the shading's `D·N` (the exact products' sum, rounded once).
-    let facing = if Primary::nd(r, h.index)? > S::ZERO {
-        normal.checked_neg().unwrap_or(normal)
-    } else {
-        normal
-    };
     // (The own plane's side is not formed where the shadow tests leave it out, below.)
     let own = if S::EXACT_QUOTIENTS {
         h.index
@@ -293,7 +313,12 @@ fn lit_plane_with<S: Scalar>(
             continue;
         };
         let ll = to_light.dot(to_light).filter(|ll| *ll > S::ZERO)?;
-        let Some(nl) = to_light.dot_axis(facing).filter(|c| *c > S::ZERO) else {
+        // (`dot_axis`, with the plane's axis looked up once.)
+        let nl = match axis {
+            Some(along) => to_light.along(along),
+            None => to_light.dot(facing),
+        };
+        let Some(nl) = nl.filter(|c| *c > S::ZERO) else {
             continue;
         };
         if shadows && quiet {
@@ -406,6 +431,9 @@ pub struct PlaneMemo<S> {
     hits: fast::HitMemo<S>,
     /// The quiet planes (`Primary::quiet_planes`) of the scanline it last looked at.
     quiet: Option<(u16, fast::Quiet<S>)>,
+    /// The last plane shaded: its index, its normal facing the eye and the world axis
+    /// that lies along, if one does.
+    facing: Option<(u8, Vec3<S>, Option<(u8, bool)>)>,
 }
 
 impl<S: Scalar> Default for PlaneMemo<S> {
@@ -416,6 +444,7 @@ impl<S: Scalar> Default for PlaneMemo<S> {
             weights: [[S::ZERO; 3]; MEMO_LIGHTS],
             hits: fast::HitMemo::default(),
             quiet: None,
+            facing: None,
         }
     }
 }
