@@ -270,7 +270,7 @@ fn lit_plane_with<S: Scalar>(
     // sign is `num`'s wherever the plane is hit (`ahead`), so the facing normal, and the
     // world axis it may lie along (`Vec3::dot_axis`), are the plane's for the frame:
     // kept for the last plane (`PlaneMemo`).
-    let facing_of = || -> Option<(Vec3<S>, Option<(u8, bool)>)> {
+    let facing_of = || -> Option<Facing<S>> {
         let facing = if Primary::nd(r, h.index)? > S::ZERO {
             normal.checked_neg().unwrap_or(normal)
         } else {
@@ -412,6 +412,10 @@ fn quiet_hit<S: Scalar>(
         && (memo.hits.certified || Primary::clear_of_margin(r, h.index))
 }
 
+/// A plane's normal facing the eye, and the world axis it lies along if it does
+/// (`Vec3::world_axis`).
+type Facing<S> = (Vec3<S>, Option<(u8, bool)>);
+
 /// How many lights' weights a [`PlaneMemo`] keeps (the others' terms take both products).
 const MEMO_LIGHTS: usize = 2;
 
@@ -431,8 +435,7 @@ pub struct PlaneMemo<S> {
     hits: fast::HitMemo<S>,
     /// The quiet planes (`Primary::quiet_planes`) of the scanline it last looked at.
     quiet: Option<(u16, fast::Quiet<S>)>,
-    /// The last plane shaded: its index, its normal facing the eye and the world axis
-    /// that lies along, if one does.
+    /// The last plane shaded: its index and [`Facing`].
     facing: Option<(u8, Vec3<S>, Option<(u8, bool)>)>,
 }
 
