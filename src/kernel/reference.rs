@@ -280,11 +280,11 @@ fn lit_plane_with<S: Scalar>(
     };
     let (facing, axis) = match memo.as_deref_mut() {
         Some(m) => match m.facing {
-            Some((k, f, a)) if usize::from(k) == h.index => (f, a),
+            Some((k, f)) if usize::from(k) == h.index => f,
             _ => {
-                let (f, a) = facing_of()?;
-                m.facing = u8::try_from(h.index).ok().map(|k| (k, f, a));
-                (f, a)
+                let f = facing_of()?;
+                m.facing = u8::try_from(h.index).ok().map(|k| (k, f));
+                f
             }
         },
         None => facing_of()?,
@@ -436,7 +436,7 @@ pub struct PlaneMemo<S> {
     /// The quiet planes (`Primary::quiet_planes`) of the scanline it last looked at.
     quiet: Option<(u16, fast::Quiet<S>)>,
     /// The last plane shaded: its index and [`Facing`].
-    facing: Option<(u8, Vec3<S>, Option<(u8, bool)>)>,
+    facing: Option<(u8, Facing<S>)>,
 }
 
 impl<S: Scalar> Default for PlaneMemo<S> {
