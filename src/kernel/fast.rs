@@ -116,6 +116,10 @@ pub struct Primary<S: Scalar> {
     /// The screen's x unit where the window divides exactly (`Camera::x_unit`; zero:
     /// it does not): a restart's screen x is then a product, not a division.
     x_unit: S,
+    /// Whether every term's `N·D` (and its unrounded sum, and the sum's rounding) fits
+    /// the format at every `D` of the frame ([`Primary::frame_fits`]): a step then
+    /// needs no overflow test ([`Scalar::acc_step_fitting`]).
+    fits: bool,
 }
 
 /// Whether format `S` draws certified blocks ([`Primary::certify_block`]) on this target:
@@ -599,7 +603,7 @@ impl<S: Scalar> Primary<S> {
         } else {
             Vec::new()
         };
-        Some(Self {
+        let mut primary = Self {
             terms,
             steps,
             at_lights,
@@ -614,7 +618,32 @@ impl<S: Scalar> Primary<S> {
                 .and_then(|n| n.checked_mul(step_x.abs())),
             dz: S::ZERO.checked_sub(eye.z)?,
             x_unit: scene.camera.x_unit().unwrap_or(S::ZERO),
-        })
+            fits: false,
+        };
+        primary.fits = primary.frame_fits(scene);
+        Some(primary)
+    }
+
+    /// Whether every term fits at every `D` a scanline of the frame can take: `D.x`
+    /// within [`Primary::dx_range`] (the stepped drift included), `D.y` between the first
+    /// and the last row's, `D.z` the frame's. A term is affine in `D`, so its unrounded
+    /// sum lies between its values at the four corners, and if each of those rounds
+    /// into the format (half a DELTA added, no overflow) so does every sum between.
+    fn frame_fits(&self, scene: &SceneView<'_, S>) -> bool {
+        let fits = || -> Option<()> {
+            let camera = &scene.camera;
+            let (lo, hi) = self.dx_range(scene, camera.width)?;
+            let dy = |row: u16| camera.screen_y(row)?.checked_sub(camera.viewpoint.y);
+            let (top, bottom) = (dy(0)?, dy(camera.height.checked_sub(1)?)?);
+            for term in &self.terms {
+                let axis = axis_of(scene, term.index)?.to_array();
+                for d in [[lo, top], [lo, bottom], [hi, top], [hi, bottom]] {
+                    S::acc_round(S::acc_dot3(axis, [d[0], d[1], self.dz])?)?;
+                }
+            }
+            Some(())
+        };
+        fits().is_some()
     }
 
     /// Starts scanline `row` at column `column`.
@@ -879,8 +908,14 @@ impl<S: Scalar> Primary<S> {
         for (i, ((nd, acc), step)) in terms.enumerate() {
             // A still term's step is zero: it stays as it is.
             if self.still & (1 << i) == 0 {
-                *acc = S::acc_add(*acc, *step)?;
-                *nd = S::acc_round(*acc)?;
+                if S::EXACT_SUMS && self.fits {
+                    // Within the frame's checked range (`frame_fits`), in a format whose
+                    // sums are exact: no test.
+                    (*acc, *nd) = S::acc_step_fitting(*acc, *step);
+                } else {
+                    *acc = S::acc_add(*acc, *step)?;
+                    *nd = S::acc_round(*acc)?;
+                }
             }
         }
         row.column = row.column.checked_add(1)?;

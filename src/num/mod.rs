@@ -138,6 +138,19 @@ pub trait Scalar: Series + Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// formats): `dot3(a, b)` is `acc_round` of the sum of the three `acc_mul`s.
     fn acc_round(x: Self::Acc) -> Option<Self>;
 
+    /// `x + y` and its [`Scalar::acc_round`], for a caller that knows both fit (a
+    /// scanline stepping `N·D` between two values it checked once): the same values,
+    /// without the overflow tests where the format can leave them out (the fixed
+    /// formats, whose sums are integers); where they do not fit, some value (never a
+    /// panic).
+    #[inline]
+    fn acc_step_fitting(x: Self::Acc, y: Self::Acc) -> (Self::Acc, Self) {
+        match Self::acc_add(x, y) {
+            Some(sum) => (sum, Self::acc_round(sum).unwrap_or(Self::ZERO)),
+            None => (x, Self::ZERO),
+        }
+    }
+
     /// The unrounded `a·b` of two 3-vectors (see [`Scalar::Acc`]).
     #[inline]
     fn acc_dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self::Acc> {
