@@ -291,7 +291,7 @@ fn lit_plane_with<S: Scalar>(
     };
     // The first lights' `emissivity × diffuse`, the first product of each term, kept
     // for the material (`PlaneMemo`).
-    let weights = memo.map(|m| m.weights(scene, index, material));
+    let weights = memo.map(|m| &*m.weights(scene, index, material));
     // (The own plane's side is not formed where the shadow tests leave it out, below.)
     let own = if S::EXACT_QUOTIENTS {
         h.index
@@ -361,11 +361,10 @@ fn lit_plane_with<S: Scalar>(
         }
         let falloff = diffuse_falloff(nl, nl.checked_mul(k), ll);
         count(&mut counters.diffuse);
-        match weights.as_ref().and_then(|(w, _)| w.get(j)) {
+        match weights.and_then(|m| m.weight(scene, j)) {
             // `term([e, d, falloff])` is `(e·d)·falloff`, saturating (as where `e·d`
             // overflowed: its bit in the memo's `overflow`).
-            Some(w) => {
-                let overflow = weights.as_ref().map_or(0, |(_, o)| *o >> (3 * j));
+            Some((w, overflow)) => {
                 for (k, (c, w)) in color.iter_mut().zip(w).enumerate() {
                     let t = match overflow & (1 << k) {
                         0 => w.checked_mul(falloff).unwrap_or(S::MAX),
@@ -467,15 +466,15 @@ impl<S: Scalar> PlaneMemo<S> {
         }
     }
 
-    /// The weights of material `index` (`material`), formed where the memo holds
-    /// another: one per light of the first [`MEMO_LIGHTS`].
+    /// The memo with the weights of material `index` (`material`), formed where it
+    /// held another's: one per light of the first [`MEMO_LIGHTS`] ([`PlaneMemo::weight`]).
     #[inline(always)]
     fn weights(
         &mut self,
         scene: &SceneView<'_, S>,
         index: u8,
         material: &crate::Material<S>,
-    ) -> (&[[S; 3]], u8) {
+    ) -> &Self {
         if self.material != Some(index) {
             self.overflow = 0;
             for (j, (w, light)) in self.weights.iter_mut().zip(scene.lights).enumerate() {
@@ -493,8 +492,18 @@ impl<S: Scalar> PlaneMemo<S> {
             }
             self.material = Some(index);
         }
-        let n = scene.lights.len().min(MEMO_LIGHTS);
-        (self.weights.get(..n).unwrap_or(&[]), self.overflow)
+        self
+    }
+
+    /// Light `j`'s weights for the material kept ([`PlaneMemo::weights`]), and their
+    /// three overflow bits; `None` beyond the first [`MEMO_LIGHTS`].
+    #[inline(always)]
+    fn weight(&self, scene: &SceneView<'_, S>, j: usize) -> Option<([S; 3], u8)> {
+        if j >= scene.lights.len() {
+            return None;
+        }
+        let w = *self.weights.get(j)?;
+        Some((w, (self.overflow >> (3 * j)) & 7))
     }
 }
 
