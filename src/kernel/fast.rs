@@ -145,6 +145,14 @@ pub(crate) struct Block {
     winner: u8,
 }
 
+impl Block {
+    /// The plane that wins throughout the block, if `column` is in it.
+    #[inline(always)]
+    pub(crate) fn plane_at(&self, column: u16) -> Option<usize> {
+        (column < self.stop && self.winner != NO_TERM).then_some(usize::from(self.winner))
+    }
+}
+
 impl Default for Block {
     fn default() -> Self {
         Self {
@@ -815,6 +823,35 @@ impl<S: Scalar> Primary<S> {
             }
         }
         row.column = row.column.checked_add(m)?;
+        Some(())
+    }
+
+    /// Whether a scanline may step one term alone and bring the others up to date later
+    /// ([`Primary::advance_one`], [`Primary::refresh`], bit for bit): the format's sums
+    /// and products are exact, and every term fits throughout the frame (so that the
+    /// refresh cannot fail where the steps would not have).
+    #[inline(always)]
+    pub(crate) fn steps_freely(&self) -> bool {
+        S::EXACT_SUMS && S::EXACT_PRODUCTS && self.fits
+    }
+
+    /// [`Primary::advance`] of `D.x` and the term of object `index` alone (the others are
+    /// then stale until [`Primary::refresh`]): for a pixel of a certified block, whose
+    /// hit needs only its plane's `N·D`.
+    #[inline(always)]
+    pub(crate) fn advance_one(&self, row: &mut Row<S>, index: usize) -> Option<()> {
+        row.dir.x = row.dir.x.checked_add(self.step_x)?;
+        if self.still & 1u8.checked_shl(u32::try_from(index).ok()?)? == 0 {
+            let (acc, nd) = (row.acc.get_mut(index)?, row.nd.get_mut(index)?);
+            let step = *self.steps.get(index)?;
+            if S::EXACT_SUMS && self.fits {
+                (*acc, *nd) = S::acc_step_fitting(*acc, step);
+            } else {
+                *acc = S::acc_add(*acc, step)?;
+                *nd = S::acc_round(*acc)?;
+            }
+        }
+        row.column = row.column.checked_add(1)?;
         Some(())
     }
 

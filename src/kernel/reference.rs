@@ -50,10 +50,28 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                     if Primary::column(r).checked_add(1) == Some(column)
                         && column % fast::RESYNC_PIXELS != 0 =>
                 {
-                    p.advance(r)?
+                    // Inside a certified block a stage set with a plane memo steps the
+                    // block's plane alone (its pixels need no other term unless they
+                    // take the general shading or a shadow test: `PlaneMemo::stale`).
+                    match (memo.memo(), block.plane_at(column)) {
+                        (Some(m), Some(w)) if m.lazy && p.steps_freely() => {
+                            p.advance_one(r, w)?;
+                            m.stale = true;
+                        }
+                        (m, _) => {
+                            if let Some(m) = m.filter(|m| m.stale) {
+                                p.refresh(scene, r)?;
+                                m.stale = false;
+                            }
+                            p.advance(r)?
+                        }
+                    }
                 }
                 Some(r) => {
                     block = fast::Block::default();
+                    if let Some(m) = memo.memo() {
+                        (m.stale, m.lazy) = (false, true);
+                    }
                     if p.restart(scene, row, column, r).is_none() {
                         state = None;
                         return None;
@@ -61,6 +79,9 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                 }
                 None => {
                     block = fast::Block::default();
+                    if let Some(m) = memo.memo() {
+                        (m.stale, m.lazy) = (false, true);
+                    }
                     state = Some(p.row(scene, row, column)?);
                 }
             }
@@ -97,10 +118,11 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
             guess = fast::Guess::of(found.as_ref().map(|h| h.as_ref().map(|h| h.index)));
         }
         let color = match found {
-            Some(Some(h)) => match state.as_ref() {
+            Some(Some(h)) => match state.as_mut() {
                 Some(r) => {
                     // The flattened plane shading first (not called at all for the
-                    // other stage sets and formats), else the general one.
+                    // other stage sets and formats), else the general one (with every
+                    // term up to date: `PlaneMemo::stale`).
                     let lit = match primary {
                         Some(p) if lit_planes::<S, T>() => {
                             let at = (&mut at_hit, memo.memo());
@@ -110,7 +132,15 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                     };
                     match lit {
                         Some(color) => color,
-                        None => fast_color::<S, T>(scene, primary, r, &h, &mut at_hit, counters),
+                        None => {
+                            if let (Some(m), Some(p)) = (memo.memo(), primary)
+                                && m.stale
+                            {
+                                m.stale = p.refresh(scene, r).is_none();
+                                m.lazy = false;
+                            }
+                            fast_color::<S, T>(scene, primary, r, &h, &mut at_hit, counters)
+                        }
                     }
                 }
                 None => scene.background,
@@ -188,7 +218,7 @@ const fn lit_planes<S: Scalar, T: Stages>() -> bool {
 fn lit_plane_color<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     p: &Primary<S>,
-    r: &Row<S>,
+    r: &mut Row<S>,
     h: &fast::FastHit<S>,
     at: (
         &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
@@ -208,7 +238,7 @@ fn lit_plane_color<S: Scalar, T: Stages>(
 fn lit_plane_with<S: Scalar>(
     scene: &SceneView<'_, S>,
     p: &Primary<S>,
-    r: &Row<S>,
+    r: &mut Row<S>,
     h: &fast::FastHit<S>,
     (at_hit, mut memo): (
         &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
@@ -265,6 +295,16 @@ fn lit_plane_with<S: Scalar>(
         && memo
             .as_deref_mut()
             .is_some_and(|m| quiet_hit(scene, p, r, h, m));
+    // The sides need every term: a row stepped by its block's plane alone is brought up
+    // to date first (`PlaneMemo::stale`).
+    if set_shadows
+        && !quiet
+        && let Some(m) = memo.as_deref_mut()
+        && m.stale
+    {
+        p.refresh(scene, r)?;
+        (m.stale, m.lazy) = (false, false);
+    }
     // A term's position is its object's index (every object is a term): the row's `N·D`
     // of the plane is the shading's `D·N` (the exact products' sum, rounded once). Its
     // sign is `num`'s wherever the plane is hit (`ahead`), so the facing normal, and the
@@ -291,7 +331,7 @@ fn lit_plane_with<S: Scalar>(
     };
     // The first lights' `emissivity × diffuse`, the first product of each term, kept
     // for the material (`PlaneMemo`).
-    let weights = memo.map(|m| &*m.weights(scene, index, material));
+    let weights = memo.map(|m| m.weights(scene, index, material));
     // (The own plane's side is not formed where the shadow tests leave it out, below.)
     let own = if S::EXACT_QUOTIENTS {
         h.index
@@ -436,6 +476,14 @@ pub struct PlaneMemo<S> {
     quiet: Option<(u16, fast::Quiet<S>)>,
     /// The last plane shaded: its index and [`Facing`].
     facing: Option<(u8, Facing<S>)>,
+    /// Whether the scanline's row has stepped its certified block's plane alone since
+    /// its terms were last all up to date (`Primary::advance_one`): a pixel that needs
+    /// the others refreshes them first (`Primary::refresh`, bit for bit what stepping
+    /// them would have given, in the formats that step so: `Primary::steps_freely`).
+    pub(crate) stale: bool,
+    /// Whether the scanline steps its blocks' planes alone (until a restart, once a
+    /// pixel has had to refresh its terms: a block of such pixels steps them all).
+    pub(crate) lazy: bool,
 }
 
 impl<S: Scalar> Default for PlaneMemo<S> {
@@ -447,6 +495,8 @@ impl<S: Scalar> Default for PlaneMemo<S> {
             hits: fast::HitMemo::default(),
             quiet: None,
             facing: None,
+            stale: false,
+            lazy: true,
         }
     }
 }
@@ -788,7 +838,8 @@ mod tests {
                     };
                     let (mut c1, mut c2) = (Counters::default(), Counters::default());
                     let at = (&mut at_hit, Some(&mut memo));
-                    let lit = lit_plane_color::<S, T>(&view, &p, r, &h, at, &mut c1);
+                    let mut lit_row = r.clone();
+                    let lit = lit_plane_color::<S, T>(&view, &p, &mut lit_row, &h, at, &mut c1);
                     let general = fast_color::<S, T>(&view, Some(&p), r, &h, &mut at_hit, &mut c2);
                     if let Some(lit) = lit {
                         drawn += 1;
