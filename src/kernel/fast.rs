@@ -76,6 +76,11 @@ fn axis_of<S: Scalar>(scene: &SceneView<'_, S>, index: u8) -> Option<Vec3<S>> {
 /// (more blocks hold a crossing, and fail).
 pub const RESYNC_PIXELS: u16 = 16;
 
+/// Where a scanline outside a certified block tries to start one: every this many
+/// columns (a restart's, and half-way to the next, so that a block that fails for a
+/// crossing in one half may hold in the other).
+pub(crate) const BLOCK_STARTS: u16 = RESYNC_PIXELS / 2;
+
 /// The per-frame part of the fast path; `None` from [`Primary::new`] when the scene is not
 /// made of planes and spheres (the eye outside them) or a per-frame quantity does not fit
 /// the format.
@@ -146,6 +151,11 @@ pub(crate) struct Block {
 }
 
 impl Block {
+    /// Whether the block holds no pixel (none was certified).
+    pub(crate) fn is_empty(&self) -> bool {
+        self.stop == 0
+    }
+
     /// The plane that wins throughout the block, if `column` is in it.
     #[inline(always)]
     pub(crate) fn plane_at(&self, column: u16) -> Option<usize> {
@@ -1299,7 +1309,10 @@ impl<S: Scalar> Primary<S> {
     /// the comparison with unrounded terms is linear, so it holds between the ends too).
     #[inline(never)]
     fn certify_block(&self, a: &Row<S>, winner: Option<usize>, last: u16) -> Option<Block> {
-        let m = last.checked_sub(a.column)?.min(RESYNC_PIXELS - 1);
+        // Up to the scanline's next restart (the stepped terms hold until then).
+        let m = last
+            .checked_sub(a.column)?
+            .min(RESYNC_PIXELS - 1 - a.column % RESYNC_PIXELS);
         if m == 0 || a.nd.len() != self.terms.len() {
             return None;
         }

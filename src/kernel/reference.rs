@@ -96,7 +96,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
             if let Some(hit) = p.block_hit(scene, r, &block, hits.as_deref_mut()) {
                 return hit.ok();
             }
-            if column % fast::RESYNC_PIXELS != 0 {
+            if column % fast::BLOCK_STARTS != 0 {
                 return p.nearest_with(scene, r, hits).ok();
             }
             // A resync column: the last pixel's winner certified first (no search where
@@ -111,6 +111,12 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
             let winner = hit.as_ref().map(|h| h.index);
             if guess.winner() != Some(winner) {
                 p.start_block(r, winner, last, &mut block);
+            }
+            // A restart's block that does not hold to the next restart may hold for its
+            // first half (the second half tries its own, `fast::BLOCK_STARTS`).
+            if block.is_empty() && column % fast::RESYNC_PIXELS == 0 {
+                let half = last.min(column.saturating_add(fast::BLOCK_STARTS - 1));
+                p.start_block(r, winner, half, &mut block);
             }
             Some(hit)
         });
