@@ -267,16 +267,17 @@ impl<S: Scalar> Default for HitMemo<S> {
 /// The quiet planes of a scanline ([`Primary::quiet_planes`]).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Quiet<S> {
-    /// The quiet planes, as bits (one per object).
-    pub(crate) planes: u8,
-    /// Up to which `t'` they are.
+    /// The objects that are not quiet, as bits (one per object; all of them, `u8::MAX`,
+    /// where the frame has another object than planes).
+    pub(crate) loud: u8,
+    /// Up to which `t'` the others are.
     pub(crate) t_max: S,
 }
 
 impl<S: Scalar> Default for Quiet<S> {
     fn default() -> Self {
         Self {
-            planes: 0,
+            loud: u8::MAX,
             t_max: S::ZERO,
         }
     }
@@ -1213,7 +1214,7 @@ impl<S: Scalar> Primary<S> {
     }
 
     /// The planes that no shadow segment from a plane hit on this scanline can be
-    /// stopped by, as bits (`Quiet::planes`), and the largest `t'` for which that holds
+    /// stopped by (`Quiet::loud`: the others, as bits), and the largest `t'` for which that holds
     /// (`Quiet::t_max`), where the row's pixels keep every plane out of the epsilon's
     /// margin ([`Primary::clear_of_margin`]); `Quiet::default()` (none) where the frame
     /// has another object than plain and tiled planes, or a quantity does not fit.
@@ -1268,8 +1269,10 @@ impl<S: Scalar> Primary<S> {
                     planes |= 1 << i;
                 }
             }
+            // Every object is a term (at most eight: `FAST_OBJECTS`).
+            let all = u8::MAX.checked_shr(u32::try_from(8 - self.terms.len()).ok()?)?;
             Some(Quiet {
-                planes,
+                loud: all & !planes,
                 t_max: quarter.checked_div(widest)?,
             })
         };

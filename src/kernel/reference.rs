@@ -254,13 +254,20 @@ fn lit_plane_with<S: Scalar>(
     counters: &mut Counters,
 ) -> Option<Color<S>> {
     let object = scene.objects.get(h.index)?;
-    if !matches!(object.shape, Shape::Plane(_) | Shape::Tiled { .. })
-        || scene.lights_on_surfaces
-        || scene
-            .lights
-            .iter()
-            .any(|l| matches!(l.beam, Beam::Projector(_)))
-    {
+    // A light on a surface or a projector takes the general shading (asked once per
+    // scanline where the memo keeps the answer).
+    let general = || {
+        scene.lights_on_surfaces
+            || scene
+                .lights
+                .iter()
+                .any(|l| matches!(l.beam, Beam::Projector(_)))
+    };
+    let general = match memo.as_deref_mut() {
+        Some(m) => *m.general.get_or_insert_with(general),
+        None => general(),
+    };
+    if general || !matches!(object.shape, Shape::Plane(_) | Shape::Tiled { .. }) {
         return None;
     }
     let normal = object.shape.plane()?.normal();
@@ -444,15 +451,12 @@ fn quiet_hit<S: Scalar>(
     memo: &mut PlaneMemo<S>,
 ) -> bool {
     let q = memo.quiet(scene, p, r);
-    let n = u32::try_from(scene.objects.len()).unwrap_or(u32::MAX);
-    let all = u8::MAX.checked_shr(8u32.saturating_sub(n)).unwrap_or(0);
     let own = u32::try_from(h.index)
         .ok()
         .and_then(|i| 1u8.checked_shl(i))
         .unwrap_or(0);
-    let others = all & !own;
     // (Every plane of a certified block's pixel is out of the margin: `HitMemo::certified`.)
-    q.planes & others == others
+    (q.loud == 0 || q.loud == own)
         && h.param <= q.t_max
         && (memo.hits.certified || Primary::clear_of_margin(r, h.index))
 }
@@ -482,6 +486,9 @@ pub struct PlaneMemo<S> {
     quiet: Option<(u16, fast::Quiet<S>)>,
     /// The last plane shaded: its index and [`Facing`].
     facing: Option<(u8, Facing<S>)>,
+    /// Whether the scene's lights send every plane hit to the general shading (a light
+    /// on a surface, a projector), once asked.
+    general: Option<bool>,
     /// Whether the scanline's row has stepped its certified block's plane alone since
     /// its terms were last all up to date (`Primary::advance_one`): a pixel that needs
     /// the others refreshes them first (`Primary::refresh`, bit for bit what stepping
@@ -501,6 +508,7 @@ impl<S: Scalar> Default for PlaneMemo<S> {
             hits: fast::HitMemo::default(),
             quiet: None,
             facing: None,
+            general: None,
             stale: false,
             lazy: true,
         }
