@@ -275,19 +275,8 @@ fn lit_plane_with<S: Scalar>(
     // needs it, once it is known to fit (the general path takes its ray terms where it
     // does not), before anything is counted.
     let shadows = set_shadows && scene.shadows;
-    let mut tolerance = None;
-    let mut tol = || -> Option<S> {
-        if !shadows {
-            return Some(S::ZERO);
-        }
-        if tolerance.is_none() {
-            let m = scene.camera.viewpoint.max_abs().max(h.point.max_abs());
-            tolerance = surface_tolerance(h.t_bound, m);
-        }
-        tolerance
-    };
     if shadows && !surface_tolerance_fits(h.t_bound) {
-        tol()?;
+        segment_tolerance(scene, h)?;
     }
     // As `surface` (no texture: a plain or tiled plane), with the material's index.
     let index = match object.shape {
@@ -351,7 +340,7 @@ fn lit_plane_with<S: Scalar>(
     } else {
         usize::MAX
     };
-    let sides = match set_shadows && !p.at_lights().is_empty() && !quiet {
+    let sides = match !quiet && set_shadows && !p.at_lights().is_empty() {
         true => p.sides_but(r, h.param, own, at_hit).map(|bits| PlaneSides {
             at_hit,
             at_lights: p.at_lights(),
@@ -374,41 +363,10 @@ fn lit_plane_with<S: Scalar>(
         let Some(nl) = nl.filter(|c| *c > S::ZERO) else {
             continue;
         };
-        if shadows && quiet {
+        if shadows {
             count(&mut counters.shadow_rays);
-        } else if shadows {
-            count(&mut counters.shadow_rays);
-            // The objects that may stand between the hit and the light, as
-            // `occludes_segment` picks them, less the hit's own plane: its side at the hit
-            // is `num − t'·(N·D)` with `t'` within a DELTA of `num/(N·D)` (an exact
-            // quotient), so it lies within `(|N·D| + 1)·DELTA` of zero, inside the
-            // tolerance `(t'·2|D|∞ + 12)·DELTA` (`t' ≥ 1`, `|N·D| ≤ √3|D|∞`), and
-            // `sides_differ` passes it over. Where none remains, no tolerance is formed.
-            let shadowed = match sides {
-                Some(s) if S::EXACT_QUOTIENTS && s.at_hit.len() == scene.objects.len() => {
-                    let own = 1u8.checked_shl(u32::try_from(h.index).ok()?).unwrap_or(0);
-                    let bits = match s.bits.lights.get(j) {
-                        Some(lp) => ((s.bits.positive ^ lp) & !s.bits.spheres) | s.bits.spheres,
-                        None => u8::MAX,
-                    } & !own;
-                    if bits == 0 {
-                        Some(false)
-                    } else {
-                        let segment = (h.point, to_light, ll, tol()?);
-                        occluded_among(scene, s, j, bits, segment, |_| false)
-                    }
-                }
-                _ => None,
-            };
-            let shadowed = match shadowed {
-                Some(v) => v,
-                None => {
-                    let sides = sides.map(|s| (s, j));
-                    let tol = tol()?;
-                    occludes_segment(scene, sides, h.point, to_light, ll, tol, light.location)
-                }
-            };
-            if shadowed {
+            // (A quiet hit's segments cannot be stopped: `quiet_hit`.)
+            if !quiet && plane_hit_shadowed(scene, sides, h, (j, light), to_light, ll)? {
                 continue;
             }
         }
@@ -436,6 +394,57 @@ fn lit_plane_with<S: Scalar>(
         }
     }
     Some(color)
+}
+
+/// The segments' tolerance at the fast kernel's hit `h` (`Fixray::segment_tolerance`).
+#[inline(always)]
+fn segment_tolerance<S: Scalar>(scene: &SceneView<'_, S>, h: &fast::FastHit<S>) -> Option<S> {
+    let m = scene.camera.viewpoint.max_abs().max(h.point.max_abs());
+    surface_tolerance(h.t_bound, m)
+}
+
+/// Whether the shadow segment from the plane hit `h` towards light `j` (`L = to_light`,
+/// `|L|² = ll`) is stopped, as `occludes_segment` decides (`None` where the segments'
+/// tolerance does not fit, which the caller has ruled out). The objects that may stand
+/// between the hit and the light are the ones `occludes_segment` picks, less the hit's
+/// own plane where quotients are exact: its side at the hit is `num − t'·(N·D)` with
+/// `t'` within a DELTA of `num/(N·D)`, so it lies within `(|N·D| + 1)·DELTA` of zero,
+/// inside the tolerance `(t'·2|D|∞ + 12)·DELTA` (`t' ≥ 1`, `|N·D| ≤ √3|D|∞`), and
+/// `sides_differ` passes it over. Where none remains, no tolerance is formed. Out of
+/// line: the pixels that take it are few (the others are quiet, `quiet_hit`).
+#[inline(never)]
+fn plane_hit_shadowed<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    sides: Option<PlaneSides<'_, S>>,
+    h: &fast::FastHit<S>,
+    (j, light): (usize, &crate::Light<S>),
+    to_light: Vec3<S>,
+    ll: S,
+) -> Option<bool> {
+    let shadowed = match sides {
+        Some(s) if S::EXACT_QUOTIENTS && s.at_hit.len() == scene.objects.len() => {
+            let own = 1u8.checked_shl(u32::try_from(h.index).ok()?).unwrap_or(0);
+            let bits = match s.bits.lights.get(j) {
+                Some(lp) => ((s.bits.positive ^ lp) & !s.bits.spheres) | s.bits.spheres,
+                None => u8::MAX,
+            } & !own;
+            if bits == 0 {
+                Some(false)
+            } else {
+                let segment = (h.point, to_light, ll, segment_tolerance(scene, h)?);
+                occluded_among(scene, s, j, bits, segment, |_| false)
+            }
+        }
+        _ => None,
+    };
+    Some(match shadowed {
+        Some(v) => v,
+        None => {
+            let sides = sides.map(|s| (s, j));
+            let tol = segment_tolerance(scene, h)?;
+            occludes_segment(scene, sides, h.point, to_light, ll, tol, light.location)
+        }
+    })
 }
 
 /// Whether every plane but the hit's own is quiet for the hit `h` of the row's current
