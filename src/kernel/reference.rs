@@ -312,15 +312,18 @@ fn lit_plane_with<S: Scalar>(
     // sign is `num`'s wherever the plane is hit (`ahead`), so the facing normal, and the
     // world axis it may lie along (`Vec3::dot_axis`), are the plane's for the frame:
     // kept for the last plane (`PlaneMemo`).
-    let facing_of = || -> Option<Facing<S>> {
-        let facing = if Primary::nd(r, h.index)? > S::ZERO {
+    let turned = |turn: bool| {
+        if turn {
             normal.checked_neg().unwrap_or(normal)
         } else {
             normal
-        };
-        Some((facing, facing.world_axis()))
+        }
     };
-    let (facing, axis) = match memo.as_deref_mut() {
+    let facing_of = || -> Option<Facing> {
+        let turn = Primary::nd(r, h.index)? > S::ZERO;
+        Some((turn, turned(turn).world_axis()))
+    };
+    let (turn, axis) = match memo.as_deref_mut() {
         Some(m) => match m.facing {
             Some((k, f)) if usize::from(k) == h.index => f,
             _ => {
@@ -358,7 +361,7 @@ fn lit_plane_with<S: Scalar>(
         // (`dot_axis`, with the plane's axis looked up once.)
         let nl = match axis {
             Some(along) => to_light.along(along),
-            None => to_light.dot(facing),
+            None => to_light.dot(turned(turn)),
         };
         let Some(nl) = nl.filter(|c| *c > S::ZERO) else {
             continue;
@@ -470,12 +473,15 @@ fn quiet_hit<S: Scalar>(
         && (memo.hits.certified || Primary::clear_of_margin(r, h.index))
 }
 
-/// A plane's normal facing the eye, and the world axis it lies along if it does
-/// (`Vec3::world_axis`).
-type Facing<S> = (Vec3<S>, Option<(u8, bool)>);
+/// A plane's normal facing the eye (whether it is the plane's normal turned), and the
+/// world axis it lies along if it does (`Vec3::world_axis`).
+type Facing = (bool, Option<(u8, bool)>);
 
-/// How many lights' weights a [`PlaneMemo`] keeps (the others' terms take both products).
-const MEMO_LIGHTS: usize = 2;
+/// How many lights' weights a [`PlaneMemo`] keeps (the others' terms take both
+/// products): one, as every shipped scene of the crate's rules has (a scanline of a
+/// scene drawn on the reference path carries the memo too, and the deepest I32F32
+/// stack on a 16 KB chip, the course's, had 12 bytes to spare with two).
+const MEMO_LIGHTS: usize = 1;
 
 /// What a fast-kernel scanline of a diffuse stage set keeps from pixel to pixel for its
 /// lit plane hits ([`lit_plane_color`]; `Stages::Memo`): the material last shaded and,
@@ -494,7 +500,7 @@ pub struct PlaneMemo<S> {
     /// The quiet planes (`Primary::quiet_planes`) of the scanline it last looked at.
     quiet: Option<(u16, fast::Quiet<S>)>,
     /// The last plane shaded: its index and [`Facing`].
-    facing: Option<(u8, Facing<S>)>,
+    facing: Option<(u8, Facing)>,
     /// Whether the scene's lights send every plane hit to the general shading (a light
     /// on a surface, a projector), once asked.
     general: Option<bool>,
