@@ -67,19 +67,35 @@ fn axis_of<S: Scalar>(scene: &SceneView<'_, S>, index: u8) -> Option<Vec3<S>> {
     }
 }
 
-/// How many pixels a scanline steps `D.x` by addition before restarting from the exact
-/// screen coordinate (one `mul_ratio`, a 64-bit division): the trade between the drift of
-/// the stepped coordinate (≤ ½ DELTA per step), the cost of the exact one, and how long
-/// a certified block can be ([`Primary::certify_block`]: at most this many pixels).
-/// Measured on the Cortex-M0, I16F16, default scene: 8 → 16 pixels, 2,681 → 2,571
-/// instructions a pixel (fewer restarts, half as many blocks to certify); 32: 2,677
-/// (more blocks hold a crossing, and fail).
+/// The most pixels a scanline steps `D.x` by addition before restarting from the exact
+/// screen coordinate ([`resync_pixels`]; a multiple of every format's).
 pub const RESYNC_PIXELS: u16 = 16;
+
+/// How many pixels a scanline of format `S` steps `D.x` by addition before restarting
+/// from the exact screen coordinate (one `mul_ratio`, a 64-bit division): the trade
+/// between the drift of the stepped coordinate (≤ ½ DELTA per step), the cost of the
+/// exact one, and how long a certified block can be ([`Primary::certify_block`]: at
+/// most this many pixels). 16 in the formats with at least 16 fraction bits (and the
+/// floats), 8 in the coarser ones (I20F12), whose drift is 16 times larger: there, 16
+/// moved the default scene's pixels that differ from f64 from 7.2 % to 12.0 % (issue
+/// 25's sixth session) and the specular scene's past its budget. Measured on the
+/// Cortex-M0, I16F16, default scene: 8 → 16 pixels, 2,681 → 2,571 instructions a pixel
+/// (fewer restarts, half as many blocks to certify); 32: 2,677 (more blocks hold a
+/// crossing, and fail).
+pub(crate) const fn resync_pixels<S: Scalar>() -> u16 {
+    if core::mem::size_of::<S>() * 8 < S::INT_BITS as usize + 16 {
+        RESYNC_PIXELS / 2
+    } else {
+        RESYNC_PIXELS
+    }
+}
 
 /// Where a scanline outside a certified block tries to start one: every this many
 /// columns (a restart's, and half-way to the next, so that a block that fails for a
 /// crossing in one half may hold in the other).
-pub(crate) const BLOCK_STARTS: u16 = RESYNC_PIXELS / 2;
+pub(crate) const fn block_starts<S: Scalar>() -> u16 {
+    resync_pixels::<S>() / 2
+}
 
 /// The per-frame part of the fast path; `None` from [`Primary::new`] when the scene is not
 /// made of planes and spheres (the eye outside them) or a per-frame quantity does not fit
@@ -633,7 +649,7 @@ impl<S: Scalar> Primary<S> {
             blocks,
             still,
             step_x,
-            resync_span: S::from_i32(i32::from(RESYNC_PIXELS))
+            resync_span: S::from_i32(i32::from(resync_pixels::<S>()))
                 .and_then(|n| n.checked_mul(step_x.abs())),
             dz: S::ZERO.checked_sub(eye.z)?,
             x_unit: scene.camera.x_unit().unwrap_or(S::ZERO),
@@ -1315,7 +1331,7 @@ impl<S: Scalar> Primary<S> {
         // Up to the scanline's next restart (the stepped terms hold until then).
         let m = last
             .checked_sub(a.column)?
-            .min(RESYNC_PIXELS - 1 - a.column % RESYNC_PIXELS);
+            .min(resync_pixels::<S>() - 1 - a.column % resync_pixels::<S>());
         if m == 0 || a.nd.len() != self.terms.len() {
             return None;
         }

@@ -48,7 +48,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
             match state.as_mut() {
                 Some(r)
                     if Primary::column(r).checked_add(1) == Some(column)
-                        && column % fast::RESYNC_PIXELS != 0 =>
+                        && column % fast::resync_pixels::<S>() != 0 =>
                 {
                     // Inside a certified block a stage set with a plane memo steps the
                     // block's plane alone (its pixels need no other term unless they
@@ -96,7 +96,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
             if let Some(hit) = p.block_hit(scene, r, &block, hits.as_deref_mut()) {
                 return hit.ok();
             }
-            if column % fast::BLOCK_STARTS != 0 {
+            if column % fast::block_starts::<S>() != 0 {
                 return p.nearest_with(scene, r, hits).ok();
             }
             // A resync column: the last pixel's winner certified first (no search where
@@ -113,9 +113,9 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
                 p.start_block(r, winner, last, &mut block);
             }
             // A restart's block that does not hold to the next restart may hold for its
-            // first half (the second half tries its own, `fast::BLOCK_STARTS`).
-            if block.is_empty() && column % fast::RESYNC_PIXELS == 0 {
-                let half = last.min(column.saturating_add(fast::BLOCK_STARTS - 1));
+            // first half (the second half tries its own, `fast::block_starts::<S>()`).
+            if block.is_empty() && column % fast::resync_pixels::<S>() == 0 {
+                let half = last.min(column.saturating_add(fast::block_starts::<S>() - 1));
                 p.start_block(r, winner, half, &mut block);
             }
             Some(hit)
@@ -733,7 +733,9 @@ mod tests {
                 let mut block = fast::Block::default();
                 for column in 0..w {
                     let stepped = match state.as_mut() {
-                        Some(r) if column % fast::RESYNC_PIXELS != 0 => p.advance(r).is_some(),
+                        Some(r) if column % fast::resync_pixels::<S>() != 0 => {
+                            p.advance(r).is_some()
+                        }
                         _ => {
                             block = fast::Block::default();
                             state = p.row(&view, row, column);
@@ -753,7 +755,7 @@ mod tests {
                         }
                         None => {
                             let hit = p.nearest(&view, r).ok();
-                            if column % fast::RESYNC_PIXELS == 0
+                            if column % fast::resync_pixels::<S>() == 0
                                 && let Some(h) = &hit
                             {
                                 // Any guess of the winner (as `scanline` guesses the last
@@ -848,7 +850,9 @@ mod tests {
                 let mut state: Option<Row<S>> = None;
                 for column in 0..view.camera.width {
                     let stepped = match state.as_mut() {
-                        Some(r) if column % fast::RESYNC_PIXELS != 0 => p.advance(r).is_some(),
+                        Some(r) if column % fast::resync_pixels::<S>() != 0 => {
+                            p.advance(r).is_some()
+                        }
                         _ => {
                             state = p.row(&view, row, column);
                             state.is_some()

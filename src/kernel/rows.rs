@@ -650,7 +650,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             Some(())
         } else if self.valid
             && Primary::column(&self.state).checked_add(1) == Some(column)
-            && !column.is_multiple_of(fast::RESYNC_PIXELS)
+            && !column.is_multiple_of(fast::resync_pixels::<S>())
         {
             if skip || stale {
                 p.advance_dir(&mut self.state)
@@ -1136,7 +1136,7 @@ fn quick_step<S: Scalar>(
     (row, dy): (u16, S),
     column: u16,
 ) -> Option<(Rgb888, bool)> {
-    let resync = column.is_multiple_of(fast::RESYNC_PIXELS);
+    let resync = column.is_multiple_of(fast::resync_pixels::<S>());
     let dx = if resync {
         p.restart_dir_in_row(scene, row, dy, column, state)?;
         Primary::dir(state).x
