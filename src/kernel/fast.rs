@@ -129,7 +129,7 @@ pub struct Primary<S: Scalar> {
     still: u8,
     /// Screen x step between pixel centres, `WX / W`.
     step_x: S,
-    /// `RESYNC_PIXELS·|step_x|`: how far `|D.x|` can move between two restarts of a
+    /// `resync_pixels·|step_x|`: how far `|D.x|` can move between two restarts of a
     /// scanline (`None`: too far for the format; each pixel then bounds itself).
     resync_span: Option<S>,
     /// `−eye.z`, the z of every `D`.
@@ -326,7 +326,7 @@ pub struct Row<S: Scalar> {
     row: u16,
     /// `ε·(dx_limit + |D.y| + |D.z|)` plus two ulps, set at each restart: a bound of
     /// `accepts_bounded` valid for every pixel whose `|D.x| ≤ dx_limit` (the next
-    /// [`RESYNC_PIXELS`]), so that a pixel needs no product for it. When it does not
+    /// [`resync_pixels`]), so that a pixel needs no product for it. When it does not
     /// fit, `dx_limit` is negative and each pixel computes its own bound.
     eps_l1: S,
     dx_limit: S,
@@ -699,7 +699,7 @@ impl<S: Scalar> Primary<S> {
     }
 
     /// [`Primary::row`] into an existing row (in place: a row is hundreds of bytes, and
-    /// a scanline restarts every [`RESYNC_PIXELS`]). On `None` the row is unusable.
+    /// a scanline restarts every [`resync_pixels`]). On `None` the row is unusable.
     pub(crate) fn restart(
         &self,
         scene: &SceneView<'_, S>,
@@ -751,7 +751,7 @@ impl<S: Scalar> Primary<S> {
 
     /// [`Primary::restart_dir`] with the row's `D.y` (`screen_y(row) − eye.y`, the same at
     /// every pixel of the row) given: a scanline that keeps it restarts without its
-    /// division (`kernel/rows.rs`, every [`RESYNC_PIXELS`]).
+    /// division (`kernel/rows.rs`, every [`resync_pixels`]).
     #[inline]
     pub(crate) fn restart_dir_in_row(
         &self,
@@ -767,7 +767,7 @@ impl<S: Scalar> Primary<S> {
         r.dir = Vec3::new(x.checked_sub(eye.x)?, dy, self.dz);
         r.column = column;
         r.row = row;
-        // The epsilon bound for this pixel and the next RESYNC_PIXELS (|D.x| grows by at
+        // The epsilon bound for this pixel and the next `resync_pixels` (|D.x| grows by at
         // most a step each; a larger bound only sends more planes to the exact test).
         let limit = self.resync_span.and_then(|m| m.checked_add(r.dir.x.abs()));
         let bound = limit.and_then(|m| Some((m, eps_l1_of(scene.epsilon, m, r.dir.y, r.dir.z)?)));
@@ -922,7 +922,7 @@ impl<S: Scalar> Primary<S> {
 
     /// The least and greatest `D.x` a scanline can take at its `width` pixels: the first
     /// and last column's (`screen_x − eye.x`, as a restart forms them), widened by the
-    /// drift of the stepped coordinate (`RESYNC_PIXELS·|step_x|`). `None` when that does
+    /// drift of the stepped coordinate (`resync_pixels·|step_x|`). `None` when that does
     /// not fit.
     pub(crate) fn dx_range(&self, scene: &SceneView<'_, S>, width: u16) -> Option<(S, S)> {
         let camera = &scene.camera;
@@ -962,7 +962,7 @@ impl<S: Scalar> Primary<S> {
 
     /// Moves a scanline to its next pixel: `D.x` grows by the pixel step (rounded once
     /// per frame; callers restart the row from the exact screen x every
-    /// [`RESYNC_PIXELS`] pixels, so the drift stays below `RESYNC_PIXELS / 2` DELTAs), and
+    /// [`resync_pixels`] pixels, so the drift stays below half as many DELTAs), and
     /// `N·D` grows by the unrounded `N.x × step` ([`Scalar::Acc`]): in the fixed formats
     /// bit for bit the wide dot product of the new `D` (consistent with `D`, so the hit
     /// point lies on the ray through that screen point), with no product per pixel.
@@ -1310,7 +1310,7 @@ impl<S: Scalar> Primary<S> {
     }
 
     /// The row's current pixel (a resync column, just restarted) and the pixels after it
-    /// up to `last`, at most [`RESYNC_PIXELS`] in all, if [`Primary::nearest`] answers
+    /// up to `last` and the next restart ([`resync_pixels`]), if [`Primary::nearest`] answers
     /// `winner` (an object's index, `None`: the background) at every one of them: that
     /// block (the column after it, and the term that wins throughout or [`NO_TERM`]).
     /// `None` where that is not certain. `winner` may be a guess (the last pixel's): the

@@ -426,11 +426,7 @@ fn plane_hit_shadowed<S: Scalar>(
 ) -> Option<bool> {
     let shadowed = match sides {
         Some(s) if S::EXACT_QUOTIENTS && s.at_hit.len() == scene.objects.len() => {
-            let own = 1u8.checked_shl(u32::try_from(h.index).ok()?).unwrap_or(0);
-            let bits = match s.bits.lights.get(j) {
-                Some(lp) => ((s.bits.positive ^ lp) & !s.bits.spheres) | s.bits.spheres,
-                None => u8::MAX,
-            } & !own;
+            let bits = s.bits.candidates(j) & !object_bit(h.index);
             if bits == 0 {
                 Some(false)
             } else {
@@ -450,10 +446,20 @@ fn plane_hit_shadowed<S: Scalar>(
     })
 }
 
+/// Object `index`'s bit in a set of objects as bits (none beyond the eighth).
+#[inline(always)]
+fn object_bit(index: usize) -> u8 {
+    u32::try_from(index)
+        .ok()
+        .and_then(|i| 1u8.checked_shl(i))
+        .unwrap_or(0)
+}
+
 /// Whether every plane but the hit's own is quiet for the hit `h` of the row's current
 /// pixel ([`Primary::quiet_planes`]: its `t'` within their bound, every plane out of the
-/// epsilon's margin, as at every pixel of a certified block), so that no shadow segment from it can be stopped (a frame of plain
-/// and tiled planes only; the caller's format has exact quotients).
+/// epsilon's margin, as at every pixel of a certified block), so that no shadow segment
+/// from it can be stopped (a frame of plain and tiled planes only; the caller's format
+/// has exact quotients).
 #[inline(always)]
 fn quiet_hit<S: Scalar>(
     scene: &SceneView<'_, S>,
@@ -463,12 +469,8 @@ fn quiet_hit<S: Scalar>(
     memo: &mut PlaneMemo<S>,
 ) -> bool {
     let q = memo.quiet(scene, p, r);
-    let own = u32::try_from(h.index)
-        .ok()
-        .and_then(|i| 1u8.checked_shl(i))
-        .unwrap_or(0);
     // (Every plane of a certified block's pixel is out of the margin: `HitMemo::certified`.)
-    (q.loud == 0 || q.loud == own)
+    (q.loud == 0 || q.loud == object_bit(h.index))
         && h.param <= q.t_max
         && (memo.hits.certified || Primary::clear_of_margin(r, h.index))
 }

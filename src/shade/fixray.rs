@@ -206,10 +206,7 @@ pub(crate) fn occludes_segment<S: Scalar>(
     // meet the segment (`sides_differ` asks that first), so only the others and the
     // spheres are looked at. Without the frame's bits of this light, every object is.
     if let Some((s, j)) = sides {
-        let bits = match s.bits.lights.get(j) {
-            Some(lp) => ((s.bits.positive ^ lp) & !s.bits.spheres) | s.bits.spheres,
-            None => u8::MAX,
-        };
+        let bits = s.bits.candidates(j);
         if let Some(shadowed) = occluded_among(scene, s, j, bits, (from, l, ll, tol), spared) {
             return shadowed;
         }

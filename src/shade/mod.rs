@@ -104,6 +104,19 @@ pub(crate) struct SideBits {
     pub(crate) lights: [u8; SIDE_BITS_LIGHTS],
 }
 
+impl SideBits {
+    /// The objects a shadow segment towards light `j` must look at: the spheres, and the
+    /// planes whose sides at the hit and at the light differ in sign (every object
+    /// beyond the first [`SIDE_BITS_LIGHTS`] lights).
+    #[inline(always)]
+    pub(crate) fn candidates(&self, j: usize) -> u8 {
+        match self.lights.get(j) {
+            Some(lp) => ((self.positive ^ lp) & !self.spheres) | self.spheres,
+            None => u8::MAX,
+        }
+    }
+}
+
 /// How many lights' sides [`SideBits`] keeps.
 pub(crate) const SIDE_BITS_LIGHTS: usize = 2;
 
