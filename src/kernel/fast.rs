@@ -83,6 +83,7 @@ pub const RESYNC_PIXELS: u16 = 16;
 /// (fewer restarts, half as many blocks to certify); 32: 2,677 (more blocks hold a
 /// crossing, and fail).
 pub(crate) const fn resync_pixels<S: Scalar>() -> u16 {
+    // (`as` widens a `u32` here: `usize::from` is not `const`.)
     if core::mem::size_of::<S>() * 8 < S::INT_BITS as usize + 16 {
         RESYNC_PIXELS / 2
     } else {
@@ -201,6 +202,7 @@ pub(crate) struct Guess(u8);
 const UNKNOWN: u8 = u8::MAX - 1;
 
 // An object's index is never taken for one of the two marks.
+// (`as` widens a `u8`: `usize::from` is not `const`.)
 const _: () = assert!(FAST_OBJECTS < UNKNOWN as usize);
 
 impl Default for Guess {
