@@ -10,14 +10,27 @@
 //! cargo run --release --example render -- scenes/boing.scene --bounce-strip FILE.png
 //! ```
 //!
-//! Without `--format` every format is rendered and reported, and `--out` (default
+//! Without `--format` every main format is rendered and reported, and `--out` (default
 //! `render.png`) receives the I16F16 render. With `--format` only that format is rendered
 //! into `--out`, at the scene's pixeldim, scale 1, Rgb888. `--compare` writes one picture:
 //! the format | the f64 render | a heat map of the per-pixel channel error (black: equal;
 //! blue → red: 1 → 255 levels, log scale). `--rules` draws the scene by that rule set
 //! whatever its file says (a file without a `rules` statement is a course file); the
-//! first line printed names the rule set used. A scene error prints `FILE:LINE:COL: message`
-//! and exits with status 1; bad arguments exit with status 2.
+//! first line printed names the rule set used.
+//!
+//! Errors: bad arguments exit with status 2. A scene error exits with status 1 in every
+//! mode and prints `FILE:LINE:COL: message` on stderr, naming the number format when the
+//! error is that format's alone (a number or a derived quantity it cannot hold, a normal
+//! that rounds to zero in it); a number that not even f64 holds is said to fit no format;
+//! a scene over this program's capacities (1024 objects, 256 materials, 64 lights) is
+//! told so. Without `--format`, a format that refuses the scene is reported in its row
+//! of the table and its error printed after the table; the program then writes no
+//! picture (neither `--out` nor `--compare`) and exits with status 1, so that a picture
+//! on disk is always the one its name promises.
+//!
+//! Texture files are read from beside the scene file, once: every format's scene shares
+//! their bytes (`fixray::scene::files::beside`), so memory does not grow with the number
+//! of formats.
 //!
 //! `--bounce-strip FILE.png` draws the 16 frames of the scene's bounce
 //! (`fixray::anim::Bounce::boing`: its first sphere moved as the firmware moves it) in
@@ -32,7 +45,8 @@ use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use fixray::compare::{Comparison, compare, heat_color};
 use fixray::num::formats::{self, MAIN};
-use fixray::{LargeScene as Scene, Rules, Scalar, SceneError, render_line};
+use fixray::{Scalar, SceneError, render_line};
+use fixray::scene::{LargeScene as Scene, Rules, SceneErrorKind};
 
 /// The built-in default scene, compiled in.
 const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
@@ -241,6 +255,45 @@ fn print_row(format: &str, run: &Run, f64_frame: Duration) {
     );
 }
 
+/// A scene error as this program prints it, `FILE:LINE:COL: message`, for the scene read
+/// in `format`. `reference` is the f64 reading's error (`None`: f64 read the scene): an
+/// error f64 shares at the same place is the scene's, in every format; one it does not
+/// share is `format`'s alone, and the message names it.
+fn explain(file: &str, format: &str, e: &SceneError, reference: Option<&SceneError>) -> String {
+    use SceneErrorKind as K;
+    let shared = reference
+        .filter(|r| (r.line, r.column) == (e.line, e.column))
+        .map(|r| &r.kind);
+    let message = match (&e.kind, shared) {
+        // The capacities are this program's (`LargeScene`), in every format.
+        (K::TooMany { what, capacity, .. }, _) => {
+            format!("too many {what}: this program holds at most {capacity} {what}")
+        }
+        (K::DoesNotFit { value, .. }, Some(K::DoesNotFit { .. })) => {
+            format!("`{value}` does not fit in any number format (not even f64)")
+        }
+        (K::DerivedDoesNotFit { what, .. }, Some(K::DerivedDoesNotFit { .. })) => {
+            format!("{what} does not fit in any number format (not even f64)")
+        }
+        (kind, Some(_)) => kind.to_string(),
+        // The format's own: these messages name it already.
+        (kind @ (K::DoesNotFit { .. } | K::DerivedDoesNotFit { .. }), None) => kind.to_string(),
+        (kind, None) => format!("{kind} (in the {format} number format)"),
+    };
+    format!("{file}:{}:{}: {message}", e.line, e.column)
+}
+
+/// The error of reading the scene in the format named `format` (checked against the one
+/// list when the arguments were read), if any.
+fn read_error(format: &str, text: &str, rules: Option<Rules>) -> Option<SceneError> {
+    fixray::with_format!(format, read_err(text, rules))
+        .unwrap_or_else(|unknown| unreachable!("{unknown}: checked with the arguments"))
+}
+
+fn read_err<S: Scalar>(text: &str, rules: Option<Rules>) -> Option<SceneError> {
+    read::<S>(text, rules).err()
+}
+
 fn main() -> ExitCode {
     let args = match parse_args() {
         Ok(a) => a,
@@ -265,13 +318,29 @@ fn main() -> ExitCode {
             }
         },
     };
-    let scene_error = |e: SceneError| {
-        eprintln!("{scene_name}:{e}");
+    // The format this run draws in; none: the report of every main format.
+    let named = match (&args.format, &args.strip) {
+        (Some(f), _) => Some(f.as_str()),
+        (None, Some(_)) => Some("i16f16"),
+        (None, None) => None,
+    };
+    let scene_error = |format: &str, e: &SceneError, reference: Option<&SceneError>| {
+        eprintln!("{}", explain(&scene_name, format, e, reference));
         ExitCode::from(1)
     };
     let reference = match read::<f64>(&text, args.rules) {
         Ok(s) => s,
-        Err(e) => return scene_error(e),
+        Err(r) => {
+            // Every run needs f64: the named format's own reading says which format the
+            // error concerns.
+            return match named.filter(|f| *f != "f64") {
+                Some(format) => match read_error(format, &text, args.rules) {
+                    Some(e) => scene_error(format, &e, Some(&r)),
+                    None => scene_error("f64", &r, Some(&r)),
+                },
+                None => scene_error("f64", &r, Some(&r)),
+            };
+        }
     };
     let from = if args.rules.is_some() {
         "--rules"
@@ -280,13 +349,18 @@ fn main() -> ExitCode {
     };
     println!("rules: {} (from {from})", reference.rules());
     if let Some(path) = &args.strip {
-        let format = args.format.as_deref().unwrap_or("i16f16");
-        let outcome = fixray::with_format!(format, bounce_strip(&text, args.rules, path))
+        let format = named.unwrap_or("i16f16");
+        let outcome = fixray::with_format!(format, bounce_strip(&text, &reference, path))
             .unwrap_or_else(|unknown| unreachable!("{unknown}: checked with the arguments"));
         return match outcome {
             Ok(()) => ExitCode::SUCCESS,
-            Err(e) => {
-                eprintln!("render: {scene_name}: {e}");
+            Err(StripError::Scene(e)) => scene_error(format, &e, None),
+            Err(StripError::Bounce(e)) => {
+                eprintln!("{scene_name}: {e}");
+                ExitCode::from(1)
+            }
+            Err(StripError::Write(e)) => {
+                eprintln!("render: {e}");
                 ExitCode::from(1)
             }
         };
@@ -296,7 +370,7 @@ fn main() -> ExitCode {
         Some(format) => {
             let run = match run_format(format, &text, &reference) {
                 Ok(r) => r,
-                Err(e) => return scene_error(e),
+                Err(e) => return scene_error(format, &e, None),
             };
             print_header(&scene_name, &reference);
             let f64_frame = if format == "f64" {
@@ -319,6 +393,7 @@ fn main() -> ExitCode {
                 .find_map(|(f, r)| r.as_ref().ok().filter(|_| *f == "f64"))
                 .map_or(Duration::from_secs(1), |r| r.frame);
             let mut shown = None;
+            let mut refused = Vec::new();
             for (format, result) in runs {
                 match result {
                     Ok(run) => {
@@ -327,18 +402,26 @@ fn main() -> ExitCode {
                             shown = Some(run);
                         }
                     }
-                    // The scene may not fit a narrow format: say so, go on with the rest.
-                    Err(e) => println!("{format:<7} {scene_name}:{e}"),
+                    Err(e) => {
+                        println!("{format:<7} refused the scene (the error follows the table)");
+                        refused.push(explain(&scene_name, format, &e, None));
+                    }
                 }
+            }
+            if !refused.is_empty() {
+                for line in &refused {
+                    eprintln!("{line}");
+                }
+                eprintln!(
+                    "render: {} of {} formats refused the scene: no picture written",
+                    refused.len(),
+                    MAIN.len()
+                );
+                return ExitCode::from(1);
             }
             match shown {
                 Some(run) => finish("i16f16", &run, &reference_image, &args),
-                None => {
-                    // I16F16 cannot hold this scene: show the reference instead.
-                    reference_image
-                        .save_png(&args.out)
-                        .map(|()| println!("wrote {} (f64)", args.out))
-                }
+                None => Err("i16f16 is not among the main formats".into()),
             }
         }
     };
@@ -361,15 +444,30 @@ fn finish(format: &str, run: &Run, reference: &Image, args: &Args) -> Result<(),
     Ok(())
 }
 
-/// The scene's bounce (`Bounce::boing`), every frame in format `S`, 8 frames a row, into
-/// `path`; prints each frame's share of pixels that differ from f64.
-fn bounce_strip<S: Scalar>(text: &str, rules: Option<Rules>, path: &str) -> Result<(), String> {
+/// Why a bounce strip was not drawn.
+enum StripError {
+    /// The scene in the strip's format.
+    Scene(SceneError),
+    /// The scene's bounce.
+    Bounce(fixray::anim::AnimError),
+    /// The picture.
+    Write(String),
+}
+
+/// The scene's bounce (`Bounce::boing`), every frame in format `S` and in f64
+/// (`reference`), 8 frames a row, into `path`; prints each frame's share of pixels that
+/// differ from f64.
+fn bounce_strip<S: Scalar>(
+    text: &str,
+    reference: &Scene<f64>,
+    path: &str,
+) -> Result<(), StripError> {
     use fixray::anim::Bounce;
     const PER_ROW: u32 = 8;
-    let mut scene = read::<S>(text, rules).map_err(|e| e.to_string())?;
-    let mut reference = read::<f64>(text, rules).map_err(|e| e.to_string())?;
-    let bounce = Bounce::boing(&scene.objects).map_err(|e| e.to_string())?;
-    let reference_bounce = Bounce::boing(&reference.objects).map_err(|e| e.to_string())?;
+    let mut scene = read::<S>(text, Some(reference.rules())).map_err(StripError::Scene)?;
+    let mut reference = reference.clone();
+    let bounce = Bounce::boing(&scene.objects).map_err(StripError::Bounce)?;
+    let reference_bounce = Bounce::boing(&reference.objects).map_err(StripError::Bounce)?;
     let (w, h) = (
         u32::from(scene.camera.width),
         u32::from(scene.camera.height),
@@ -379,10 +477,10 @@ fn bounce_strip<S: Scalar>(text: &str, rules: Option<Rules>, path: &str) -> Resu
     let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(PER_ROW * w, rows * h));
     println!("frame  differ from f64 ({})", S::NAME);
     for k in 0..bounce.frames() {
-        bounce.apply(&mut scene, k).map_err(|e| e.to_string())?;
+        bounce.apply(&mut scene, k).map_err(StripError::Bounce)?;
         reference_bounce
             .apply(&mut reference, k)
-            .map_err(|e| e.to_string())?;
+            .map_err(StripError::Bounce)?;
         let image = render_image(&scene);
         let differ = compare(&scene, &reference, |_, _, _, _| {}).differing_share();
         println!("{k:>5}  {:>6.3}%", 100.0 * differ);
@@ -395,7 +493,7 @@ fn bounce_strip<S: Scalar>(text: &str, rules: Option<Rules>, path: &str) -> Resu
         // SimulatorDisplay's drawing is infallible.
         let _ = display.draw_iter(pixels);
     }
-    save(&display, path)?;
+    save(&display, path).map_err(StripError::Write)?;
     println!("wrote {path} ({} frames, {})", n, S::NAME);
     Ok(())
 }

@@ -4,7 +4,7 @@
 //!
 //! ```no_run
 //! use std::path::Path;
-//! use fixray::{LargeScene, scene::files};
+//! use fixray::scene::{files, LargeScene};
 //!
 //! let path = Path::new("course/scenes/texplane1.txt");
 //! let text = std::fs::read_to_string(path)?;
@@ -18,28 +18,43 @@ extern crate std;
 use std::boxed::Box;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, OnceLock, PoisonError};
 use std::vec::Vec;
 
 /// A file source that reads a texture's `filename` relative to the folder of the scene
 /// file `scene`. A name not found there is looked for by its last component in an
 /// `images` folder beside the scene or in one of the folders above it (the course's
 /// bundle names `../../images/X` where the file is `../images/X`, a path that was broken
-/// there too). Each file is read once and kept for the program's life (its bytes are
-/// leaked: a host tool reads a scene's few textures once); a file that cannot be read is
-/// `None`, which the parser reports as [`TextureProblem::NotFound`](crate::scene::TextureProblem)
-/// at its `filename`.
+/// there too). Each file is read once per program and kept for the program's life (its
+/// bytes are leaked: a host tool reads a scene's few textures once): every source made
+/// by `beside`, for any scene file, hands out the same bytes for the same file, so that
+/// a tool that reads one scene in several number formats, or again every frame, holds
+/// each texture once. A file that cannot be read is `None`, which the parser reports as
+/// [`TextureProblem::NotFound`](crate::scene::TextureProblem) at its `filename`.
+///
+/// A file changed on disk after it was first read is not read again.
 pub fn beside(scene: &Path) -> impl FnMut(&str) -> Option<&'static [u8]> + use<> {
     let folder = scene.parent().map(Path::to_path_buf).unwrap_or_default();
-    let mut read: HashMap<PathBuf, &'static [u8]> = HashMap::new();
-    move |name: &str| {
-        let path = find(&folder, name)?;
-        if let Some(bytes) = read.get(&path) {
-            return Some(*bytes);
-        }
-        let bytes: &'static [u8] = Box::leak(std::fs::read(&path).ok()?.into_boxed_slice());
-        read.insert(path, bytes);
-        Some(bytes)
+    move |name: &str| read_once(find(&folder, name)?)
+}
+
+/// The bytes of the file at `path`, read on the first call for that file (by its
+/// canonical path) and shared by every later one.
+fn read_once(path: PathBuf) -> Option<&'static [u8]> {
+    static READ: OnceLock<Mutex<HashMap<PathBuf, &'static [u8]>>> = OnceLock::new();
+    let path = std::fs::canonicalize(&path).unwrap_or(path);
+    // A thread that panicked while holding the lock left the map whole (an insert is
+    // the only change): go on with it.
+    let mut read = READ
+        .get_or_init(Mutex::default)
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner);
+    if let Some(bytes) = read.get(&path) {
+        return Some(*bytes);
     }
+    let bytes: &'static [u8] = Box::leak(std::fs::read(&path).ok()?.into_boxed_slice());
+    read.insert(path, bytes);
+    Some(bytes)
 }
 
 /// Where `name` is: beside the scene, else `images/<file name>` here or above.
