@@ -45,8 +45,8 @@ use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use fixray::compare::{Comparison, compare, heat_color};
 use fixray::num::formats::{self, MAIN};
-use fixray::{Scalar, SceneError, render_line};
 use fixray::scene::{LargeScene as Scene, Rules, SceneErrorKind};
+use fixray::{Scalar, SceneError, render_line};
 
 /// The built-in default scene, compiled in.
 const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
