@@ -12,10 +12,15 @@
 //! the frame time and the share of pixels that differ from f64 (the simulator's window
 //! cannot change its title after it opens).
 //!
-//! Options:
+//! Options (`--help` lists them):
 //! - `--display WxH-rgb888 | WxH-rgb565 | WxH-binary`: a real panel's size and colour
 //!   depth (`binary`: black and white with ordered dithering, as on a 128×64 OLED);
-//!   default: the scene's pixeldim, Rgb888.
+//!   default: the scene's pixeldim, Rgb888. The picture keeps the scene's aspect (its
+//!   `worlddim`): on a panel of another shape it is letterboxed, as large as fits,
+//!   centred between black bars (a 4:3 scene on a 240×240 panel: 240×180 between bars
+//!   of 30 rows), so that a sphere stays round. Letterboxed rather than widened: the
+//!   scene's screen window starts at the world's origin, so a wider window would show
+//!   the scene off-centre, and it would show what the scene does not frame.
 //! - `--scale N`: window pixels per display pixel (default 3).
 //! - `--frames N`: quit after N frames (for scripts and CI).
 //! - `--fly`: move the eye forward by itself every frame (a fly-through).
@@ -25,11 +30,52 @@
 //! - `--screenshot FILE`: save the last frame to FILE on quitting.
 //! - `--rules course|fixray`: draw by that rule set whatever the file says (a file
 //!   without a `rules` statement is a course file); the status line names the rules.
+//!
+//! Errors: bad arguments exit with status 2. A scene error prints `FILE:LINE:COL:
+//! message` (naming the number format when the error is that format's alone, as the
+//! `render` example does) and exits with status 1 before a window opens: the scene is
+//! read in f64 and in the first format shown (I16F16) first. A format key whose format
+//! refuses the scene prints its error and keeps the format shown.
 
-fn main() {
-    if let Err(e) = window::run() {
-        eprintln!("viewer: {e}");
-        std::process::exit(1);
+use std::io::Write;
+use std::process::ExitCode;
+
+const USAGE: &str = "usage: viewer [SCENE_FILE] [--display WxH-rgb888|WxH-rgb565|WxH-binary] \
+                     [--scale N] [--frames N] [--fly] [--bounce] [--record DIR] \
+                     [--screenshot FILE] [--rules course|fixray]
+  --display  a panel's size and colour depth (default: the scene's pixeldim, rgb888);
+             the picture keeps the scene's aspect, letterboxed (centred between black
+             bars) on a panel of another shape
+  --scale    window pixels per display pixel (default 3)
+  --frames   quit after N frames
+  --fly      move the eye forward every frame
+  --bounce   bounce the scene's first sphere (the boing ball)
+  --record   save every frame as DIR/frame-NNNN.png
+  --screenshot  save the last frame to FILE on quitting
+  --rules    draw by that rule set whatever the file says
+keys: arrows/WASD move, Q/E nearer/farther, 1-5 format, H heat map, P screenshot, Esc quit";
+
+fn main() -> ExitCode {
+    match window::run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(window::Failure::Usage(e)) if e.is_empty() => {
+            // A closed pipe (`viewer --help | head`) is not worth a panic.
+            let _ = writeln!(std::io::stdout(), "{USAGE}");
+            ExitCode::SUCCESS
+        }
+        Err(window::Failure::Usage(e)) => {
+            eprintln!("viewer: {e}");
+            eprintln!("{USAGE}");
+            ExitCode::from(2)
+        }
+        Err(window::Failure::Scene(line)) => {
+            eprintln!("{line}");
+            ExitCode::from(1)
+        }
+        Err(window::Failure::Other(e)) => {
+            eprintln!("viewer: {e}");
+            ExitCode::from(1)
+        }
     }
 }
 
@@ -47,12 +93,37 @@ mod window {
     };
     use fixray::anim::Bounce;
     use fixray::compare::heat_color;
+    use fixray::geometry::Vec3;
     use fixray::num::formats::MAIN as FORMATS;
-    use fixray::{LargeScene as Scene, Rules, Scalar, Vec3, render_line};
+    use fixray::scene::{LargeScene as Scene, PixelGrid, Rules, SceneErrorKind};
+    use fixray::{Scalar, SceneError, render_line};
 
     const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
+    const DEFAULT_SCENE_NAME: &str = "scenes/default.scene";
     /// Height of the status line under the picture.
     const STATUS: u32 = 12;
+
+    /// Why the viewer stopped.
+    pub enum Failure {
+        /// Bad arguments (empty: `--help`).
+        Usage(String),
+        /// A scene error, as printed: `FILE:LINE:COL: message`.
+        Scene(String),
+        /// Anything else.
+        Other(String),
+    }
+
+    impl From<String> for Failure {
+        fn from(e: String) -> Self {
+            Failure::Other(e)
+        }
+    }
+
+    /// Why a frame was not drawn: the scene in its format, or the view.
+    enum FrameError {
+        Scene(SceneError),
+        View(String),
+    }
 
     #[derive(Clone, Copy, PartialEq)]
     enum Depth {
@@ -118,6 +189,7 @@ mod window {
                     let r = value("--rules")?;
                     o.rules = Some(r.parse().map_err(|e| format!("--rules `{r}`: {e}"))?);
                 }
+                "-h" | "--help" => return Err(String::new()),
                 s if s.starts_with("--") => return Err(format!("unknown option `{s}`")),
                 s => o.scene = Some(s.to_string()),
             }
@@ -155,7 +227,8 @@ mod window {
         Ok(scene)
     }
 
-    /// What a frame shows: the eye's offset, the panel's size, the bounce's frame.
+    /// What a frame shows: the eye's offset, the picture's size (on a panel: as large as
+    /// fits with the scene's aspect, [`fit`]), the bounce's frame.
     #[derive(Clone, Copy)]
     struct View {
         eye: Eye,
@@ -167,19 +240,19 @@ mod window {
         text: &str,
         rules: Option<Rules>,
         view: View,
-    ) -> Result<Scene<S>, String> {
+    ) -> Result<Scene<S>, FrameError> {
         let View { eye, size, bounce } = view;
-        let mut scene = read::<S>(text, rules).map_err(|e| e.to_string())?;
+        let mut scene = read::<S>(text, rules).map_err(FrameError::Scene)?;
         if let Some(k) = bounce {
             // The sphere moved in the parsed scene, as the firmware moves it.
-            let b = Bounce::boing(&scene.objects).map_err(|e| format!("--bounce: {e}"))?;
-            b.apply(&mut scene, k)
-                .map_err(|e| format!("--bounce: {e}"))?;
+            let bounce_error = |e| FrameError::View(format!("--bounce: {e}"));
+            let b = Bounce::boing(&scene.objects).map_err(bounce_error)?;
+            b.apply(&mut scene, k).map_err(bounce_error)?;
         }
         let v = scene.camera.viewpoint.to_f64();
         scene.camera.viewpoint =
             Vec3::from_f64([v[0] + eye.dx, v[1] + eye.dy, (v[2] + eye.dz).max(0.1)])
-                .ok_or("the eye left the format's range")?;
+                .ok_or_else(|| FrameError::View("the eye left the format's range".into()))?;
         if let Some((w, h)) = size {
             scene.camera.width = w;
             scene.camera.height = h;
@@ -196,7 +269,11 @@ mod window {
         pixels
     }
 
-    fn frame_in<S: Scalar>(text: &str, rules: Option<Rules>, view: View) -> Result<Frame, String> {
+    fn frame_in<S: Scalar>(
+        text: &str,
+        rules: Option<Rules>,
+        view: View,
+    ) -> Result<Frame, FrameError> {
         let scene = scene_for::<S>(text, rules, view)?;
         let start = Instant::now();
         let pixels = render_all(&scene);
@@ -216,8 +293,69 @@ mod window {
         })
     }
 
-    fn frame(format: &str, text: &str, rules: Option<Rules>, view: View) -> Result<Frame, String> {
-        fixray::with_format!(format, frame_in(text, rules, view)).map_err(|e| e.to_string())?
+    /// A frame in `format` (one of [`FORMATS`]); a scene error as printed, naming the
+    /// scene file `file`.
+    fn frame(
+        format: &str,
+        file: &str,
+        text: &str,
+        rules: Option<Rules>,
+        view: View,
+    ) -> Result<Frame, Failure> {
+        match fixray::with_format!(format, frame_in(text, rules, view)) {
+            Ok(Ok(frame)) => Ok(frame),
+            // The f64 reading succeeded before any frame: the error is the format's.
+            Ok(Err(FrameError::Scene(e))) => Err(Failure::Scene(explain(file, format, &e, None))),
+            Ok(Err(FrameError::View(e))) => Err(Failure::Other(e)),
+            Err(unknown) => Err(Failure::Other(unknown.to_string())),
+        }
+    }
+
+    /// A scene error as printed, `FILE:LINE:COL: message`, for the scene read in
+    /// `format`. `reference` is the f64 reading's error (`None`: f64 read the scene): an
+    /// error f64 shares at the same place is the scene's, in every format; one it does
+    /// not share is `format`'s alone, and the message names it.
+    fn explain(file: &str, format: &str, e: &SceneError, reference: Option<&SceneError>) -> String {
+        use SceneErrorKind as K;
+        let shared = reference
+            .filter(|r| (r.line, r.column) == (e.line, e.column))
+            .map(|r| &r.kind);
+        let message = match (&e.kind, shared) {
+            // The capacities are this program's (`LargeScene`), in every format.
+            (K::TooMany { what, capacity, .. }, _) => {
+                format!("too many {what}: this program holds at most {capacity} {what}")
+            }
+            (K::DoesNotFit { value, .. }, Some(K::DoesNotFit { .. })) => {
+                format!("`{value}` does not fit in any number format (not even f64)")
+            }
+            (K::DerivedDoesNotFit { what, .. }, Some(K::DerivedDoesNotFit { .. })) => {
+                format!("{what} does not fit in any number format (not even f64)")
+            }
+            (kind, Some(_)) => kind.to_string(),
+            // The format's own: these messages name it already.
+            (kind @ (K::DoesNotFit { .. } | K::DerivedDoesNotFit { .. }), None) => kind.to_string(),
+            (kind, None) => format!("{kind} (in the {format} number format)"),
+        };
+        format!("{file}:{}:{}: {message}", e.line, e.column)
+    }
+
+    /// The picture's size on a `panel` (width, height): as large as fits with the aspect
+    /// of the scene's screen window `world` (width, height), the other way letterboxed.
+    /// On the corner grid the pixels span one less than their count (`Camera::screen_x`).
+    fn fit(panel: (u16, u16), world: (f64, f64), grid: PixelGrid) -> (u16, u16) {
+        let c = match grid {
+            PixelGrid::Centres => 0.0,
+            PixelGrid::Corners => 1.0,
+        };
+        let (w, h) = (f64::from(panel.0), f64::from(panel.1));
+        let aspect = world.0 / world.1;
+        if (w - c) / (h - c) > aspect {
+            let width = ((h - c) * aspect + c).round().clamp(1.0, w);
+            (width as u16, panel.1)
+        } else {
+            let height = ((w - c) / aspect + c).round().clamp(1.0, h);
+            (panel.0, height as u16)
+        }
     }
 
     /// 4×4 Bayer thresholds for ordered dithering to black and white.
@@ -249,8 +387,17 @@ mod window {
             .map_err(|e| format!("cannot write {path}: {e}"))
     }
 
-    pub fn run() -> Result<(), String> {
-        let o = options()?;
+    /// The error of reading the scene in `format` (one of [`FORMATS`]), if any.
+    fn read_error(format: &str, text: &str, rules: Option<Rules>) -> Option<SceneError> {
+        fixray::with_format!(format, read_err(text, rules)).unwrap_or(None)
+    }
+
+    fn read_err<S: Scalar>(text: &str, rules: Option<Rules>) -> Option<SceneError> {
+        read::<S>(text, rules).err()
+    }
+
+    pub fn run() -> Result<(), Failure> {
+        let o = options().map_err(Failure::Usage)?;
         let text = match &o.scene {
             Some(path) => {
                 let _ = SCENE_PATH.set(path.into());
@@ -258,20 +405,32 @@ mod window {
             }
             None => DEFAULT_SCENE.to_string(),
         };
-        let probe = read::<f64>(&text, o.rules).map_err(|e| {
-            format!(
-                "{}:{e}",
-                o.scene.as_deref().unwrap_or("scenes/default.scene")
-            )
+        let file = o.scene.as_deref().unwrap_or(DEFAULT_SCENE_NAME);
+        let mut format = 0usize;
+        let probe = read::<f64>(&text, o.rules).map_err(|r| {
+            // The first format's own reading says which format the error concerns.
+            let line = match read_error(FORMATS[format], &text, o.rules) {
+                Some(e) => explain(file, FORMATS[format], &e, Some(&r)),
+                None => explain(file, "f64", &r, Some(&r)),
+            };
+            Failure::Scene(line)
         })?;
         let (w, h, depth) =
             o.display
                 .unwrap_or((probe.camera.width, probe.camera.height, Depth::Rgb888));
-        let size = o.display.map(|(w, h, _)| (w, h));
+        // On a panel the picture keeps the scene's aspect, letterboxed and centred.
+        let world = (
+            probe.camera.world_width.to_f64(),
+            probe.camera.world_height.to_f64(),
+        );
+        let size = o
+            .display
+            .map(|(w, h, _)| fit((w, h), world, probe.camera.grid));
+        let (pw, ph) = size.unwrap_or((w, h));
+        let (ox, oy) = (usize::from((w - pw) / 2), usize::from((h - ph) / 2));
         let mut display =
             SimulatorDisplay::<Rgb888>::new(Size::new(u32::from(w), u32::from(h) + STATUS));
         let settings = OutputSettingsBuilder::new().scale(o.scale).build();
-        let mut format = 0usize;
         let mut window = Window::new(&format!("fixray: {}", FORMATS[format]), &settings);
         let (mut eye, mut show_heat, mut n, mut shots) = (Eye::default(), false, 0u32, 0u32);
         if let Some(dir) = &o.record {
@@ -279,10 +438,12 @@ mod window {
         }
         loop {
             let bounce = o.bounce.then_some((n % u32::from(u16::MAX)) as u16);
-            let f = frame(FORMATS[format], &text, o.rules, View { eye, size, bounce })?;
-            let wu = usize::from(w);
+            let view = View { eye, size, bounce };
+            let f = frame(FORMATS[format], file, &text, o.rules, view)?;
+            let wu = usize::from(pw);
             for (i, (p, r)) in f.pixels.iter().zip(&f.reference).enumerate() {
-                let (x, y) = (i % wu, i / wu);
+                // The picture's pixel on the panel (the bars stay black).
+                let (x, y) = (ox + i % wu, oy + i / wu);
                 let c = if show_heat {
                     heat_color(*p, *r)
                 } else {
@@ -349,9 +510,16 @@ mod window {
                 }
             }
             if let Some(k) = new_format.filter(|k| *k != format) {
-                format = k;
-                // The title is fixed when a window opens: a new one carries the new format.
-                window = Window::new(&format!("fixray: {}", FORMATS[format]), &settings);
+                match read_error(FORMATS[k], &text, o.rules) {
+                    // A format that refuses the scene is not shown: the error says why.
+                    Some(e) => eprintln!("{}", explain(file, FORMATS[k], &e, None)),
+                    None => {
+                        format = k;
+                        // The title is fixed when a window opens: a new one carries the
+                        // new format.
+                        window = Window::new(&format!("fixray: {}", FORMATS[format]), &settings);
+                    }
+                }
             }
             if quit {
                 if let Some(path) = &o.screenshot {

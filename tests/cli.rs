@@ -72,8 +72,8 @@ fn bad_arguments_fail_with_usage() {
     assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("usage: render"), "{stderr}");
-    // Regression: an unknown name was refused without saying which ones exist (and in
-    // the other tools it silently became f64).
+    // An unknown name is refused with the names that exist (and never becomes f64
+    // silently).
     assert!(
         stderr.contains("unknown number format `i8f8` (known: i16f16, i16f16n,"),
         "{stderr}"
@@ -131,4 +131,203 @@ fn without_a_format_every_format_is_reported() {
         }
     }
     assert!(png.exists());
+}
+
+/// Writes `text` as the scene file `name` in this run's folder.
+fn scene(name: &str, text: &str) -> PathBuf {
+    let path = temp(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// A scene whose floor lies at y = 40000: every format holds it but I16F16 (whose
+/// largest number is 32768).
+const BEYOND_I16F16: &str = "rules fixray
+camera c { pixeldim 16 12 worlddim 8 6 viewpoint 4 3 5 }
+material m { ambient 0.5 0.5 0.5 }
+sphere ball { material m center 4 3 -5 radius 1 }
+plane floor { material m normal 0 1 0 point 0 40000 0 }
+";
+
+/// The scene error lines of a run's stderr, each `FILE:LINE:COL: message`: the
+/// messages, after checking that prefix.
+fn scene_errors(out: &Output, path: &Path, line: u32, column: u32) -> Vec<String> {
+    let prefix = format!("{}:{line}:{column}: ", path.display());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let messages: Vec<String> = stderr
+        .lines()
+        .filter(|l| !l.starts_with("render: "))
+        .map(|l| {
+            l.strip_prefix(&prefix)
+                .unwrap_or_else(|| panic!("`{l}` does not start with `{prefix}`:\n{stderr}"))
+                .to_string()
+        })
+        .collect();
+    assert!(!messages.is_empty(), "no scene error in:\n{stderr}");
+    messages
+}
+
+/// Regression: without `--format`, a format that refused the scene printed its error in
+/// the table, the f64 picture went to `render.png` and the run succeeded.
+#[test]
+fn without_a_format_a_refusing_format_fails_the_run_and_writes_no_picture() {
+    let path = scene("beyond-i16f16.scene", BEYOND_I16F16);
+    let (png, cmp) = (temp("refused.png"), temp("refused-cmp.png"));
+    let out = run(&[
+        path.to_str().unwrap(),
+        "--out",
+        png.to_str().unwrap(),
+        "--compare",
+        cmp.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{out:?}");
+    assert_eq!(
+        scene_errors(&out, &path, 5, 47),
+        ["`40000` does not fit in the i16f16 number format"]
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("render: 1 of 5 formats refused the scene: no picture written"),
+        "{stderr}"
+    );
+    // The table still reports every format: the refusing one in its row, the others'
+    // figures.
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let row = |format: &str| {
+        stdout
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(format))
+            .unwrap_or_else(|| panic!("{format} missing from:\n{stdout}"))
+            .to_string()
+    };
+    assert!(row("i16f16").contains("refused the scene"), "{stdout}");
+    for format in ["i20f12", "i32f32", "f32", "f64"] {
+        assert_eq!(row(format).split_whitespace().count(), 8, "{stdout}");
+    }
+    assert!(!png.exists() && !cmp.exists(), "a picture was written");
+}
+
+#[test]
+fn with_a_format_a_refusing_format_fails_the_run() {
+    let path = scene("beyond-i16f16-format.scene", BEYOND_I16F16);
+    let png = temp("refused-format.png");
+    let out = run(&[
+        path.to_str().unwrap(),
+        "--format",
+        "i16f16",
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{out:?}");
+    assert_eq!(
+        scene_errors(&out, &path, 5, 47),
+        ["`40000` does not fit in the i16f16 number format"]
+    );
+    assert!(!png.exists());
+    // A format that holds the scene draws it.
+    let out = run(&[
+        path.to_str().unwrap(),
+        "--format",
+        "i20f12",
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    assert!(png.exists());
+}
+
+/// Regression: `--bounce-strip` printed `render: FILE: LINE:COL: message`.
+#[test]
+fn the_bounce_strip_prints_file_line_column_and_fails() {
+    let path = scene("beyond-i16f16-strip.scene", BEYOND_I16F16);
+    let strip = temp("refused-strip.png");
+    let out = run(&[
+        path.to_str().unwrap(),
+        "--bounce-strip",
+        strip.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{out:?}");
+    assert_eq!(
+        scene_errors(&out, &path, 5, 47),
+        ["`40000` does not fit in the i16f16 number format"]
+    );
+    assert!(!strip.exists());
+}
+
+/// Regression: `radius 1e400` with `--format i16f16` named the f64 format (the f64
+/// reference was read first). No format holds it, and the message says so.
+#[test]
+fn a_number_beyond_every_format_is_said_to_fit_none() {
+    let path = scene(
+        "beyond-f64.scene",
+        "rules fixray
+camera c { pixeldim 16 12 worlddim 8 6 viewpoint 4 3 5 }
+material m { ambient 0.5 0.5 0.5 }
+sphere s { material m center 4 3 -5 radius 1e400 }
+",
+    );
+    for args in [&[][..], &["--format", "i16f16"], &["--format", "f64"]] {
+        let mut all = vec![path.to_str().unwrap()];
+        all.extend(args);
+        let out = run(&all);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {out:?}");
+        assert_eq!(
+            scene_errors(&out, &path, 4, 44),
+            ["`1e400` does not fit in any number format (not even f64)"],
+            "{args:?}"
+        );
+    }
+}
+
+/// An error of one format that is not a number out of its range says which format.
+#[test]
+fn a_formats_own_error_names_the_format() {
+    // The normal rounds to zero in I16F16 (its step is 2^-16), not in f64.
+    let path = scene(
+        "zero-in-i16f16.scene",
+        "rules fixray
+camera c { pixeldim 16 12 worlddim 8 6 viewpoint 4 3 5 }
+material m { ambient 0.5 0.5 0.5 }
+plane p { material m normal 0.000001 0.000001 0 point 0 0 0 }
+",
+    );
+    let out = run(&[path.to_str().unwrap(), "--format", "i16f16"]);
+    assert_eq!(out.status.code(), Some(1), "{out:?}");
+    assert_eq!(
+        scene_errors(&out, &path, 4, 22),
+        ["the normal is zero (in the i16f16 number format)"]
+    );
+    let out = run(&[path.to_str().unwrap(), "--format", "i32f32"]);
+    assert!(out.status.success(), "{out:?}");
+}
+
+/// Regression: a scene over capacity told the user to raise a type parameter of the
+/// scene type, which this program had already raised (`LargeScene`).
+#[test]
+fn over_capacity_names_this_programs_limit() {
+    let mut text = String::from(
+        "rules fixray
+camera c { pixeldim 16 12 worlddim 8 6 viewpoint 4 3 5 }
+material m { ambient 0.5 0.5 0.5 }
+",
+    );
+    for i in 0..1025 {
+        text += &format!(
+            "sphere s{i} {{ material m center {} 0 -10 radius 0.5 }}\n",
+            i % 8
+        );
+    }
+    let path = scene("too-many.scene", &text);
+    for args in [&[][..], &["--format", "i32f32"]] {
+        let mut all = vec![path.to_str().unwrap()];
+        all.extend(args);
+        let out = run(&all);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {out:?}");
+        // The 1025th sphere, on line 1028.
+        assert_eq!(
+            scene_errors(&out, &path, 1028, 1),
+            ["too many objects: this program holds at most 1024 objects"],
+            "{args:?}"
+        );
+    }
 }

@@ -103,7 +103,7 @@ fn the_viewer_reads_a_scenes_texture_files() {
     assert!(n > 100, "a blank or flat screenshot: {n} colours");
 }
 
-/// The boing ball plays (issue 25): `--bounce` moves the sphere one step of its loop per
+/// The boing ball plays: `--bounce` moves the sphere one step of its loop per
 /// frame, so consecutive recorded frames differ and frame 16 is frame 0 again.
 #[test]
 fn the_viewer_plays_the_boing_ball() {
@@ -134,4 +134,113 @@ fn the_viewer_plays_the_boing_ball() {
     assert_ne!(first, frame(1), "the ball did not move");
     assert_ne!(frame(4), frame(8));
     assert_eq!(first, frame(16), "the loop does not close");
+}
+
+/// Writes `text` as the scene file `name` in a fresh folder.
+fn scene(name: &str, text: &str) -> std::path::PathBuf {
+    let path = out_dir(name).join(format!("{name}.scene"));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Regression: a scene error of the format shown (I16F16 first) printed `viewer:
+/// LINE:COL: message`, without the scene file. Errors come before any window opens, so
+/// this runs without a display.
+#[test]
+fn a_scene_error_prints_file_line_column_and_fails() {
+    let beyond_i16f16 = scene(
+        "beyond-i16f16",
+        "rules fixray
+camera c { pixeldim 16 12 worlddim 8 6 viewpoint 4 3 5 }
+material m { ambient 0.5 0.5 0.5 }
+plane floor { material m normal 0 1 0 point 0 40000 0 }
+",
+    );
+    let misspelt = scene(
+        "misspelt",
+        "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\nmaterial m {\n  ambiant 1 1 1 }\n",
+    );
+    let cases = [
+        (
+            &beyond_i16f16,
+            "4:47: `40000` does not fit in the i16f16 number format",
+        ),
+        (&misspelt, "3:3: `ambiant` is not an attribute of material"),
+    ];
+    let viewer = viewer();
+    for (path, message) in cases {
+        let run = Command::new(&viewer)
+            .arg(path)
+            .args(["--frames", "1"])
+            .env_remove("DISPLAY")
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap();
+        assert_eq!(run.status.code(), Some(1), "{run:?}");
+        assert_eq!(
+            String::from_utf8_lossy(&run.stderr).trim_end(),
+            format!("{}:{message}", path.display())
+        );
+    }
+}
+
+/// Regression: `--display 240x240-rgb565` stretched a 4:3 scene over the square panel
+/// (spheres became eggs). The picture keeps the scene's aspect, letterboxed: 240×180
+/// between black bars of 30 rows, and a sphere at the centre is as wide as it is tall.
+#[test]
+fn a_square_panel_letterboxes_the_scene_and_keeps_spheres_round() {
+    let out = out_dir("round");
+    let shot = out.join("shot.png");
+    let path = scene(
+        "round",
+        "rules fixray
+camera c { pixeldim 160 120 worlddim 8 6 viewpoint 4 3 5 }
+background 0 0 1
+material red { ambient 1 0 0 }
+sphere ball { material red center 4 3 -5 radius 2 }
+",
+    );
+    let run = Command::new("xvfb-run")
+        .arg("-a")
+        .arg(viewer())
+        .arg(&path)
+        .args([
+            "--display",
+            "240x240-rgb565",
+            "--frames",
+            "1",
+            "--screenshot",
+        ])
+        .arg(&shot)
+        .output()
+        .expect("xvfb-run and the viewer example (cargo test --features window builds it)");
+    assert!(run.status.success(), "{run:?}");
+    let image = SimulatorDisplay::<Rgb888>::load_png(&shot).unwrap();
+    // The panel and the status line under it.
+    assert_eq!(image.size(), Size::new(240, 240 + 12));
+    let at = |x: i32, y: i32| image.get_pixel(Point::new(x, y));
+    // Black bars above and below the picture, the background's blue in it, edge to edge.
+    for x in [0, 120, 239] {
+        for y in [0, 29, 210, 239] {
+            assert_eq!(at(x, y), Rgb888::BLACK, "bar at ({x}, {y})");
+        }
+        for y in [30, 209] {
+            assert_eq!(at(x, y), Rgb888::BLUE, "picture at ({x}, {y})");
+        }
+    }
+    // The sphere's extent across and down, in pixels.
+    let red: Vec<(i32, i32)> = (0..240)
+        .flat_map(|y| (0..240).map(move |x| (x, y)))
+        .filter(|&(x, y)| at(x, y) == Rgb888::RED)
+        .collect();
+    let extent = |of: fn(&(i32, i32)) -> i32| {
+        let (lo, hi) = (red.iter().map(of).min(), red.iter().map(of).max());
+        hi.unwrap() - lo.unwrap() + 1
+    };
+    let (across, down) = (extent(|p| p.0), extent(|p| p.1));
+    assert!(across > 40, "the sphere is {across} pixels across");
+    assert!(
+        across.abs_diff(down) <= 1,
+        "the sphere is {across} pixels across and {down} down"
+    );
 }
