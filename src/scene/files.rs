@@ -73,3 +73,24 @@ fn find(folder: &Path, name: &str) -> Option<PathBuf> {
     candidates.push(Path::new("images").join(file));
     candidates.into_iter().find(|p| p.is_file())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two sources, for two scene files in one folder, hand out one copy of a texture
+    /// file's bytes: a tool that reads a scene once per number format holds each
+    /// texture once.
+    #[test]
+    fn every_source_shares_a_files_bytes() {
+        let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+        let mut first = beside(&scenes.join("texplane.scene"));
+        let mut second = beside(&scenes.join("projector.scene"));
+        let a = first("textures/mike32.ppm").unwrap();
+        let b = second("textures/mike32.ppm").unwrap();
+        let again = first("textures/mike32.ppm").unwrap();
+        assert_eq!(a, std::fs::read(scenes.join("textures/mike32.ppm")).unwrap());
+        assert!(core::ptr::eq(a, b) && core::ptr::eq(a, again));
+        assert_eq!(first("textures/no-such-file.ppm"), None);
+    }
+}
