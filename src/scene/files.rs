@@ -89,7 +89,10 @@ mod tests {
         let a = first("textures/mike32.ppm").unwrap();
         let b = second("textures/mike32.ppm").unwrap();
         let again = first("textures/mike32.ppm").unwrap();
-        assert_eq!(a, std::fs::read(scenes.join("textures/mike32.ppm")).unwrap());
+        assert_eq!(
+            a,
+            std::fs::read(scenes.join("textures/mike32.ppm")).unwrap()
+        );
         assert!(core::ptr::eq(a, b) && core::ptr::eq(a, again));
         assert_eq!(first("textures/no-such-file.ppm"), None);
     }
