@@ -21,12 +21,14 @@ use crate::{Plane, Scalar, Shape, Slide, Vec3};
 mod camera;
 #[cfg(feature = "std")]
 pub mod files;
+pub mod language;
 mod parse;
 mod plan;
 mod rules;
 
 pub(crate) use camera::PixelRay;
 pub use camera::{Camera, PixelGrid};
+pub use parse::schema;
 pub use parse::{MAX_QUOTED, Quoted, SceneError, SceneErrorKind, TextureProblem};
 pub use plan::Plan;
 pub use rules::{Rules, UnknownRules};

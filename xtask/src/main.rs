@@ -5,6 +5,7 @@
 //! cargo xtask accuracy [--quick]   # docs/accuracy.md and docs/accuracy.png (needs qemu-system-arm, qemu-system-riscv32)
 //! cargo xtask numerics             # docs/numerics.md
 //! cargo xtask firmware [FORMATS]   # every core × format under QEMU: instructions, flash, hash
+//! cargo xtask scene-format         # docs/scene-format.md's reference tables, from the schema
 //! ```
 
 // The test-support module's helpers, shared with the integration tests.
@@ -18,8 +19,10 @@ mod sampling;
 mod accuracy;
 mod firmware;
 mod numerics;
+mod scene_format;
 
-const USAGE: &str = "usage: cargo xtask accuracy [--quick] | numerics | firmware [FORMAT,...]";
+const USAGE: &str =
+    "usage: cargo xtask accuracy [--quick] | numerics | firmware [FORMAT,...] | scene-format";
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -27,6 +30,7 @@ fn main() {
         Some("accuracy") => accuracy::main(&args[1..]),
         Some("numerics") => numerics::main(),
         Some("firmware") => firmware::main(&args[1..]),
+        Some("scene-format") => scene_format::main(),
         _ => {
             eprintln!("{USAGE}");
             std::process::exit(2);

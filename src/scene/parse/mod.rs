@@ -25,7 +25,7 @@
 mod builder;
 mod error;
 mod lexer;
-mod schema;
+pub mod schema;
 
 use heapless::Vec;
 
