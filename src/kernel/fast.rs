@@ -9,7 +9,7 @@
 //! ([`crate::Scalar::Acc`]) and grows by the per-frame `N.x × step` per pixel, so that a
 //! pixel costs no product for it (in the fixed formats bit for bit the wide dot product
 //! of the stepped `D`). Spheres keep `oc·D` the same way (`oc = eye − centre`) and test
-//! the discriminant's sign exactly (`sphere_root`). The plane test of `scene-format.md`
+//! the discriminant's sign exactly (`sphere_root`). The plane test of `docs/scene-format.md`
 //! is then evaluated in an equivalent form without dividing:
 //!
 //! - parallel, `|N·d| < EPS` with `d = D/|D|`  ⇔  `(N·D)² < EPS·(EPS·|D|²)`;

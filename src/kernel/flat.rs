@@ -1,7 +1,7 @@
 //! Pure-geometry plane scenes, a scanline at a time: per-pixel mode and span mode.
 //!
 //! A scene of infinite planes without lights, tiles or mirrors is pure geometry
-//! (`scene-format.md`): a pixel shows the ambient colour of the nearest plane it sees, so
+//! (`docs/scene-format.md`): a pixel shows the ambient colour of the nearest plane it sees, so
 //! no hit point, division or colour arithmetic is needed per pixel, only *which* plane.
 //! With the eye `b`, `num_i = D'_i − N_i·b` per plane (per frame) and the unnormalised
 //! direction `D = screen point − b` (as in [`super::fast`]):

@@ -3,7 +3,7 @@
 use core::fmt;
 use core::str::FromStr;
 
-/// The rule set a scene is drawn by (`scene-format.md`, "Two rule sets"). A scene file
+/// The rule set a scene is drawn by ([`crate::scene::language`], "Two rule sets"). A scene file
 /// chooses it with `rules course` or `rules fixray`; a file without that statement is a
 /// course file. A scene built in code ([`crate::Scene::new`]) follows the crate's own
 /// rules. [`crate::Scene::set_rules`] overrides either.
@@ -27,7 +27,7 @@ pub enum Rules {
     /// glint and mirror weight (`own + K·reflected`), glints without a light-distance
     /// division and only with `shininess`, checkerboards anchored at the world origin.
     Course,
-    /// The crate's own rules (the rest of `scene-format.md`): pixel centres, rounding,
+    /// The crate's own rules (the rest of [`crate::scene::language`]): pixel centres, rounding,
     /// the normal facing the ray, `reflective` mirrors, glints divided by the light
     /// distance.
     Fixray,

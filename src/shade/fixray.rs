@@ -1,4 +1,4 @@
-//! Tracing under the crate's own rules (`scene-format.md`): the nearest root of every
+//! Tracing under the crate's own rules (`docs/scene-format.md`): the nearest root of every
 //! shape, secondary rays spawned off the surface by its computed error bound, the normal
 //! facing the ray, glints divided by the light distance, and mirrors that show
 //! `(1 − K) own + K reflected` to [`MAX_REFLECTION_DEPTH`].

@@ -2,7 +2,7 @@
 //!
 //! A pixel shows the object with the smallest accepted `t` along its primary ray, or the
 //! background. Its colour is the material's ambient colour plus, for every light not in
-//! shadow, `diffuse × emissivity × max(0, N·L) / dist` (see `scene-format.md`), and for a
+//! shadow, `diffuse × emissivity × max(0, N·L) / dist` (see `docs/scene-format.md`), and for a
 //! mirror its share of what the reflected ray sees. The stages a scene needs are compiled
 //! in sets (`stages.rs`); the lights' share is `light.rs`, colour arithmetic `color.rs`.
 //! Lighting work is done only when the scene has lights; a scene without lights costs one

@@ -97,7 +97,7 @@ pub(super) fn quote(text: &str) -> Quoted {
     q
 }
 
-/// Whether a token can be a name (`scene-format.md`, "Lexical rules"): any token that is
+/// Whether a token can be a name ([`crate::scene::language`], "Names"): any token that is
 /// not a brace, a keyword or a number. Real course files write `Sphere.060` and
 /// `seg-your-fault.115`.
 pub(super) fn is_name(s: &str) -> bool {

@@ -1,4 +1,4 @@
-//! The scene parser: the keyword-block format of `scene-format.md`, no_std, no allocator.
+//! The scene parser: the scene language ([`crate::scene::language`]), no_std, no allocator.
 //! `lexer.rs` splits the text into tokens, `schema.rs` says which entities and attributes
 //! there are, this file reads blocks by the schema, `builder.rs` turns each block into
 //! the scene's values and `error.rs` says what went wrong where.
@@ -404,7 +404,7 @@ fn too_many(
 }
 
 impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L> {
-    /// Reads a scene in the keyword-block format of `scene-format.md`.
+    /// Reads a scene in the scene language ([`crate::scene::language`]).
     ///
     /// # Errors
     /// A [`SceneError`] with the line and column of the first problem.
