@@ -63,8 +63,8 @@ mod firmware {
     include!(concat!(env!("OUT_DIR"), "/fw_scenes.rs"));
 
     /// The line buffer's capacity in pixels: a 240-pixel-wide panel (an ST7789 240×240),
-    /// 720 bytes of the 16 KB (320 until issue 25: the shipped scenes are at most 160
-    /// wide, and the 240 bytes keep the deepest I32F32 frame within its budget).
+    /// 720 bytes of the 16 KB (no more: the shipped scenes are at most 160 wide, and the
+    /// deepest I32F32 frame needs the rest of its budget).
     const MAX_WIDTH: usize = 240;
 
     /// The painted stack's pattern.
@@ -576,7 +576,7 @@ mod firmware {
     }
 
     /// Calibrates the count, then renders every scene in every format built in. Inlined
-    /// into the board's entry: one frame under the renderer's, as before the boards split.
+    /// into the board's entry: one frame under the renderer's, the board adding none.
     #[inline(always)]
     fn main() -> ! {
         board::start();

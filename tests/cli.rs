@@ -301,8 +301,8 @@ plane p { material m normal 0.000001 0.000001 0 point 0 0 0 }
     assert!(out.status.success(), "{out:?}");
 }
 
-/// Regression: a scene over capacity told the user to raise a type parameter of the
-/// scene type, which this program had already raised (`LargeScene`).
+/// A scene over capacity names this program's limit, not a type parameter of the scene
+/// type to raise: this program has raised them already (`LargeScene`).
 #[test]
 fn over_capacity_names_this_programs_limit() {
     let mut text = String::from(

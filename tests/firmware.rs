@@ -43,8 +43,8 @@ fn frame_hash<S: Scalar>(scene: &Scene<S>) -> u32 {
     hash.value()
 }
 
-/// Regression: a field the firmware did not report read as 0, so the `full/bare ≤ 1.05`
-/// check of `absent_effects_cost_nothing_on_the_chip` passed when nothing was reported.
+/// A field the firmware did not report is not read as 0: as 0, the `full/bare ≤ 1.05`
+/// check of `absent_effects_cost_nothing_on_the_chip` would pass when nothing was reported.
 #[test]
 fn a_missing_report_field_is_not_a_zero() {
     let line = "format=i16f16 size=160x120 hash=0x1 instructions=oops";
@@ -202,15 +202,14 @@ fn absent_effects_cost_nothing_on_the_chip() {
         bare.0 < flash[1].0 && flash[1].0 < flash[2].0 && flash[2].0 <= flash[3].0,
         "{flash:?}"
     );
-    // Without the `course` feature the course's tracer is not linked (issue 25: 12.5 KB
-    // on the M0 in I16F16 when it was measured).
+    // Without the `course` feature the course's tracer (at least 4 KB) is not linked.
     assert!(
         full.0.saturating_sub(flash[3].0) >= 4096,
         "the course's tracer is {} bytes: is it gated by its feature? {flash:?}",
         full.0.saturating_sub(flash[3].0)
     );
-    // Regression: the `spheres` feature gated only the parser's arm (312 bytes), and the
-    // sphere intersection, normal and spawn were linked without it. Now they are not.
+    // The `spheres` feature gates the sphere intersection, normal and spawn, not only the
+    // parser's arm: without it none of them is linked.
     assert!(
         flash[2].0 - flash[1].0 >= 1024,
         "the sphere code is {} bytes: is it gated by its feature? {flash:?}",
@@ -225,7 +224,7 @@ fn absent_effects_cost_nothing_on_the_chip() {
             fast.0.saturating_sub(lean.0)
         );
     }
-    // Every effect of the crate's rules fits a 64 KB chip without the kernels (issue 25).
+    // Every effect of the crate's rules fits a 64 KB chip without the kernels.
     assert!(
         flash[6].0 <= 64 * 1024,
         "every effect without the kernels: {} bytes of flash, above 64 KiB",
@@ -251,7 +250,7 @@ fn reference_hash<S: Scalar>(scene: &Scene<S>) -> u32 {
     hash.value()
 }
 
-/// Every effect of the crate's rules without the kernels (issue 25; cargo feature
+/// Every effect of the crate's rules without the kernels (cargo feature
 /// `kernels` off, the firmware that fits a 64 KB chip: its flash is asserted in
 /// `absent_effects_cost_nothing_on_the_chip`): the M0 I16F16 firmware with lighting,
 /// spheres and reflection draws every shipped scene of the crate's rules (the boing
@@ -339,7 +338,7 @@ fn every_effect_draws_the_definition_without_the_kernels() {
     assert!(mismatches.is_empty(), "{mismatches:#?}");
 }
 
-/// The course's entities on the chips (issue 15): one shipped scene each (translucency,
+/// The course's entities on the chips: one shipped scene each (translucency,
 /// a textured plane, a projector, surfaces of revolution), built with the `textures`
 /// feature (its texture, 32×32, in flash), in I16F16 and f32 on the three cores: instructions
 /// per pixel, flash, and the frame hash against the host's (equal in I16F16, asserted).
@@ -422,7 +421,7 @@ fn course_entities_on_the_chips() {
 /// firmware (default features) over every shipped scene it draws, with 2 KB to spare
 /// (static RAM plus the deepest stack, painted, at most `M0_RAM_BUDGET`). The mirror
 /// scene's four reflections are a loop (`shade/fixray.rs`), not a recursion, so its stack
-/// no longer grows with the depth. The firmware with the `textures` feature (the course
+/// does not grow with the depth. The firmware with the `textures` feature (the course
 /// entities' scenes: a larger scene, texture and projector blocks in the parser) must fit
 /// 16 KB; its headroom is reported, not held to 2 KB (`README.md`, "Cost and size"). A
 /// frame that outgrows 16 KB is a HardFault under QEMU (QEMU then exits with an error),
@@ -490,7 +489,7 @@ fn boing_hash<S: Scalar>(k: u16) -> u32 {
     frame_hash(&scene)
 }
 
-/// The boing ball (issue 25) as the README's plain firmware commands build it (default
+/// The boing ball as the README's plain firmware commands build it (default
 /// features and formats, I16F16 and f32): 16 frames on each core, every frame's hash
 /// equal to the host's (asserted for both formats: f32 is correctly rounded everywhere),
 /// and the animation's table (instructions per pixel per core, frames per second at 133

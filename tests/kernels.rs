@@ -1,9 +1,8 @@
 //! One kernel choice: `render`, `render_line` and `Frame::render_line` draw bit-identical
 //! pixels, in both plane modes, for every shipped scene in every number format of the one
 //! list and for seeded random scenes, including scanlines the pure-geometry kernel hands
-//! back (a quantity out of the format's range). Regression: `Frame::render_line` drew such
-//! a scanline on the reference path while `render` drew it on the fast path, so the two
-//! could differ.
+//! back (a quantity out of the format's range): `Frame::render_line` draws such a
+//! scanline on the same path as `render`, so the two cannot differ.
 
 mod common;
 
@@ -221,8 +220,8 @@ fn random_scene(rng: &mut SplitMix) -> String {
         (rng.uniform(1.0, 5.0), rng.uniform(-3.0, 0.0))
     };
     // The crate's rules: a file without `rules` is a course file, which only the
-    // reference path draws (regression: so were these scenes, and the count of rows the
-    // flat kernel hands back counted rows no frame drew with it).
+    // reference path draws (as such, these scenes would not reach the kernels, and the
+    // count of rows the flat kernel hands back would count rows no frame drew with it).
     let mut text = format!(
         "rules fixray\ncamera c {{ pixeldim {w} {h} worlddim 8 6 viewpoint {eye_x:.4} {eye_y:.5} {eye_z:.4} }}\n"
     );

@@ -231,8 +231,8 @@ fn diffuse_light_follows_the_formula() {
 
 #[test]
 fn a_strong_far_light_is_not_saturated_by_overflow() {
-    // Regression: emissivity × diffuse × 255 used to overflow I16F16 before the division
-    // by the distance and turn a dim pixel white. 200 × 1 × 1 / 1000 = 0.2 → 51.
+    // emissivity × diffuse × 255 overflows I16F16 unless the distance divides it first,
+    // which would turn a dim pixel white. 200 × 1 × 1 / 1000 = 0.2 → 51.
     let text = "camera c { pixeldim 1 1 worlddim 1 1 viewpoint 0.5 3 5 }
         material m { diffuse 1 1 1 }
         light l { location 0.5 999 -3 emissivity 200 200 200 }
@@ -252,8 +252,8 @@ fn only_pixel<S: Scalar>(text: &str) -> Rgb888 {
 
 #[test]
 fn a_light_beyond_the_format_range_still_lights() {
-    // Regression: the distance to this light (≈ 42000) does not fit I16F16; the light was
-    // skipped. cos / dist is computed in two overflow-free divisions instead.
+    // The distance to this light (≈ 42000) does not fit I16F16, yet the light counts:
+    // cos / dist is computed in two overflow-free divisions.
     // Hit (0.5, −1, −3); light (0.5, 29999, 29997): dist = 30000·√2 ≈ 42426, cos = 1/√2.
     // 30000 × 0.7071 / 42426 = 0.5 → 127.5: a tie, so only check it is lit, not dark.
     let text = "camera c { pixeldim 1 1 worlddim 1 1 viewpoint 0.5 3 5 }
@@ -280,8 +280,8 @@ fn a_light_beyond_the_format_range_still_lights() {
 
 #[test]
 fn a_far_eye_does_not_lose_a_plane() {
-    // Regression: N·b ≈ 42426 overflowed I16F16 although t ≈ 30000 and the hit fit; the
-    // plane vanished. D' − N·b is computed in one wide step now.
+    // N·b ≈ 42426 does not fit I16F16 although t ≈ 30000 and the hit do; the plane still
+    // shows: D' − N·b is computed in one wide step.
     let text = "camera c { pixeldim 1 1 worlddim 32000 32000 viewpoint 30000 30000 5000 }
         material m { ambient 1 0 0 }
         plane p { material m normal 1 1 0 point 10000 10000 0 }";

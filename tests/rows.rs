@@ -71,7 +71,7 @@ fn every_boing_frame_is_the_fast_kernels_bit_for_bit() {
     fixray::for_each_format!(all: boing());
 }
 
-/// A ball scene this repository does not ship (issue 25's goal scene).
+/// A ball scene this repository does not ship (one the performance goals are set on).
 const BALL: &str = "rules fixray
 camera c { pixeldim 160 96 worlddim 10 6 viewpoint 5 4 9 }
 background 0.1 0.15 0.3
@@ -341,8 +341,8 @@ impl embedded_graphics::draw_target::DrawTarget for Refusing {
 }
 
 /// The level-plane kernel's counters count the pixels a display took, not those its
-/// quick runs drew ahead (regression: a scanline stopped after `k` pixels counted up to
-/// 31 more primary rays, shadow rays and diffuse terms).
+/// quick runs drew ahead (a scanline stopped after `k` pixels counts none of the up to 31
+/// more primary rays, shadow rays and diffuse terms drawn past it).
 fn counts_what_was_taken<S: Scalar>() {
     let boing = Scene::<S>::parse(include_str!("../scenes/boing.scene")).unwrap();
     let frame = Frame::new(&boing);

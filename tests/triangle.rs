@@ -181,7 +181,7 @@ fn both_course_forms_are_read_and_checked() {
 /// The budget of format `S` for a scene whose budget at I16F16's resolution is `base`:
 /// the pixels that differ lie in bands (edges, the horizon, shading levels near x.5) as
 /// wide as the format's error, so the budget grows with `DELTA` above I16F16's:
-/// `base · max(1, DELTA / 2⁻¹⁶)` (I20F12: 16 ×; it was not checked here before). `None` for a format whose square root
+/// `base · max(1, DELTA / 2⁻¹⁶)` (I20F12: 16 ×). `None` for a format whose square root
 /// is approximate ([`sqrt_error`] above one DELTA: `f32m`): its unit directions are as
 /// far off as its root (11 % of the lit `course` scene measured), so that share is
 /// measured, not bounded.

@@ -184,9 +184,9 @@ plane floor { material m normal 0 1 0 point 0 40000 0 }
     }
 }
 
-/// Regression: `--display 240x240-rgb565` stretched a 4:3 scene over the square panel
-/// (spheres became eggs). The picture keeps the scene's aspect, letterboxed: 240×180
-/// between black bars of 30 rows, and a sphere at the centre is as wide as it is tall.
+/// `--display 240x240-rgb565` does not stretch a 4:3 scene over the square panel (spheres
+/// would become eggs): the picture keeps the scene's aspect, letterboxed: 240×180 between
+/// black bars of 30 rows, and a sphere at the centre is as wide as it is tall.
 #[test]
 fn a_square_panel_letterboxes_the_scene_and_keeps_spheres_round() {
     let out = out_dir("round");

@@ -222,10 +222,10 @@ pub struct Slide<S> {
 
 /// `floor(x / size)`, the tile a coordinate falls in. A tile of size 1 (the usual one)
 /// takes no division: `x / 1` is `x` exactly in every format whose division is exact, so
-/// the index is the same bit for bit, and a division (about 200 instructions on the
-/// Cortex-M0) is saved twice per tiled pixel (issue 25). (`i16f16r`'s reciprocal
-/// division returns `x − 1 DELTA` for `x / 1` (toward zero): there a whole-number
-/// coordinate now falls in its own tile, as in f64, not the one below.)
+/// the index is the same bit for bit, and two divisions (dear on the Cortex-M0:
+/// `docs/performance.md`) are saved per tiled pixel. (`i16f16r`'s reciprocal division
+/// returns `x − 1 DELTA` for `x / 1` (toward zero): without it, a whole-number
+/// coordinate falls in its own tile, as in f64, not the one below.)
 #[inline]
 fn tile_index<S: Scalar>(x: S, size: S) -> Option<i32> {
     if size == S::ONE {

@@ -103,8 +103,8 @@ impl<S: Scalar> Plane<S> {
     /// quotient `t` and the exact one fall on different sides of `dist` (a plane through
     /// the light itself, within one rounding) and where `intersect` finds `t` or the hit
     /// point out of range: such a `t` exceeds every `dist` that fits the format, and here
-    /// it is compared exactly instead. On the Cortex-M0 a division costs about nine of
-    /// these multiplications (`../shared/measurements.md`).
+    /// it is compared exactly instead. On the Cortex-M0 a division costs several of
+    /// these multiplications (`docs/performance.md`).
     #[inline]
     pub fn occludes(&self, ray: &Ray<S>, epsilon: S, dist: S) -> bool {
         let Some(n_dot_d) = self.normal.dot(ray.dir) else {

@@ -280,9 +280,8 @@ mod tests {
     use super::*;
     use crate::{I16F16, RayKind};
 
-    /// Regression: the `spheres` feature gated only the parser, so a firmware built
-    /// without it still carried (and ran) the sphere intersection for spheres built in
-    /// code. Without the feature a sphere is never hit.
+    /// The `spheres` feature gates the sphere intersection, not only the parser: without
+    /// it a firmware carries none, and a sphere built in code is never hit.
     #[test]
     fn spheres_are_hit_exactly_when_built_in() {
         let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();

@@ -304,7 +304,7 @@ impl<S: Scalar> Sphere<S> {
 /// centre: `s = (P − light)·u > 0` and `s² ≥ ll·(|u|² − r²)`. [`ShadowCone::clears`]
 /// tells, from three products and one exact comparison, the points whose line passes
 /// farther than `r·√(9/8)` from the centre: most of a frame's pixels, which then skip
-/// the sphere's exact segment test (issue 25).
+/// the sphere's exact segment test.
 ///
 /// Why a cleared point is one the exact test finds clear: at the cone's edge the two
 /// sides of `s² < ll·k` differ by `ll·r²/8`, i.e. by `r²/8` in squared distance from

@@ -62,8 +62,8 @@ impl<S: Scalar> Vec3<S> {
     /// tiles). The dot product is then `±` that coordinate of `self` exactly in every
     /// format (the wide sum of exact products, rounded once; in the float formats
     /// `x·1 + y·0 + z·0 = x` up to the sign of a zero, which no caller tells apart), so
-    /// the result is [`Vec3::dot`]'s bit for bit, for about ten instructions instead of
-    /// three double-width products (issue 25). Other axes: [`Vec3::dot`].
+    /// the result is [`Vec3::dot`]'s bit for bit, without its three double-width
+    /// products. Other axes: [`Vec3::dot`].
     #[inline(always)]
     pub(crate) fn dot_axis(self, axis: Self) -> Option<S> {
         match axis.world_axis() {
@@ -199,8 +199,8 @@ impl<S: Scalar> Vec3<S> {
         let m = self.max_abs();
         // Nearly every vector of a scene (rays, normals, directions to lights) has a
         // component of at least 1 and squares within the format: it needs no scaling,
-        // and three divisions fewer (on a Cortex-M0 a division is the price of about
-        // ten products). Unscaled, its squared length keeps every bit of `self`.
+        // and three divisions fewer (on a Cortex-M0 a division costs many products:
+        // `docs/performance.md`). Unscaled, its squared length keeps every bit of `self`.
         let ((w, scale), squared) = match self.dot(self) {
             Some(d) if m >= S::ONE => ((self, S::ONE), d),
             _ => {

@@ -77,11 +77,9 @@ pub const RESYNC_PIXELS: u16 = 16;
 /// exact one, and how long a certified block can be ([`Primary::certify_block`]: at
 /// most this many pixels). 16 in the formats with at least 16 fraction bits (and the
 /// floats), 8 in the coarser ones (I20F12), whose drift is 16 times larger: there, 16
-/// moved the default scene's pixels that differ from f64 from 7.2 % to 12.0 % (issue
-/// 25's sixth session) and the specular scene's past its budget. Measured on the
-/// Cortex-M0, I16F16, default scene: 8 → 16 pixels, 2,681 → 2,571 instructions a pixel
-/// (fewer restarts, half as many blocks to certify); 32: 2,677 (more blocks hold a
-/// crossing, and fail).
+/// moves many more of the default scene's pixels away from f64 and the specular scene's
+/// past its budget. 16 rather than 8: fewer restarts and half as many blocks to certify;
+/// not 32: more blocks would hold a crossing, and fail.
 pub(crate) const fn resync_pixels<S: Scalar>() -> u16 {
     // (`as` widens a `u32` here: `usize::from` is not `const`.)
     if core::mem::size_of::<S>() * 8 < S::INT_BITS as usize + 16 {
@@ -151,8 +149,8 @@ pub struct Primary<S: Scalar> {
 /// on a core without a long multiply, where the search they save is dear, and on hosted
 /// targets, so that the host's tests, reports and simulator take the same path (the
 /// pixels are the same either way). On the Cortex-M4F and RISC-V the search is cheap
-/// and the blocks measured dearer (default I16F16: 1,691 → 1,629 on the M4F but 1,979 →
-/// 2,017 on RISC-V, and the scenes with spheres 16 to 26 dearer on both).
+/// and the blocks cost more than they save (on RISC-V, and on both cores for the scenes
+/// with spheres).
 pub(crate) const fn blocks_for<S: Scalar>() -> bool {
     S::EXACT_PRODUCTS
         && core::mem::size_of::<S>() <= 4
@@ -240,7 +238,7 @@ pub const MAX_CONES: usize = 3;
 /// How many plane–light sides a frame keeps (objects × lights; beyond, shadow segments
 /// compute their sides themselves): 48 bytes in I16F16, 96 in I32F32, a RAM budget a
 /// 16 KB chip affords beside the rest of the frame (the shipped scenes need at most 9;
-/// 32 until issue 25, whose per-frame sphere terms and screen boxes took the difference).
+/// the frame's sphere terms and screen boxes share the same budget).
 pub const MAX_SIDES: usize = 12;
 
 /// The most objects the fast kernel takes: a scene with more is drawn on the reference
@@ -422,7 +420,7 @@ fn sphere_root<S: Scalar>(c: S, b: S, a: S) -> Result<Option<(S, S)>, ()> {
 /// `c ≤ |oc|²`), and a sphere's rows are bounded only when `r² ≥ 256 DELTA (1 +
 /// 2|oc|∞/|dz|)²`, so `r²/8` is at least 32 times that (any other sphere, or a quantity
 /// that does not fit, keeps every row). The skipped pixels draw what the test would
-/// have: bit for bit (issue 25).
+/// have: bit for bit.
 fn sphere_rows<S: Scalar>(scene: &SceneView<'_, S>, oc: Vec3<S>, rr: S, dz: S) -> (u16, u16) {
     let all = (0, scene.camera.height.saturating_sub(1));
     if !bounded(oc, rr, dz) {
@@ -450,7 +448,7 @@ fn sphere_rows<S: Scalar>(scene: &SceneView<'_, S>, oc: Vec3<S>, rr: S, dz: S) -
 /// `2·RESYNC_PIXELS·r·DELTA·|oc|/|dz|`, inside the `r²/8` margin the guard leaves:
 /// `r ≥ 16 √DELTA (1 + 2|oc|∞/|dz|) ≥ 32 √DELTA |oc|/|dz|`, at least
 /// `256 DELTA |oc|/|dz|` for every format's `DELTA ≤ 2⁻⁶`. Bit for bit, as the rows. (The test is [`sphere_rows`]' own, written out again: a shared
-/// helper made the frames of three-sphere scenes 9 instructions a pixel dearer on the M0.)
+/// helper costs the frames of three-sphere scenes more on the M0.)
 fn sphere_columns<S: Scalar>(scene: &SceneView<'_, S>, oc: Vec3<S>, rr: S, dz: S) -> (u16, u16) {
     let all = (0, scene.camera.width.saturating_sub(1));
     if !bounded(oc, rr, dz) {

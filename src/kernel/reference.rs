@@ -482,7 +482,7 @@ type Facing = (bool, Option<(u8, bool)>);
 /// How many lights' weights a [`PlaneMemo`] keeps (the others' terms take both
 /// products): one, as every shipped scene of the crate's rules has (a scanline of a
 /// scene drawn on the reference path carries the memo too, and the deepest I32F32
-/// stack on a 16 KB chip, the course's, had 12 bytes to spare with two).
+/// stack on a 16 KB chip, the course's, would have almost nothing to spare with two).
 const MEMO_LIGHTS: usize = 1;
 
 /// What a fast-kernel scanline of a diffuse stage set keeps from pixel to pixel for its

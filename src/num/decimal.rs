@@ -238,8 +238,8 @@ impl Decimal {
 /// `round(n / 10^k)`, ties up, for `n < 2^127`: `y = ⌊2n / 10^k⌋` by `k` divisions by ten
 /// of 16-bit limbs (each an exact floor, so their chain is `⌊2n / 10^k⌋`), then
 /// `⌊(y + 1) / 2⌋`, which is `⌊(2n + 10^k) / (2·10^k)⌋`. No 128-bit division: its
-/// helper, inlined at the fixed formats' `from_decimal`, was 3 KB of flash per format on
-/// the Cortex-M0.
+/// helper would be inlined at every fixed format's `from_decimal`, a large copy in flash
+/// per format on the Cortex-M0.
 fn round_div_pow10(n: u128, k: u32) -> u128 {
     const LIMBS: usize = 8;
     let two_n = n << 1;
@@ -272,7 +272,7 @@ impl Decimal {
     /// The nearest `f32` (ties to even), `None` when it is infinite: the decimal's exact
     /// value divided out bit by bit in integer arithmetic (a 256-bit quotient, its
     /// remainder as the sticky bit) and rounded once, subnormals included. What `core`'s
-    /// parser gives, without its tables and code in flash (14 KB on the Cortex-M0); a
+    /// parser gives, without its tables and code in flash; a
     /// scene's numbers are converted once, at parse time.
     ///
     /// ```
@@ -605,12 +605,12 @@ mod tests {
         assert_eq!(d("1e30").to_integer(), None);
     }
 
-    /// The 16-bit-limb rounding division against the 128-bit one it replaced, on the
+    /// The 16-bit-limb rounding division against the 128-bit one it avoids, on the
     /// edges (ties, zero, the largest numerators, 10^k beyond 2^128) and 200,000 seeded
     /// cases.
     #[test]
     fn rounded_division_by_powers_of_ten_is_the_wide_ones() {
-        // The replaced formula, in `u128` (its `i128` form overflowed `2·(n mod p)` for
+        // The 128-bit formula, in `u128` (its `i128` form overflowed `2·(n mod p)` for
         // `n ≥ 2^126`, which needs 62 or more fraction bits; no format has them).
         fn wide(n: u128, k: u32) -> u128 {
             match 10u128.checked_pow(k) {

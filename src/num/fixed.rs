@@ -31,7 +31,7 @@ macro_rules! mul_ratio_bits {
 
 /// The truncated quotient `(a·2^frac)/b` of 32-bit bit patterns, as `fixed`'s
 /// `checked_div`. The one place the division is chosen: on 32-bit targets (no 64 by
-/// 32-bit divide instruction: the helper costs about 370 instructions on a Cortex-M0) the
+/// 32-bit divide instruction: a software helper, dear on a Cortex-M0) the
 /// reciprocal form [`super::recip::exact_div`], bit for bit the same; elsewhere the
 /// 64-bit division.
 #[inline]
@@ -56,11 +56,10 @@ const QUICK_I32: bool = cfg!(any(no_long_multiply, not(target_os = "none")));
 
 /// [`super::recip::quick_pixel_term`] on the bit patterns ([`Scalar::quick_pixel`] of the
 /// 32-bit formats), where it pays: on cores without a long multiply (the
-/// Cortex-M0, where the exact division and the colour's three double-width products cost
-/// about 300 instructions), and on hosted targets ([`QUICK_I32`]). Elsewhere `None`: on
-/// bare-metal cores with `UMULL` or `MULHU` (Cortex-M4F, RISC-V) the exact arithmetic is
-/// cheaper than the quick pixel's certification (measured: boing 650 -> 683 instructions
-/// a pixel on the M4F, 796 -> 886 on RISC-V). The one place the choice is made; the
+/// Cortex-M0, where the exact division and the colour's three double-width products are
+/// built from 16-bit products), and on hosted targets ([`QUICK_I32`]). Elsewhere `None`:
+/// on bare-metal cores with `UMULL` or `MULHU` (Cortex-M4F, RISC-V) the exact arithmetic
+/// is cheaper than the quick pixel's certification. The one place the choice is made; the
 /// pixels are the same either way.
 #[inline]
 fn quick_i32<F: ::fixed::types::extra::LeEqU32>(

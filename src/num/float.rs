@@ -253,8 +253,8 @@ fn cmp_products_f64(a: f64, b: f64, c: f64, d: f64) -> Option<Ordering> {
 mod tests {
     use super::*;
 
-    /// Regression: products that overflow to the same infinity compared `Equal` (a silent
-    /// tie) and NaN products compared `Equal` too.
+    /// Products that overflow to the same infinity, and NaN products, do not compare
+    /// `Equal` (that would be a silent tie).
     #[test]
     fn float_products_beyond_the_range_are_not_ties() {
         use Ordering::{Greater, Less};

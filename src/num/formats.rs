@@ -170,7 +170,7 @@ mod tests {
         seen.push(S::NAME);
     }
 
-    /// Regression: an unknown name silently became f64 in the tools.
+    /// An unknown name is an error, never a silent f64 in the tools.
     #[test]
     fn an_unknown_name_is_an_error_naming_the_known_ones() {
         let err = crate::with_format!("f16", name_of()).unwrap_err();

@@ -1,6 +1,7 @@
 //! Division by reciprocal for 32-bit fixed-point bit patterns: a 256-entry table and two
-//! Newton steps in 32-bit arithmetic instead of a 64 by 32-bit division (about 370
-//! instructions on a Cortex-M0, 120 on a Cortex-M4, whose `UDIV` takes only 32 bits).
+//! Newton steps in 32-bit arithmetic instead of a 64 by 32-bit division (a software
+//! helper on a Cortex-M0, and on a Cortex-M4, whose `UDIV` takes only 32 bits; costs:
+//! `docs/performance.md`).
 //!
 //! - [`recip_div`] is the approximate quotient of the `i16f16r` variant
 //!   ([`super::variants::I16F16Recip`]): within `1 + |q|·2⁻²⁸` DELTAs.
@@ -52,8 +53,7 @@ pub(crate) fn recip_div(a: i32, b: i32) -> Option<i32> {
 /// `x₀·(2³¹ − t)` fits 32 bits too (`|2³¹ − t| ≤ 2³¹·(2⁻⁹ + 2⁻¹⁵)`: the table's error and
 /// `dh`'s truncation). That gives `1/d` to about 2⁻¹⁵ (the truncation's error); the second
 /// step, on the whole of `d` with double-width products, squares it to about 2⁻³⁰. On a
-/// Cortex-M0 the first step is two `MULS` instead of two double-width products (about
-/// 40 instructions fewer per division).
+/// Cortex-M0 the first step is two `MULS` instead of two double-width products.
 #[inline(always)]
 fn reciprocal(ub: u32) -> Option<(u32, u32)> {
     let n = leading_zeros(ub);
@@ -149,9 +149,9 @@ fn with_sign(q: u64, negative: bool) -> Option<i32> {
 /// makes `q̂` the exact floor of `|a|·2^frac / |b|`. `None` when `b` is zero or the
 /// quotient does not fit an `i32` (as `fixed`).
 ///
-/// About 90 instructions on a Cortex-M0 (six 32 × 32 → 64 products from 16-bit halves)
-/// and 30 on a Cortex-M4; the unit tests compare it with the 64-bit division on every
-/// sign, size and edge.
+/// Six 32 × 32 → 64 products (from 16-bit halves on a Cortex-M0) instead of the 64-bit
+/// division helper (per-operation costs: `docs/performance.md`); the unit tests compare
+/// it with the 64-bit division on every sign, size and edge.
 #[inline(never)]
 #[cfg_attr(not(target_pointer_width = "32"), allow(dead_code))]
 pub(crate) fn exact_div(a: i32, b: i32, frac: u32) -> Option<i32> {
@@ -729,8 +729,8 @@ mod tests {
         }
     }
 
-    /// Regression: the bound test let any refused quotient pass. Quotients well inside
-    /// the range, and the zero divisor, are decided exactly here.
+    /// A refused quotient does not pass as within the bound: quotients well inside the
+    /// range, and the zero divisor, are decided exactly here.
     #[test]
     fn reciprocal_division_refuses_zero_and_nothing_inside_the_range() {
         assert_eq!(recip_div(1 << 16, 0), None);

@@ -1,8 +1,8 @@
 //! Variants of the main number formats that differ in one choice, so that the accuracy
 //! report can show what that choice costs:
 //!
-//! - [`F32Micro`]: `f32` with `micromath`'s fast square root (about 45 instructions on a
-//!   Cortex-M0 against about 400 for a correctly rounded one, and up to 6.1 % off).
+//! - [`F32Micro`]: `f32` with `micromath`'s fast square root (far cheaper on a Cortex-M0
+//!   than a correctly rounded one, and up to 6.1 % off).
 //!   The tempting choice on a chip without an FPU; the report shows what it does to the
 //!   picture when it normalises rays.
 //! - [`I16F16Narrow`]: I16F16 with narrow dot products (three products, each rounded
@@ -10,8 +10,8 @@
 //!   alternative the crate measured and did not keep.
 //! - [`I16F16Recip`]: I16F16 whose division multiplies by a reciprocal (a 256-entry table
 //!   and two Newton steps in 32-bit arithmetic, `recip.rs`) instead of dividing
-//!   64 by 32 bits: on a core without a divide instruction (the Cortex-M0's division
-//!   helper takes ~370 instructions) the cheaper division, at up to a few `DELTA`s of
+//!   64 by 32 bits: on a core without a divide instruction (the Cortex-M0: a software
+//!   helper) the cheaper division, at up to a few `DELTA`s of
 //!   error.
 //!
 //! All are complete [`Scalar`]s: any scene renders in them.

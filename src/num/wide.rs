@@ -4,7 +4,7 @@
 
 /// The exact product of two `i32`s, from four 16 × 16 → 32 multiplications: what a core
 /// without a long multiply (Cortex-M0: no `SMULL`) does far faster than the 64-bit
-/// multiply helper (about 15 instructions against 41, `../shared/measurements.md`).
+/// multiply helper (per-operation costs: `docs/performance.md`).
 /// Bit-identical to `i64::from(a) * i64::from(b)` (tested on every sign and size).
 #[inline(always)]
 #[cfg_attr(not(no_long_multiply), allow(dead_code))]

@@ -136,7 +136,7 @@ ground, no isolated speckles).
 A light lying exactly on a plane (real course files put lights on their floors and
 ceilings) makes the shadow test `t < dist` a tie of two rounded quantities: which side wins
 changes from pixel to pixel, salt-and-pepper shadows in every format, f64 and the course
-tracer included (in f64 on one course file, 5.8 % of the pixels changed with the rule
+tracer included (in f64 on one course file, 5.8 % of the pixels differ with the rule
 below). The tolerance is `tol = ε · max(1, ‖light‖∞, ‖eye‖∞)` (ε the scene's epsilon:
 I16F16 16 δ, so 0.0024 world units for coordinates up to 10), one value per light and
 frame; it covers the rounding of the light's and the plane's positions (≤ 2 δ per unit of
@@ -156,7 +156,7 @@ lamp on the floor and one on a side wall, both rule sets): the wall is lit exact
 without the floor in every format, and every format is within 1 level of f64 (0.00 % of
 pixels differ in I32F32 and f64, 0.78 % by one level in I16F16, 11.65 % by one level in
 I20F12, which rounds at 1/4096). A light more than `tol` below a plane is shadowed by it
-as before.
+as by any plane.
 
 ## Shadow segments and diffuse light
 
@@ -380,7 +380,7 @@ bounce to 1, the glint's `base` at the eye nor a cap on the path at the hit expl
 | **20** | **0.047 %** | **0.039 %** | 0.017 % |
 | 21 | 3.307 % | 0.161 % | 0.017 % |
 | 24 | 6.390 % | 0.163 % | 0.017 % |
-| 32 (before) | 6.761 % | 0.163 % | 0.017 % |
+| 32 (the student tracer's `MAX_DIST`) | 6.761 % | 0.163 % | 0.017 % |
 
 texplane3 (mirror textured walls) confirms it independently: its residual falls from
 0.163 to 0.039 %. Every other public course picture is unchanged (no other has a path
@@ -437,10 +437,11 @@ the pixel's unnormalised direction, screen point − eye, exact to the screen po
 rounding (`Plane::crossing_along`; tests/plane.rs bounds it by
 `(s‖d‖/(2|N·d|) + ‖d‖ + 2) δ`). Measured on texplane3's floor in I16F16 (a seeded sweep of
 its pixels in Python): 2.7 % of them on another texel than the exact crossing with the
-unit ray, 0.08 % with this. texplane3 in I16F16: 1.008 % of pixels beyond 2 levels
-before, 0.625 % after; texplane1 0.230 → 0.105 %. The finer formats keep the unit ray's
-point: that is what the course computes, and exact texel-edge ties (texplane3's row 566
-lies on one) then break as in the course's picture (with the refined point I32F32's
+unit ray, 0.08 % with this. texplane3 in I16F16: 0.625 % of pixels beyond 2 levels with
+it, 1.008 % with the unit ray's point; texplane1 0.105 % with it, 0.230 % without. The
+finer formats keep the unit ray's point: that is what the course computes, and exact
+texel-edge ties (texplane3's row 566 lies on one) then break as in the course's picture
+(with the refined point I32F32's
 texplane3 would be 0.306 % instead of 0.204 %, f64's texplane1 0.064 % instead of
 0.025 %)."#
     );

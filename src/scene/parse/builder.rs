@@ -18,7 +18,7 @@ use crate::{
 };
 
 impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '_, S, O, M, L> {
-    // Out of line: one copy, not one per call (flash; issue 25).
+    // Out of line: one copy in flash, not one per call.
     #[inline(never)]
     pub(super) fn entity(&mut self, b: &Block<'a>) -> Result<()> {
         match b.entity {
@@ -341,7 +341,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
         self.push(b, Shape::Triangle(triangle), material)
     }
 
-    // Out of line: one copy, not one per call (flash; issue 25).
+    // Out of line: one copy in flash, not one per call.
     #[inline(never)]
     fn push(&mut self, b: &Block<'a>, shape: Shape<S>, material: u8) -> Result<()> {
         self.scene
@@ -396,7 +396,7 @@ fn cone<S: Scalar>(b: &Block<'_>, location: Vec3<S>) -> Result<Cone<S>> {
 }
 
 /// Converts a number into the format, times `scale` (exact, in decimal).
-// Out of line: one copy, not one per call (flash; issue 25).
+// Out of line: one copy in flash, not one per call.
 #[inline(never)]
 fn convert<S: Scalar>(n: &Number<'_>, scale: u64) -> Result<S> {
     S::from_decimal(n.value.times(scale)).ok_or_else(|| {
@@ -407,7 +407,7 @@ fn convert<S: Scalar>(n: &Number<'_>, scale: u64) -> Result<S> {
     })
 }
 
-// Out of line: one copy, not one per call (flash; issue 25).
+// Out of line: one copy in flash, not one per call.
 #[inline(never)]
 fn vector<S: Scalar>(v: &Value<'_>) -> Result<Vec3<S>> {
     Ok(Vec3::new(
@@ -441,7 +441,7 @@ fn in_domain(
 }
 
 /// A number that must be > 0 and stay > 0 in the format.
-// Out of line: one copy, not one per call (flash; issue 25).
+// Out of line: one copy in flash, not one per call.
 #[inline(never)]
 fn positive<S: Scalar>(n: &Number<'_>, attribute: &'static str) -> Result<S> {
     in_domain(n, positive_value, attribute, "> 0")?;
@@ -504,7 +504,7 @@ pub(super) fn channel_colour<S: Scalar>(
     Ok(c)
 }
 
-// Out of line: one copy, not one per call (flash; issue 25).
+// Out of line: one copy in flash, not one per call.
 #[inline(never)]
 fn camera<S: Scalar>(b: &Block<'_>) -> Result<Camera<S>> {
     let pixeldim = b.required("pixeldim")?;
@@ -595,7 +595,7 @@ fn material_of<S: Scalar>(b: &Block<'_>, rules: Rules) -> Result<Material<S>> {
 
 /// A material's share in [0, 1] that only the rule set `own` has (`reflective`: the
 /// crate's, `transparency`: the course's); `None` when the block has none.
-// Out of line: one copy, not one per call (flash; issue 25).
+// Out of line: one copy in flash, not one per call.
 #[inline(never)]
 fn share<S: Scalar>(
     b: &Block<'_>,
@@ -660,7 +660,7 @@ mod tests {
     use super::super::error::Pos;
     use super::*;
 
-    /// Regression: a non-positive tile or side length was reported against `xdir`.
+    /// A non-positive tile or side length is reported at the dimensions, not at `xdir`.
     #[test]
     fn a_frame_size_error_points_at_the_dimensions() {
         let at = |line, column| Value {

@@ -79,7 +79,7 @@ impl<'a> Lexer<'a> {
 
 /// Whether `c` separates tokens: the white space of the course's C reader (`scanf`'s
 /// `%s`, `isspace` in the C locale), ASCII only. A no-break space or another Unicode space
-/// is part of a token there, and here. (Unicode's table would also cost a chip 350 bytes.)
+/// is part of a token there, and here. (Unicode's table would also cost a chip flash.)
 fn is_space(c: u8) -> bool {
     matches!(c, b' ' | b'\t' | b'\n' | 0x0B | 0x0C | b'\r')
 }

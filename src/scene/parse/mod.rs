@@ -67,7 +67,7 @@ struct Block<'a> {
 
 impl<'a> Block<'a> {
     /// The value of an attribute; `None` when it is optional and absent.
-    // Out of line: one copy, not one per call (flash; issue 25).
+    // Out of line: one copy in flash, not one per call.
     #[inline(never)]
     fn get(&self, attribute: &'static str) -> Option<&Value<'a>> {
         let i = self
@@ -80,7 +80,7 @@ impl<'a> Block<'a> {
 
     /// The value of a required attribute (its presence was checked when the block was
     /// read; the error covers a mismatch between the tables and the code).
-    // Out of line: one copy, not one per call (flash; issue 25).
+    // Out of line: one copy in flash, not one per call.
     #[inline(never)]
     fn required(&self, attribute: &'static str) -> Result<&Value<'a>> {
         self.get(attribute).ok_or_else(|| {
@@ -128,7 +128,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
             .ok_or_else(|| end.error(SceneErrorKind::UnexpectedEnd(what)))
     }
 
-    // Out of line: one copy, not one per call (flash; issue 25).
+    // Out of line: one copy in flash, not one per call.
     #[inline(never)]
     fn number(&mut self) -> Result<Number<'a>> {
         let t = self.expect("a number")?;

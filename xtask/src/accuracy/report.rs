@@ -193,10 +193,10 @@ pub(super) fn write_report(
                     ""
                 } else {
                     "With an FPU, f32 division and square root are single instructions; the \
-                     fixed formats pay a 64-bit division helper (~120 instructions) per \
-                     division and a bit-by-bit square root (~170), and after the fast primary \
-                     path most of them are in the lighting (normalising the direction to the \
-                     light and the falloff; shadow rays against planes no longer divide)."
+                     fixed formats pay a 64-bit division helper per division and a \
+                     bit-by-bit square root (costs: `docs/performance.md`), and with the fast \
+                     primary path most of them are in the lighting (normalising the direction \
+                     to the light and the falloff; shadow rays against planes do not divide)."
                 }
             );
         }
