@@ -6,6 +6,7 @@
 //! cargo xtask numerics             # docs/numerics.md
 //! cargo xtask firmware [FORMATS]   # every core × format under QEMU: instructions, flash, hash
 //! cargo xtask scene-format         # docs/scene-format.md's reference tables, from the schema
+//! cargo xtask figures [--check]    # README.md's and docs/performance.md's figures, from the firmware reports
 //! ```
 
 // The test-support module's helpers, shared with the integration tests.
@@ -17,12 +18,13 @@ mod qemu;
 mod sampling;
 
 mod accuracy;
+mod figures;
 mod firmware;
 mod numerics;
 mod scene_format;
 
 const USAGE: &str =
-    "usage: cargo xtask accuracy [--quick] | numerics | firmware [FORMAT,...] | scene-format";
+    "usage: cargo xtask accuracy [--quick] | numerics | firmware [FORMAT,...] | figures [--check] | scene-format";
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -31,6 +33,7 @@ fn main() {
         Some("numerics") => numerics::main(),
         Some("firmware") => firmware::main(&args[1..]),
         Some("scene-format") => scene_format::main(),
+        Some("figures") => figures::main(&args[1..]),
         _ => {
             eprintln!("{USAGE}");
             std::process::exit(2);

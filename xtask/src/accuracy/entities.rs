@@ -1,4 +1,4 @@
-//! The course's entities (issue 15): one shipped scene each for translucency, a textured
+//! The course's entities: one shipped scene each for translucency, a textured
 //! plane, a projector and surfaces of revolution, read with their texture files (the
 //! `textures` feature): error against f64 and host time per format, and instructions per
 //! pixel on the three cores (I16F16 and f32, the firmware built with `textures`).
@@ -65,7 +65,7 @@ pub(super) fn entities_section(quick: bool) -> String {
     let mut r = String::new();
     let _ = writeln!(
         r,
-        "\n## The course's entities (issue 15)\n\n\
+        "\n## The course's entities\n\n\
          One shipped scene per entity (course rules, 160×120), read with its texture file \
          (`Scene::read_with` and `fixray::scene::files::beside`, feature `textures`). \
          *differ*: pixels that differ at all from the f64 render; *max*: the largest \

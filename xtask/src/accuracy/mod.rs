@@ -15,7 +15,6 @@
 
 mod chip;
 mod entities;
-mod lighting;
 mod measure;
 mod plot;
 mod report;
@@ -197,7 +196,6 @@ pub fn main(args: &[String]) {
 
     let mut report = write_report(&accuracy, &host, &sweeps, &firmware, &firmware_log);
     report.push_str(&fast_section(&fast_rows, &firmware, &spans_fw));
-    report.push_str(&lighting::lighting_section(&accuracy, &firmware));
     report.push_str(&entities::entities_section(quick));
     std::fs::write(docs.join("accuracy.md"), report).expect("docs/ is writable");
     plot(&accuracy, &host, &firmware, &docs.join("accuracy.png"));

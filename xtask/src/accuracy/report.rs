@@ -29,7 +29,7 @@ pub(super) fn fast_section(
          steps, 32-bit arithmetic; `fixray::num::variants::I16F16Recip`, within 1 + |q|/2²⁸ \
          DELTAs of the exact quotient): its rows here and in every scene table above show \
          what that costs in accuracy.\n\
-         - The reference path is the renderer as it was before the fast paths (one \
+         - The reference path is the definition the kernels are tested against (one \
          normalised ray and one division per plane per pixel): *× reference* is the \
          speed-up over it, measured in the same run.\n\n\
          | scene | format | path | differ vs reference | differ vs f64 | host ms/frame | host frames/s | × reference | M0 instr/px | M4F instr/px | RISC-V instr/px |\n\

@@ -1,0 +1,230 @@
+//! `cargo xtask figures [--check]`: the measured figures of `README.md` and
+//! `docs/performance.md`, written from measurements, never by hand.
+//!
+//! Each table of figures in those documents sits between `<!-- figures: NAME -->` and
+//! `<!-- end figures -->`. Its rows come from:
+//! - the reports the firmware tests leave in `target/` (`cargo test --release --test
+//!   firmware -- --ignored`): instructions counted under QEMU's `-icount shift=0`, flash
+//!   and RAM, all deterministic for one toolchain and lock file;
+//! - the Cortex-M0 firmware's own output, `target/firmware-m0.txt` (`cargo run --release
+//!   --example firmware --target thumbv6m-none-eabi > target/firmware-m0.txt`);
+//! - host renders (the share of pixels that differ from f64: deterministic), and the
+//!   course's table, `target/course-table.md` (`course/table.sh > target/course-table.md`).
+//!
+//! Without `--check` the blocks are rewritten in place. With it nothing is written and the
+//! command fails, naming the block, when a committed block differs from what the
+//! measurements give (CI runs it after the firmware tests).
+
+use std::fmt::Write as _;
+
+use fixray::{Scalar, Scene, compare::compare};
+
+/// A report file in `target/`, or the reason it is missing.
+fn report(name: &str) -> Result<String, String> {
+    let path = crate::root().join("target").join(name);
+    std::fs::read_to_string(&path).map_err(|e| {
+        format!(
+            "target/{name}: {e} (run `cargo test --release --test firmware -- --ignored` and \
+             `cargo run --release --example firmware --target thumbv6m-none-eabi > \
+             target/firmware-m0.txt` first)"
+        )
+    })
+}
+
+/// The rows of a markdown table whose first cells are `keys`.
+fn rows<'a>(table: &'a str, keys: &[&str]) -> Vec<Vec<&'a str>> {
+    table
+        .lines()
+        .map(|l| {
+            l.trim()
+                .trim_matches('|')
+                .split('|')
+                .map(str::trim)
+                .collect::<Vec<_>>()
+        })
+        .filter(|cells| cells.len() >= keys.len() && cells.iter().zip(keys).all(|(c, k)| c == k))
+        .collect()
+}
+
+/// The share of pixels of `text` drawn in `S` that differ from its f64 render, in %.
+fn differ_from_f64<S: Scalar>(text: &str) -> f64 {
+    let fixed = Scene::<S>::parse(text).expect("a shipped scene parses");
+    let reference = Scene::<f64>::parse(text).expect("a shipped scene parses");
+    100.0 * compare(&fixed, &reference, |_, _, _, _| {}).differing_share()
+}
+
+/// A format's range and resolution, as `(±MAX, DELTA)` written for people.
+fn range_and_delta<S: Scalar>() -> (String, String) {
+    let power = |x: f64| {
+        let k = x.log2().round();
+        if (x - k.exp2()).abs() <= x * 1e-9 {
+            format!("2^{k}")
+        } else {
+            format!("{x:.3e}")
+        }
+    };
+    (
+        format!("±{}", power(S::MAX.to_f64())),
+        format!("2^{}", S::DELTA.to_f64().log2().round()),
+    )
+}
+
+/// README: every format, its range, its resolution, its accuracy on the default and boing
+/// scenes, and its cost on the three cores.
+fn formats() -> Result<String, String> {
+    let firmware = report("firmware-report.md")?;
+    let default = include_str!("../../scenes/default.scene");
+    let boing = include_str!("../../scenes/boing.scene");
+    let mut out = String::from(
+        "| format | range | resolution (`DELTA`) | pixels ≠ f64, default | pixels ≠ f64, boing | \
+         Cortex-M0 | Cortex-M4F | RISC-V |\n|---|---|---|---|---|---|---|---|\n",
+    );
+    for (name, what) in fixray::num::formats::DESCRIBED {
+        let (range, delta) = fixray::with_format!(name, range_and_delta()).expect("listed");
+        let d = fixray::with_format!(name, differ_from_f64(default)).expect("listed");
+        let b = fixray::with_format!(name, differ_from_f64(boing)).expect("listed");
+        let cost = |core: &str| {
+            rows(&firmware, &[core, name, "default"])
+                .first()
+                .map_or("—".to_string(), |r| r[4].to_string())
+        };
+        writeln!(
+            out,
+            "| `{name}` ({what}) | {range} | {delta} | {d:.3} % | {b:.3} % | {} | {} | {} |",
+            cost("cortex-m0"),
+            cost("cortex-m4f"),
+            cost("riscv32imc")
+        )
+        .unwrap();
+    }
+    Ok(out)
+}
+
+/// README: the M0 firmware's lines for the default scene and the boing ball's first frame,
+/// in I16F16, as it prints them.
+fn sample() -> Result<String, String> {
+    let output = report("firmware-m0.txt")?;
+    let pick = |scene: &str, frame: Option<&str>| {
+        output
+            .lines()
+            .find(|l| {
+                let words: Vec<&str> = l.split_whitespace().collect();
+                words.contains(&"format=i16f16")
+                    && words.contains(&format!("scene={scene}").as_str())
+                    && frame.is_none_or(|k| words.contains(&format!("frame={k}").as_str()))
+            })
+            .map(str::to_string)
+            .ok_or(format!(
+                "target/firmware-m0.txt has no i16f16 line for {scene}"
+            ))
+    };
+    Ok(format!(
+        "```text\n{}\n{}\n```\n",
+        pick("default", None)?,
+        pick("boing", Some("0"))?
+    ))
+}
+
+/// README: the boing ball's mean cost per core, in I16F16 and f32.
+fn boing() -> Result<String, String> {
+    let table = report("boing-report.md")?;
+    let mut out = String::from(
+        "| format | Cortex-M0 | Cortex-M4F | RISC-V rv32imc |\n|---|---|---|---|\n",
+    );
+    for format in ["i16f16", "f32"] {
+        let row = rows(&table, &[format, "**mean**"]);
+        let row = row
+            .first()
+            .ok_or(format!("boing-report.md has no mean for {format}"))?;
+        writeln!(out, "| {format} | {} | {} | {} |", row[2], row[3], row[4]).unwrap();
+    }
+    Ok(out)
+}
+
+/// One block: its document, its name, and how its text is made.
+type Block = (&'static str, &'static str, fn() -> Result<String, String>);
+
+/// A report in `target/` as it is (a table the firmware tests wrote).
+macro_rules! verbatim {
+    ($file:literal) => {
+        || report($file)
+    };
+}
+
+const BLOCKS: [Block; 9] = [
+    ("README.md", "formats", formats),
+    ("README.md", "sample", sample),
+    ("README.md", "boing", boing),
+    ("docs/performance.md", "cores", verbatim!("firmware-report.md")),
+    ("docs/performance.md", "boing", verbatim!("boing-report.md")),
+    ("docs/performance.md", "features", verbatim!("effects-report.md")),
+    ("docs/performance.md", "lean", verbatim!("lean-report.md")),
+    (
+        "docs/performance.md",
+        "entities",
+        verbatim!("course-entities-report.md"),
+    ),
+    ("docs/course.md", "course", verbatim!("course-table.md")),
+];
+
+const END: &str = "<!-- end figures -->";
+
+/// Where block `name`'s text lies in `text` (between its marker line and the end marker).
+fn span(text: &str, name: &str) -> Result<std::ops::Range<usize>, String> {
+    let open = format!("<!-- figures: {name} -->\n");
+    let start = text.find(&open).ok_or(format!("no `{}` marker", open.trim()))? + open.len();
+    let end = text[start..]
+        .find(END)
+        .map(|e| start + e)
+        .ok_or(format!("`{}` has no `{END}`", open.trim()))?;
+    Ok(start..end)
+}
+
+pub fn main(args: &[String]) {
+    let check = match args {
+        [] => false,
+        [flag] if flag == "--check" => true,
+        _ => {
+            eprintln!("usage: cargo xtask figures [--check]");
+            std::process::exit(2);
+        }
+    };
+    let mut failures = Vec::new();
+    let mut documents: Vec<(&str, String)> = Vec::new();
+    for (doc, name, make) in BLOCKS {
+        if !documents.iter().any(|(d, _)| *d == doc) {
+            let text = std::fs::read_to_string(crate::root().join(doc))
+                .unwrap_or_else(|e| panic!("{doc}: {e}"));
+            documents.push((doc, text));
+        }
+        let text = &mut documents.iter_mut().find(|(d, _)| *d == doc).expect("read").1;
+        let outcome = make().and_then(|body| Ok((span(text, name)?, body)));
+        match outcome {
+            Err(e) => failures.push(format!("{doc}, figures `{name}`: {e}")),
+            Ok((range, body)) if text[range.clone()] != body => {
+                if check {
+                    failures.push(format!(
+                        "{doc}, figures `{name}` differ from the measurements (run `cargo \
+                         xtask figures` and commit):\n--- committed\n{}--- measured\n{body}",
+                        &text[range]
+                    ));
+                } else {
+                    text.replace_range(range, &body);
+                }
+            }
+            Ok(_) => {}
+        }
+    }
+    if !check {
+        for (doc, text) in &documents {
+            std::fs::write(crate::root().join(doc), text).unwrap_or_else(|e| panic!("{doc}: {e}"));
+        }
+        println!("figures written: {}", BLOCKS.len() - failures.len());
+    }
+    if !failures.is_empty() {
+        for f in &failures {
+            eprintln!("{f}");
+        }
+        std::process::exit(1);
+    }
+}
