@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's "Course scene files" table: every public course scene, rendered by the
+# docs/course.md's table (`course/table.sh > target/course-table.md`, then `cargo xtask figures`): every public course scene, rendered by the
 # `render` example in f64, I16F16, I32F32 and f32 by the course rules, against the
 # instructor's picture with compare.py (share of pixels beyond 2 levels); a scene without
 # a picture: the other formats against our f64 render (marked "vs f64").
