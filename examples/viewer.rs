@@ -332,9 +332,15 @@ mod window {
                 format!("{what} does not fit in any number format (not even f64)")
             }
             (kind, Some(_)) => kind.to_string(),
-            // The format's own: these messages name it already.
-            (kind @ (K::DoesNotFit { .. } | K::DerivedDoesNotFit { .. }), None) => kind.to_string(),
-            (kind, None) => format!("{kind} (in the {format} number format)"),
+            // The format's own: say which, unless the message does.
+            (kind, None) => {
+                let message = kind.to_string();
+                if message.contains(format) {
+                    message
+                } else {
+                    format!("{message} (in the {format} number format)")
+                }
+            }
         };
         format!("{file}:{}:{}: {message}", e.line, e.column)
     }
