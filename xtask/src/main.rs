@@ -23,8 +23,7 @@ mod firmware;
 mod numerics;
 mod scene_format;
 
-const USAGE: &str =
-    "usage: cargo xtask accuracy [--quick] | numerics | firmware [FORMAT,...] | figures [--check] | scene-format";
+const USAGE: &str = "usage: cargo xtask accuracy [--quick] | numerics | firmware [FORMAT,...] | figures [--check] | scene-format";
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
