@@ -128,9 +128,8 @@ fn sample() -> Result<String, String> {
 /// README: the boing ball's mean cost per core, in I16F16 and f32.
 fn boing() -> Result<String, String> {
     let table = report("boing-report.md")?;
-    let mut out = String::from(
-        "| format | Cortex-M0 | Cortex-M4F | RISC-V rv32imc |\n|---|---|---|---|\n",
-    );
+    let mut out =
+        String::from("| format | Cortex-M0 | Cortex-M4F | RISC-V rv32imc |\n|---|---|---|---|\n");
     for format in ["i16f16", "f32"] {
         let row = rows(&table, &[format, "**mean**"]);
         let row = row
@@ -155,9 +154,17 @@ const BLOCKS: [Block; 9] = [
     ("README.md", "formats", formats),
     ("README.md", "sample", sample),
     ("README.md", "boing", boing),
-    ("docs/performance.md", "cores", verbatim!("firmware-report.md")),
+    (
+        "docs/performance.md",
+        "cores",
+        verbatim!("firmware-report.md"),
+    ),
     ("docs/performance.md", "boing", verbatim!("boing-report.md")),
-    ("docs/performance.md", "features", verbatim!("effects-report.md")),
+    (
+        "docs/performance.md",
+        "features",
+        verbatim!("effects-report.md"),
+    ),
     ("docs/performance.md", "lean", verbatim!("lean-report.md")),
     (
         "docs/performance.md",
@@ -172,7 +179,10 @@ const END: &str = "<!-- end figures -->";
 /// Where block `name`'s text lies in `text` (between its marker line and the end marker).
 fn span(text: &str, name: &str) -> Result<std::ops::Range<usize>, String> {
     let open = format!("<!-- figures: {name} -->\n");
-    let start = text.find(&open).ok_or(format!("no `{}` marker", open.trim()))? + open.len();
+    let start = text
+        .find(&open)
+        .ok_or(format!("no `{}` marker", open.trim()))?
+        + open.len();
     let end = text[start..]
         .find(END)
         .map(|e| start + e)
@@ -197,7 +207,11 @@ pub fn main(args: &[String]) {
                 .unwrap_or_else(|e| panic!("{doc}: {e}"));
             documents.push((doc, text));
         }
-        let text = &mut documents.iter_mut().find(|(d, _)| *d == doc).expect("read").1;
+        let text = &mut documents
+            .iter_mut()
+            .find(|(d, _)| *d == doc)
+            .expect("read")
+            .1;
         let outcome = make().and_then(|body| Ok((span(text, name)?, body)));
         match outcome {
             Err(e) => failures.push(format!("{doc}, figures `{name}`: {e}")),

@@ -130,7 +130,7 @@ pub(super) fn write_report(
          (`kernel/fast.rs`) and scenes of infinite planes without lighting the pure-geometry \
          kernel (`kernel/flat.rs`, per-pixel mode). |Δt|, the hit-point error and hit/miss \
          disagreement are properties of the primary ray, defined by the reference path \
-         (`trace_pixel`, the definition of `scene-format.md`). The last section gives the \
+         (`trace_pixel`, the definition of `docs/scene-format.md`). The last section gives the \
          reference path a row of its own and compares every kernel with it, with its \
          cost.\n"
     );
