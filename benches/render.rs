@@ -10,10 +10,10 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+use fixray::geometry::{Plane, Ray, RayKind, Vec3};
 use fixray::internals::render_line_ambient;
-use fixray::{
-    Counters, I16F16, I20F12, I32F32, Plane, Ray, RayKind, Scalar, Scene, Vec3, render_line,
-};
+use fixray::stats::Counters;
+use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, render_line};
 
 const DEFAULT: &str = include_str!("../scenes/default.scene");
 

@@ -17,7 +17,8 @@
 //!
 //! ```
 //! use fixray::anim::Bounce;
-//! use fixray::{Scalar, Scene, Shape, I16F16};
+//! use fixray::{Scalar, Scene, I16F16};
+//! use fixray::geometry::Shape;
 //!
 //! let mut scene = Scene::<I16F16>::parse(include_str!("../scenes/boing.scene"))?;
 //! let bounce = Bounce::boing(&scene.objects)?;

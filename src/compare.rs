@@ -129,7 +129,7 @@ pub fn compare<S: Scalar, R: Scalar>(
     let mut c = Comparison::default();
     let width = scene.camera.width.min(reference.camera.width);
     let height = scene.camera.height.min(reference.camera.height);
-    let (frame, ref_frame) = (Frame::new(scene), Frame::new(reference));
+    let (frame, ref_frame) = (Frame::<S>::new(scene), Frame::<R>::new(reference));
     let (mut chunk, mut ref_chunk) = ([Rgb888::BLACK; CHUNK], [Rgb888::BLACK; CHUNK]);
     for row in 0..height {
         for column in 0..width {

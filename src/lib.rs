@@ -24,10 +24,17 @@
 //! display.assert_pattern(&["KKKK", "KKKK", "RRRR", "RRRR"]);
 //! ```
 //!
+//! The crate root holds what a first program needs: a [`Scene`] (parsed in one of the
+//! formats [`I16F16`], [`I20F12`], [`I32F32`], or any [`Scalar`]) and its [`SceneError`],
+//! and the renderer: [`render`] and [`render_line`], and [`Frame`], an
+//! `embedded-graphics` `Drawable` (`frame.draw(&mut display)`), with its drawing option
+//! [`PlaneMode`] and the [`KernelKind`] it reports. Everything else lives in its module.
+//!
 //! The modules, in the order they depend on each other (each uses only those above it):
 //! [`num`] (number formats), [`geometry`] (rays and shapes), [`scene`] (scene, camera,
-//! plan, parser), then the crate's private shading and kernels, the renderer (the
-//! functions and [`Frame`] at the crate root), and the tools [`compare`] and [`hash`].
+//! lights, plan, parser), [`shade`] (the colour of a hit, tracing a ray), the crate's
+//! private kernels, the renderer (at the crate root) with its [`stats`], and the tools
+//! [`ppm`], [`anim`], [`compare`] and [`hash`].
 #![cfg_attr(not(any(test, feature = "std")), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -38,9 +45,9 @@ pub mod ppm;
 pub mod geometry;
 pub mod scene;
 
-mod stats;
+pub mod stats;
 
-mod shade;
+pub mod shade;
 
 mod kernel;
 
@@ -55,27 +62,22 @@ pub mod hash;
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
 
-pub use geometry::{
-    FrameError, Hit, Miss, Normalized, Plane, PlaneError, PlaneFrame, Ray, RayKind, Revsurf,
-    RevsurfError, Shape, Slide, Sphere, SphereError, TexMode, Tiling, Triangle, TriangleError,
-    Vec3,
-};
 pub use kernel::KernelKind;
 pub use kernel::flat::PlaneMode;
-pub use num::{EPSILON_DELTAS, I16F16, I20F12, I32F32, Scalar};
-pub use render::{Frame, render, render_counted, render_line, render_line_counted};
-pub use scene::{
-    AsView, Beam, Camera, Color, Cone, LargeScene, Light, Material, Object, PixelGrid, Plan, Rules,
-    Scene, SceneError, SceneErrorKind, SceneView,
+pub use num::{I16F16, I20F12, I32F32, Scalar};
+pub use render::{Frame, render, render_line};
+pub use scene::{Scene, SceneError};
+
+// Shorthands for the crate's own modules, which name these items from the root; their
+// public homes are the modules named here.
+pub(crate) use geometry::{
+    Hit, Miss, Plane, PlaneError, PlaneFrame, PlaneFrameError, Ray, RayKind, Revsurf, RevsurfError,
+    Shape, Slide, Sphere, TexMode, Tiling, Triangle, TriangleError, Vec3,
 };
-pub use shade::color::{to_pixel, to_rgb888};
-#[cfg(feature = "course")]
-pub use shade::rules::Course;
-pub use shade::rules::{Fixray, RuleSet};
-#[cfg(feature = "course")]
-pub use shade::{MAX_COURSE_BOUNCES, MAX_PATH};
-pub use shade::{MAX_REFLECTION_DEPTH, Traced, pixel, shade, trace, trace_pixel};
-pub use stats::Counters;
+pub(crate) use scene::{
+    AsView, Beam, Camera, Color, Light, Material, Object, PixelGrid, Plan, Rules, SceneView,
+};
+pub(crate) use shade::Traced;
 
 /// Kernel internals for the crate's own tests and benchmarks: not part of the API, and
 /// they may change at any time. The kernels' per-frame parts (what the tests of a kernel

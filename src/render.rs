@@ -2,7 +2,15 @@
 //!
 //! Every entry point goes through a [`Frame`]: the plan and the kernel are chosen once
 //! ([`crate::kernel`]'s `select`), then each scanline is drawn with them, so [`render`],
-//! [`render_line`] and [`Frame::render_line`] draw the same pixels.
+//! [`render_line`], [`Frame::render_line`] and the frame drawn as an `embedded-graphics`
+//! [`Drawable`] draw the same pixels.
+//!
+//! # Colour
+//! The shading computes [`Rgb888`] pixels; a frame converts each to its colour type `C`
+//! (`From<Rgb888>`, as every colour of `embedded-graphics` has) as it hands it on. `C` is
+//! a type parameter of [`Frame`] because [`Drawable`] names one colour per type; it is
+//! inferred from the target drawn into or the line filled, and is [`Rgb888`] where a
+//! type is written without it.
 //!
 //! # RAM
 //! The library keeps no framebuffer. [`render`] hands each scanline to the target's
@@ -11,6 +19,9 @@
 //! and the frame's per-plane terms. [`render_line`] fills a caller's buffer of `width`
 //! pixels (O(width), the caller's RAM), for drivers that want whole lines.
 
+use core::marker::PhantomData;
+
+use embedded_graphics_core::Drawable;
 use embedded_graphics_core::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics_core::prelude::{DrawTarget, Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
@@ -24,8 +35,30 @@ use crate::{AsView, Scalar, SceneView, Traced};
 /// A frame of a scene: what is constant for the frame (the plan, the kernel, its
 /// per-plane terms and reciprocals) computed once in [`Frame::new`], then drawn line by
 /// line ([`Frame::render_line`], for display drivers fed a scanline at a time) or
-/// streamed into a target ([`Frame::draw`]). [`render_line`] and [`render`] build one per
-/// call.
+/// streamed into a target as an `embedded-graphics` [`Drawable`] (`frame.draw(&mut
+/// display)`, or [`Frame::draw_counted`] to count its rays). [`render_line`] and
+/// [`render`] build one per call.
+///
+/// `C` is the colour the frame draws in: the display's, inferred from the target it draws
+/// into or the line it fills (the shading's [`Rgb888`] converted by `From`, as
+/// `embedded-graphics`' image decoders do), [`Rgb888`] where the type is written without
+/// it.
+///
+/// ```
+/// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565, prelude::*};
+/// use fixray::{Frame, Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse(
+///     "camera c { pixeldim 3 2 worlddim 3 2 viewpoint 1.5 1 5 } background 1 0 0",
+/// )?;
+/// let mut display = MockDisplay::<Rgb565>::new();
+/// let frame = Frame::new(&scene); // a Frame<'_, I16F16, Rgb565>: the display's colour
+/// frame.draw(&mut display)?; // one fill_contiguous per scanline
+/// display.assert_pattern(&["RRR", "RRR"]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// Line by line, into a driver's buffer:
 ///
 /// ```
 /// use embedded_graphics::pixelcolor::Rgb565;
@@ -44,14 +77,17 @@ use crate::{AsView, Scalar, SceneView, Traced};
 /// }
 /// ```
 #[derive(Debug, Clone)]
-pub struct Frame<'a, S: Scalar> {
+pub struct Frame<'a, S: Scalar, C = Rgb888> {
     scene: SceneView<'a, S>,
     shading: Shading,
     drawing: Drawing<S>,
     mode: PlaneMode,
+    /// The colour drawn in (no value: `fn() -> C` keeps the frame `Send` and `Sync`
+    /// whatever `C` is).
+    color: PhantomData<fn() -> C>,
 }
 
-impl<'a, S: Scalar> Frame<'a, S> {
+impl<'a, S: Scalar, C> Frame<'a, S, C> {
     /// Prepares a frame of `scene` (for the stages its plan needs), pure-geometry plane
     /// scenes drawn per pixel.
     pub fn new(scene: &'a impl AsView<S>) -> Self {
@@ -72,6 +108,7 @@ impl<'a, S: Scalar> Frame<'a, S> {
             shading,
             drawing,
             mode,
+            color: PhantomData,
         }
     }
 
@@ -86,9 +123,11 @@ impl<'a, S: Scalar> Frame<'a, S> {
     /// use fixray::{Frame, KernelKind, Scene, I16F16};
     ///
     /// let planes = Scene::<I16F16>::parse(include_str!("../scenes/planes.scene")).unwrap();
-    /// assert_eq!(Frame::new(&planes).kernel(), KernelKind::Flat);
+    /// // The kernel does not depend on the colour; a frame that draws nothing names one.
+    /// let frame: Frame<'_, I16F16> = Frame::new(&planes);
+    /// assert_eq!(frame.kernel(), KernelKind::Flat);
     /// let lit = Scene::<I16F16>::parse(include_str!("../scenes/default.scene")).unwrap();
-    /// assert_eq!(Frame::new(&lit).kernel(), KernelKind::Fast);
+    /// assert_eq!(Frame::<_>::new(&lit).kernel(), KernelKind::Fast);
     /// ```
     pub fn kernel(&self) -> KernelKind {
         self.drawing.kind()
@@ -105,7 +144,7 @@ impl<'a, S: Scalar> Frame<'a, S> {
 
     /// The primary ray of pixel (`column`, `row`) traced on the reference path (the
     /// definition, a normalised ray), with the stage set this frame chose:
-    /// [`crate::trace_pixel`] without working out the plan again.
+    /// [`crate::shade::trace_pixel`] without working out the plan again.
     pub fn trace_pixel(&self, column: u16, row: u16) -> Traced<S> {
         crate::shade::trace_pixel_with(&self.scene, self.shading, column, row)
     }
@@ -114,22 +153,34 @@ impl<'a, S: Scalar> Frame<'a, S> {
     pub fn mode(&self) -> PlaneMode {
         self.mode
     }
+}
 
+impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     /// Renders scanline `row` into `line`: pixel `i` of `line` is column `i`. Columns
     /// beyond the camera's width (or beyond `line`) are left untouched; a row beyond the
     /// camera's height leaves `line` untouched.
-    pub fn render_line<C: From<Rgb888>>(&self, row: u16, line: &mut [C]) {
+    pub fn render_line(&self, row: u16, line: &mut [C]) {
         self.render_line_counted(row, line, &mut Counters::default());
     }
 
     /// [`Frame::render_line`], adding the line's rays and stage evaluations to `counters`
     /// (counted with the `stats` feature; without it they stay 0).
-    pub fn render_line_counted<C: From<Rgb888>>(
-        &self,
-        row: u16,
-        line: &mut [C],
-        counters: &mut Counters,
-    ) {
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb888;
+    /// use fixray::stats::Counters;
+    /// use fixray::{Frame, Scene, I16F16};
+    ///
+    /// let scene = Scene::<I16F16>::parse(include_str!("../scenes/default.scene"))?;
+    /// let mut line = [Rgb888::new(0, 0, 0); 160];
+    /// let mut counters = Counters::default();
+    /// Frame::new(&scene).render_line_counted(60, &mut line, &mut counters);
+    /// // Counted with the `stats` feature (the crate's tests turn it on): one primary
+    /// // ray a pixel.
+    /// assert!(counters.primary_rays == 160 || counters.primary_rays == 0);
+    /// # Ok::<(), fixray::SceneError>(())
+    /// ```
+    pub fn render_line_counted(&self, row: u16, line: &mut [C], counters: &mut Counters) {
         if row >= self.scene.camera.height {
             return;
         }
@@ -138,25 +189,58 @@ impl<'a, S: Scalar> Frame<'a, S> {
             kernel::line::<S, C>(&self.scene, &self.drawing, self.mode, row, line, counters)
         );
     }
+}
 
-    /// Draws the frame into `target`, one `fill_contiguous` call per scanline, top to
-    /// bottom, cut to the target's bounding box: only visible pixels are computed, each
-    /// written once.
+impl<S: Scalar, C: PixelColor + From<Rgb888>> Frame<'_, S, C> {
+    /// The frame drawn into `target` as [`Drawable::draw`] draws it (one `fill_contiguous`
+    /// call per scanline, top to bottom, cut to the target's bounding box), adding its
+    /// rays and stage evaluations to `counters` (counted with the `stats` feature;
+    /// without it they stay 0).
     ///
     /// # Errors
     /// The target's own error, from the first scanline it refused.
-    pub fn draw<D>(&self, target: &mut D, counters: &mut Counters) -> Result<(), D::Error>
+    ///
+    /// ```
+    /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb888};
+    /// use fixray::stats::Counters;
+    /// use fixray::{Frame, Scene, I16F16};
+    ///
+    /// let scene = Scene::<I16F16>::parse(
+    ///     "camera c { pixeldim 3 2 worlddim 3 2 viewpoint 1.5 1 5 } background 0 1 0",
+    /// )?;
+    /// let mut display = MockDisplay::<Rgb888>::new();
+    /// let mut counters = Counters::default();
+    /// Frame::new(&scene).draw_counted(&mut display, &mut counters)?;
+    /// display.assert_pattern(&["GGG", "GGG"]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn draw_counted<D>(&self, target: &mut D, counters: &mut Counters) -> Result<(), D::Error>
     where
-        D: DrawTarget,
-        D::Color: PixelColor + From<Rgb888>,
+        D: DrawTarget<Color = C>,
     {
         with_stages!(self.shading, draw_with::<S, D>(self, target, counters))
     }
 }
 
-impl<S: Scalar> Frame<'_, S> {
-    /// Columns `start..start + out.len()` of scanline `row` into `out`, streamed as
-    /// [`Frame::draw`] computes them (no line buffer of the frame's width: a tool compares
+/// The frame as an `embedded-graphics` drawable: `frame.draw(&mut display)` streams it
+/// into the display, one `fill_contiguous` call per scanline, top to bottom, cut to the
+/// display's bounding box: only visible pixels are computed, each written once. The
+/// target's error is that of the first scanline it refused.
+impl<S: Scalar, C: PixelColor + From<Rgb888>> Drawable for Frame<'_, S, C> {
+    type Color = C;
+    type Output = ();
+
+    fn draw<D>(&self, target: &mut D) -> Result<(), D::Error>
+    where
+        D: DrawTarget<Color = C>,
+    {
+        self.draw_counted(target, &mut Counters::default())
+    }
+}
+
+impl<S: Scalar, C> Frame<'_, S, C> {
+    /// Columns `start..start + out.len()` of scanline `row` into `out` (the shading's
+    /// colours, whatever the frame's `C`), streamed as [`Frame::draw_counted`] computes them (no line buffer of the frame's width: a tool compares
     /// two frames chunk by chunk). Chunks that start at multiples of 64 give exactly the
     /// pixels of [`Frame::render_line`] (its block and resync points).
     pub(crate) fn render_columns(&self, row: u16, start: u16, out: &mut [Rgb888]) {
@@ -168,7 +252,10 @@ impl<S: Scalar> Frame<'_, S> {
         if row >= self.scene.camera.height || start >= end {
             return;
         }
-        with_stages!(self.shading, columns_with::<S>(self, row, start..end, out));
+        with_stages!(
+            self.shading,
+            columns_with::<S, C>(self, row, start..end, out)
+        );
     }
 }
 
@@ -186,8 +273,8 @@ impl RowSink<Rgb888> for Slice<'_> {
     }
 }
 
-fn columns_with<S: Scalar, T: Stages>(
-    frame: &Frame<'_, S>,
+fn columns_with<S: Scalar, T: Stages, C>(
+    frame: &Frame<'_, S, C>,
     row: u16,
     columns: core::ops::Range<u16>,
     out: &mut [Rgb888],
@@ -204,7 +291,7 @@ fn columns_with<S: Scalar, T: Stages>(
 }
 
 fn draw_with<S, T, D>(
-    frame: &Frame<'_, S>,
+    frame: &Frame<'_, S, D::Color>,
     target: &mut D,
     counters: &mut Counters,
 ) -> Result<(), D::Error>
@@ -212,7 +299,7 @@ where
     S: Scalar,
     T: Stages,
     D: DrawTarget,
-    D::Color: PixelColor + From<Rgb888>,
+    D::Color: From<Rgb888>,
 {
     let camera = &frame.scene.camera;
     let full = Rectangle::new(
@@ -275,21 +362,11 @@ impl<D: DrawTarget> RowSink<D::Color> for Row<'_, D> {
 /// assert_eq!(line, [Rgb565::new(0, 0, 31); 4]);
 /// ```
 pub fn render_line<S: Scalar, C: From<Rgb888>>(scene: &impl AsView<S>, row: u16, line: &mut [C]) {
-    render_line_counted(scene, row, line, &mut Counters::default());
+    Frame::new(scene).render_line(row, line);
 }
 
-/// [`render_line`], adding the line's rays and stage evaluations to `counters` (counted
-/// with the `stats` feature; without it they stay 0).
-pub fn render_line_counted<S: Scalar, C: From<Rgb888>>(
-    scene: &impl AsView<S>,
-    row: u16,
-    line: &mut [C],
-    counters: &mut Counters,
-) {
-    Frame::new(scene).render_line_counted(row, line, counters);
-}
-
-/// Renders the scene into `target`, one `fill_contiguous` call per scanline, top to bottom.
+/// Renders the scene into `target`, one `fill_contiguous` call per scanline, top to bottom:
+/// `Frame::new(scene).draw(target)` ([`Frame`] as a [`Drawable`]).
 ///
 /// The image covers the rectangle `(0, 0)`–`(width, height)` of the camera's `pixeldim`,
 /// cut to the target's bounding box: only visible pixels are traced, each written once.
@@ -315,25 +392,7 @@ where
     D: DrawTarget,
     D::Color: PixelColor + From<Rgb888>,
 {
-    render_counted(scene, target, &mut Counters::default())
-}
-
-/// [`render`], adding the frame's rays and stage evaluations to `counters` (counted with
-/// the `stats` feature; without it they stay 0).
-///
-/// # Errors
-/// The target's own error, from the first scanline it refused.
-pub fn render_counted<S, D>(
-    scene: &impl AsView<S>,
-    target: &mut D,
-    counters: &mut Counters,
-) -> Result<(), D::Error>
-where
-    S: Scalar,
-    D: DrawTarget,
-    D::Color: PixelColor + From<Rgb888>,
-{
-    Frame::new(scene).draw(target, counters)
+    Frame::new(scene).draw(target)
 }
 
 /// Renders scanline `row` with the ambient-only stage set instead of the one the scene's
@@ -374,7 +433,7 @@ pub fn render_columns_with<S: Scalar>(
     start: u16,
     out: &mut [Rgb888],
 ) {
-    let mut frame = Frame::new(scene);
+    let mut frame = Frame::<S>::new(scene);
     if fast {
         frame.drawing = kernel::fast_only(&frame.scene);
     }

@@ -1,7 +1,31 @@
-//! [`Counters`]: rays and stage evaluations, counted with the `stats` feature.
+//! [`Counters`]: rays and stage evaluations, counted with the `stats` feature, for the
+//! counted forms of the renderer ([`Frame::draw_counted`](crate::Frame::draw_counted),
+//! [`Frame::render_line_counted`](crate::Frame::render_line_counted)).
 
 /// Rays and stage evaluations of a frame (or line), counted when the crate is built with
 /// the `stats` feature (otherwise every count stays 0 and costs nothing).
+///
+/// ```
+/// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb888};
+/// use fixray::stats::Counters;
+/// use fixray::{Frame, Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse(
+///     "rules fixray
+///      camera c { pixeldim 4 2 worlddim 4 2 viewpoint 2 1 5 }
+///      material m { ambient 0.2 0.2 0.2 diffuse 0.8 0.8 0.8 }
+///      plane floor { material m normal 0 1 0 point 0 -1 0 }
+///      light lamp { location 2 3 -2 emissivity 1 1 1 }",
+/// )?;
+/// let mut counters = Counters::default();
+/// Frame::new(&scene).draw_counted(&mut MockDisplay::<Rgb888>::new(), &mut counters)?;
+/// if cfg!(feature = "stats") {
+///     assert_eq!(counters.primary_rays, 8); // one a pixel
+/// } else {
+///     assert_eq!(counters, Counters::default()); // nothing counted, nothing spent
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Counters {
     /// Primary rays traced.

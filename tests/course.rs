@@ -17,7 +17,8 @@ use common::probes::sqrt_error;
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::num::formats::{FORMATS, REFERENCE};
-use fixray::{LargeScene, Scalar, SceneErrorKind, render_line};
+use fixray::scene::{LargeScene, SceneErrorKind};
+use fixray::{Scalar, render_line};
 
 const TOLERANCE: u8 = 2;
 
@@ -210,7 +211,7 @@ fn every_corpus_file_is_read_or_refused_where_it_says_what_is_missing() {
             }
             None => {
                 let scene = result.unwrap_or_else(|e| panic!("{name}: {e}"));
-                assert_eq!(scene.rules(), fixray::Rules::Course, "{name}");
+                assert_eq!(scene.rules(), fixray::scene::Rules::Course, "{name}");
             }
         }
     }
@@ -230,21 +231,21 @@ fn the_course_divides_by_the_path_and_truncates() {
         let course = fixray::Scene::<S>::parse(text).unwrap();
         // 255·0.5/12.528 = 10.18, 255·0.25/12.528 = 5.09.
         assert_eq!(
-            fixray::pixel(&course, 1, 0),
+            fixray::shade::pixel(&course, 1, 0),
             Rgb888::new(20, 10, 5),
             "{}",
             S::NAME
         );
         // The corner pixel (0, 1) looks through (0, 0): t = 12·|(−2, −1.5, −5)|/5 = 13.42.
         assert_eq!(
-            fixray::pixel(&course, 0, 1),
+            fixray::shade::pixel(&course, 0, 1),
             Rgb888::new(19, 9, 4),
             "{}",
             S::NAME
         );
-        let ours = fixray::Scene::<S>::parse_as(text, fixray::Rules::Fixray).unwrap();
+        let ours = fixray::Scene::<S>::parse_as(text, fixray::scene::Rules::Fixray).unwrap();
         assert_eq!(
-            fixray::pixel(&ours, 1, 0),
+            fixray::shade::pixel(&ours, 1, 0),
             Rgb888::new(255, 128, 64),
             "{}",
             S::NAME
@@ -269,7 +270,7 @@ fn a_course_mirror_adds_its_share_of_the_reflected_path() {
                     plane floor { material mirror normal 0 1 0 point 0 -1 0 }\n\
                     plane back { material red normal 0 0 1 point 0 0 -10 }";
         let scene = fixray::Scene::<S>::parse(text).unwrap();
-        fixray::pixel(&scene, 0, 1).r()
+        fixray::shade::pixel(&scene, 0, 1).r()
     }
     // By hand: d = unit(−2, −2, −5); the floor at t1 = 3/(2/√33) = 1.5·√33 = 8.617,
     // the hit (−1.5·… ) has z = 5 − 5·1.5 = −2.5; the mirrored ray (−2, 2, −5)/√33 reaches

@@ -9,7 +9,9 @@ use common::{assert_pattern_everywhere, top_left_pixel};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::compare::compare;
 use fixray::num::formats::{FORMATS, REFERENCE};
-use fixray::{Counters, I16F16, Rules, Scalar, Scene, render_line_counted};
+use fixray::scene::Rules;
+use fixray::stats::Counters;
+use fixray::{Frame, I16F16, Scalar, Scene};
 
 #[test]
 fn a_sphere_is_a_disc() {
@@ -81,7 +83,7 @@ fn facing_mirrors_stop_at_the_depth_bound() {
         plane b { material m normal 0 0 1 point 0 0 10 }";
     assert_pattern_everywhere_grey(text, 128);
     let c = counters::<I16F16>(text);
-    let depth = u32::from(fixray::MAX_REFLECTION_DEPTH);
+    let depth = u32::from(fixray::shade::MAX_REFLECTION_DEPTH);
     assert_eq!(c.reflection_rays, 4 * depth, "{c:?}");
 }
 
@@ -124,8 +126,9 @@ fn counters<S: Scalar>(text: &str) -> Counters {
     let scene = Scene::<S>::parse_as(text, Rules::Fixray).unwrap();
     let mut line = vec![Rgb888::BLACK; usize::from(scene.camera.width)];
     let mut c = Counters::default();
+    let frame = Frame::new(&scene);
     for row in 0..scene.camera.height {
-        render_line_counted(&scene, row, &mut line, &mut c);
+        frame.render_line_counted(row, &mut line, &mut c);
     }
     c
 }
@@ -188,12 +191,12 @@ fn no_acne<S: Scalar>() {
         sphere far { material s_m center 500 1 -100 radius 1 }";
     let scene = Scene::<S>::parse_as(text, Rules::Fixray).unwrap();
     assert!(scene.plan().shadows);
-    let unlit = fixray::to_rgb888(scene.materials[0].ambient);
+    let unlit = fixray::shade::to_rgb888(scene.materials[0].ambient);
     let mut acne = 0;
     for row in 0..scene.camera.height {
         for column in 0..scene.camera.width {
-            let t = fixray::trace_pixel(&scene, column, row);
-            if t.hit.is_some_and(|(i, _)| i == 0) && fixray::to_rgb888(t.color) == unlit {
+            let t = fixray::shade::trace_pixel(&scene, column, row);
+            if t.hit.is_some_and(|(i, _)| i == 0) && fixray::shade::to_rgb888(t.color) == unlit {
                 acne += 1;
             }
         }

@@ -10,8 +10,9 @@ use common::probes::sqrt_is_rounded;
 
 use embedded_graphics::pixelcolor::Rgb888;
 use fixray::num::formats::FORMATS;
-use fixray::to_rgb888;
-use fixray::{Scalar, Scene, render_line, trace_pixel};
+use fixray::shade::to_rgb888;
+use fixray::shade::trace_pixel;
+use fixray::{Scalar, Scene, render_line};
 
 /// The fast path against the reference path in format `S` on one scene, within the
 /// scene's budget at I16F16's resolution scaled by [`budget`].

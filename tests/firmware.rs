@@ -242,8 +242,8 @@ fn reference_hash<S: Scalar>(scene: &Scene<S>) -> u32 {
     let mut hash = FrameHash::new();
     for row in 0..scene.camera.height {
         for column in 0..scene.camera.width {
-            hash.push(fixray::to_rgb888(
-                fixray::trace_pixel(scene, column, row).color,
+            hash.push(fixray::shade::to_rgb888(
+                fixray::shade::trace_pixel(scene, column, row).color,
             ));
         }
     }

@@ -12,10 +12,10 @@ use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use fixray::internals::Flat;
 use fixray::internals::Primary;
-use fixray::to_rgb888;
-use fixray::{
-    Counters, Frame, I16F16, PlaneMode, Rules, Scalar, Scene, pixel, render, render_line,
-};
+use fixray::scene::Rules;
+use fixray::shade::pixel;
+use fixray::shade::to_rgb888;
+use fixray::{Frame, I16F16, PlaneMode, Scalar, Scene, render, render_line};
 use sampling::SplitMix;
 
 type Image = Vec<Vec<Rgb888>>;
@@ -79,7 +79,7 @@ fn differ(a: &Image, b: &Image) -> usize {
 fn compare<S: Scalar>(name: &str, text: &str) -> (usize, usize, usize) {
     let scene = Scene::<S>::parse_as(text, Rules::Fixray).unwrap();
     assert_eq!(
-        fixray::Frame::new(&scene).kernel(),
+        fixray::Frame::<_>::new(&scene).kernel(),
         fixray::KernelKind::Flat,
         "{name} {}: the flat kernel draws it",
         S::NAME
@@ -227,7 +227,7 @@ fn render_draws_what_render_line_draws_in_both_modes_and_clipped() {
         let frame = Frame::with_mode(&scene, mode);
         let expected = lines_in(&scene, mode);
         let mut display = MockDisplay::<Rgb888>::new();
-        frame.draw(&mut display, &mut Counters::default()).unwrap();
+        frame.draw(&mut display).unwrap();
         if mode == PlaneMode::PerPixel {
             let mut plain = MockDisplay::<Rgb888>::new();
             render(&scene, &mut plain).unwrap();
@@ -246,7 +246,7 @@ fn render_draws_what_render_line_draws_in_both_modes_and_clipped() {
             Point::new(5, 7),
             Size::new(30, 20),
         ));
-        frame.draw(&mut clipped, &mut Counters::default()).unwrap();
+        frame.draw(&mut clipped).unwrap();
         for y in 0..40 {
             for x in 0..48 {
                 let inside = (5..35).contains(&x) && (7..27).contains(&y);

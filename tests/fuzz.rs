@@ -21,8 +21,9 @@ mod common;
 use common::sampling;
 
 use embedded_graphics::pixelcolor::Rgb888;
+use fixray::geometry::{Plane, Ray, RayKind, Vec3};
 use fixray::num::formats::FORMATS;
-use fixray::{Plane, Ray, RayKind, Scalar, Scene, Vec3, render_line};
+use fixray::{Scalar, Scene, render_line};
 use sampling::SplitMix;
 
 const TOKENS: [&str; 47] = [
@@ -327,7 +328,7 @@ fn fuzz_revsurf<S: Scalar>(cases: u32) {
         let (base, direction, origin, dir) = (vec(), vec(), vec(), vec());
         let height = arbitrary::<S>(&mut rng);
         let surfer = i64::from(i % 5);
-        let Ok(shape) = fixray::Revsurf::new(surfer, base, direction, height) else {
+        let Ok(shape) = fixray::geometry::Revsurf::new(surfer, base, direction, height) else {
             continue;
         };
         // Half the rays with a unit direction, as the tracer casts them.
@@ -408,7 +409,7 @@ fn the_course_entities_survive_200_000_mutated_files() {
             files: &mut dyn FnMut(&str) -> Option<&'static [u8]>,
             draw: bool,
         ) -> (bool, bool) {
-            let mut scene = fixray::LargeScene::<S>::empty();
+            let mut scene = fixray::scene::LargeScene::<S>::empty();
             if scene.read_with(text, None, files).is_err() {
                 return (false, false);
             }

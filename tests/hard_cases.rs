@@ -8,7 +8,8 @@ mod common;
 
 use common::probes::sqrt_error;
 use common::v;
-use fixray::{Miss, Plane, PlaneError, Ray, RayKind, Scalar, Vec3};
+use fixray::Scalar;
+use fixray::geometry::{Miss, Plane, PlaneError, Ray, RayKind, Vec3};
 
 /// Runs `$check::<S>()` in every format of `FORMATS`.
 macro_rules! all_formats {
@@ -339,8 +340,8 @@ fn hits_with_z_near_zero_and_the_screen_rule() {
     every_exact_format!(screen_rule);
 }
 
-fn sphere<S: Scalar>(c: [f64; 3], r: f64) -> fixray::Sphere<S> {
-    fixray::Sphere::new(v(c[0], c[1], c[2]), S::from_f64(r).unwrap()).unwrap()
+fn sphere<S: Scalar>(c: [f64; 3], r: f64) -> fixray::geometry::Sphere<S> {
+    fixray::geometry::Sphere::new(v(c[0], c[1], c[2]), S::from_f64(r).unwrap()).unwrap()
 }
 
 /// Rays tangent to a sphere, and k DELTAs inside or outside tangency. Hard: the

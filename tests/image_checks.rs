@@ -8,7 +8,8 @@
 //!   render has the three equal.
 
 use embedded_graphics::pixelcolor::Rgb888;
-use fixray::{Scalar, Scene, render_line, to_rgb888};
+use fixray::shade::to_rgb888;
+use fixray::{Scalar, Scene, render_line};
 
 const HORIZON: &str = include_str!("../scenes/horizon.scene");
 

@@ -9,7 +9,8 @@
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::num::formats::FORMATS;
-use fixray::{Rules, Scalar, Scene, render_line};
+use fixray::scene::Rules;
+use fixray::{Scalar, Scene, render_line};
 use std::collections::HashMap;
 
 type V3 = [f64; 3];

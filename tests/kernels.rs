@@ -9,8 +9,9 @@ mod common;
 use common::sampling::SplitMix;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
+use fixray::geometry::Shape;
 use fixray::internals::Flat;
-use fixray::{Counters, Frame, KernelKind, PlaneMode, Scalar, Scene, Shape, render, render_line};
+use fixray::{Frame, KernelKind, PlaneMode, Scalar, Scene, render, render_line};
 
 /// A target that records every pixel and how often it was written.
 struct Capture {
@@ -65,7 +66,7 @@ fn agree<S: Scalar>(name: &str, text: &str, mode: PlaneMode) -> (Vec<Rgb888>, us
     let (w, h) = (scene.camera.width, scene.camera.height);
     let frame = Frame::with_mode(&scene, mode);
     let mut streamed = Capture::new(w, h);
-    frame.draw(&mut streamed, &mut Counters::default()).unwrap();
+    frame.draw(&mut streamed).unwrap();
     if mode == PlaneMode::PerPixel {
         let mut plain = Capture::new(w, h);
         render(&scene, &mut plain).unwrap();
@@ -95,7 +96,7 @@ fn agree<S: Scalar>(name: &str, text: &str, mode: PlaneMode) -> (Vec<Rgb888>, us
             for column in 0..w {
                 assert_eq!(
                     frame.trace_pixel(column, row),
-                    fixray::trace_pixel(&scene, column, row),
+                    fixray::shade::trace_pixel(&scene, column, row),
                     "{name} {}: ({column}, {row})",
                     S::NAME
                 );
@@ -120,7 +121,7 @@ fn agree<S: Scalar>(name: &str, text: &str, mode: PlaneMode) -> (Vec<Rgb888>, us
         S::NAME
     );
     // The chooser the renderer uses: the frame's kernel, and the kernel of each row.
-    let frame = Frame::with_mode(&scene, mode);
+    let frame = Frame::<S>::with_mode(&scene, mode);
     let kernel = frame.kernel();
     let handed_back = (0..h)
         .filter(|&r| {
@@ -139,7 +140,7 @@ fn agree<S: Scalar>(name: &str, text: &str, mode: PlaneMode) -> (Vec<Rgb888>, us
         .count();
     // What each kind of scene is drawn with.
     let plan = scene.plan();
-    let expected = if scene.rules() == fixray::Rules::Course {
+    let expected = if scene.rules() == fixray::scene::Rules::Course {
         KernelKind::Reference
     } else if !(plan.lighting || plan.reflection)
         && plan.planes_only

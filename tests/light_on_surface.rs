@@ -34,7 +34,7 @@ fn pixels<S: Scalar>(text: &str) -> Vec<embedded_graphics::pixelcolor::Rgb888> {
     let (w, h) = (scene.camera.width, scene.camera.height);
     (0..h)
         .flat_map(|y| (0..w).map(move |x| (x, y)))
-        .map(|(x, y)| fixray::pixel(&scene, x, y))
+        .map(|(x, y)| fixray::shade::pixel(&scene, x, y))
         .collect()
 }
 
@@ -115,7 +115,7 @@ fn a_sphere_through_the_light_shadows_only_through_itself() {
                     material m { diffuse 1 1 1 }\n\
                     light lamp { location 0 0 -4 emissivity 1 1 1 }\n\
                     sphere s { material m center 0 0 -5 radius 1 }\n";
-        fn check<S: Scalar, R: fixray::RuleSet>(text: &str) {
+        fn check<S: Scalar, R: fixray::shade::RuleSet>(text: &str) {
             let scene = Scene::<S>::parse_as(text, R::RULES).unwrap();
             let v = |x, y, z| common::v::<S>(x, y, z);
             let shape = &scene.objects[0].shape;
@@ -123,14 +123,14 @@ fn a_sphere_through_the_light_shadows_only_through_itself() {
             assert!(shape.holds(light, S::DEFAULT_EPSILON));
             let tol = S::from_f64(1e-3).unwrap_or(S::DEFAULT_EPSILON);
             // From in front (z = −2): the ray reaches the light before the sphere.
-            let ray = |from: fixray::Vec3<S>| {
+            let ray = |from: fixray::geometry::Vec3<S>| {
                 let to = light.diff(from).unwrap();
                 let n = to.normalize().unwrap();
                 (
-                    fixray::Ray {
+                    fixray::geometry::Ray {
                         base: from,
                         dir: n.unit,
-                        kind: fixray::RayKind::Secondary,
+                        kind: fixray::geometry::RayKind::Secondary,
                     },
                     n.length().unwrap(),
                 )
@@ -142,8 +142,8 @@ fn a_sphere_through_the_light_shadows_only_through_itself() {
             assert!(R::shadows(shape, &r, scene.epsilon, d, light, tol));
         }
         fn both<S: Scalar>(text: &str) {
-            check::<S, fixray::Course>(text);
-            check::<S, fixray::Fixray>(text);
+            check::<S, fixray::shade::Course>(text);
+            check::<S, fixray::shade::Fixray>(text);
         }
         both::<fixray::I16F16>(text);
         both::<fixray::I32F32>(text);

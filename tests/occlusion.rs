@@ -7,8 +7,9 @@
 mod common;
 use common::sampling;
 
+use fixray::geometry::{Miss, Plane, Ray, RayKind, Shape, Vec3};
 use fixray::num::formats::FORMATS;
-use fixray::{I16F16, Miss, Plane, Ray, RayKind, Scalar, Shape, Vec3};
+use fixray::{I16F16, Scalar};
 use sampling::SplitMix;
 
 const CASES: u32 = 200_000;

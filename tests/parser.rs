@@ -5,7 +5,8 @@ mod common;
 use common::sampling;
 use sampling::SplitMix;
 
-use fixray::{I16F16, I20F12, I32F32, Rules, Scalar, Scene, SceneError};
+use fixray::scene::Rules;
+use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, SceneError};
 
 const CAMERA: &str = "camera cam { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n";
 
@@ -244,7 +245,7 @@ fn texture_errors_name_the_file_and_the_position() {
     assert_eq!(scene.textures[0].pixel(0, 0), Some([0x80, 0x40, 0x20]));
     // The texel multiplies the ambient (255 → 128, 64, 32), then the path length divides.
     use embedded_graphics::pixelcolor::RgbColor;
-    let p = fixray::pixel(&scene, 4, 3);
+    let p = fixray::shade::pixel(&scene, 4, 3);
     assert!(p.r() > p.g() && p.g() > p.b() && p.b() > 0, "{p:?}");
     assert_eq!((p.r() / 2, p.g() / 2), (p.g(), p.b()), "{p:?}");
 }
@@ -505,7 +506,7 @@ fn too_many() {
     let line = u32::try_from(fixray::scene::MAX_LIGHTS).unwrap() + 2;
     check(&text, line, 1, &raise("lights", 8, "LIGHTS"));
     assert_eq!(
-        fixray::LargeScene::<I16F16>::parse(&text)
+        fixray::scene::LargeScene::<I16F16>::parse(&text)
             .unwrap()
             .lights
             .len(),
@@ -759,7 +760,9 @@ fn the_old_tiled_plane_tiles_world_x_and_z() {
     for rules in Rules::ALL {
         let s = Scene::<I16F16>::parse_as(text, rules).unwrap();
         match s.objects[0].shape {
-            fixray::Shape::Tiled { tiling, .. } => assert_eq!(tiling, fixray::Tiling::WorldXz),
+            fixray::geometry::Shape::Tiled { tiling, .. } => {
+                assert_eq!(tiling, fixray::geometry::Tiling::WorldXz)
+            }
             ref other => panic!("{other:?}"),
         }
     }
@@ -768,8 +771,8 @@ fn the_old_tiled_plane_tiles_world_x_and_z() {
     let s = Scene::<I16F16>::parse(&framed).unwrap();
     assert!(matches!(
         s.objects[0].shape,
-        fixray::Shape::Tiled {
-            tiling: fixray::Tiling::Frame,
+        fixray::geometry::Shape::Tiled {
+            tiling: fixray::geometry::Tiling::Frame,
             ..
         }
     ));

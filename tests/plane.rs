@@ -6,7 +6,8 @@ mod common;
 
 use common::probes::divides_exactly;
 use common::v;
-use fixray::{Hit, I16F16, Miss, Plane, PlaneError, Ray, RayKind, Scalar, Vec3};
+use fixray::geometry::{Hit, Miss, Plane, PlaneError, Ray, RayKind, Vec3};
+use fixray::{I16F16, Scalar};
 
 /// Runs `$check::<S>()` in every format of `FORMATS`.
 macro_rules! all_formats {

@@ -12,9 +12,10 @@ use sampling::SplitMix;
 
 use embedded_graphics::pixelcolor::RgbColor;
 use fixray::compare::{Comparison, compare};
+use fixray::geometry::{Plane, Ray, RayKind, Shape, Vec3};
 use fixray::num::formats::{FORMATS, MAIN, REFERENCE};
-use fixray::{Plane, Ray, RayKind, Scalar, Scene, Shape, Vec3};
-use fixray::{Traced, trace_pixel};
+use fixray::shade::{Traced, trace_pixel};
+use fixray::{Scalar, Scene};
 
 const SCENES: [(&str, &str); 3] = [
     ("default", include_str!("../scenes/default.scene")),
@@ -66,8 +67,8 @@ fn check_dt_bound<S: Scalar>(name: &str, text: &str) -> (f64, f64) {
                 continue;
             };
             let (Some((i, h)), Some((j, g))) = (
-                fixray::trace(&scene, &r).hit,
-                fixray::trace(&reference, &rr).hit,
+                fixray::shade::trace(&scene, &r).hit,
+                fixray::shade::trace(&reference, &rr).hit,
             ) else {
                 continue;
             };

@@ -11,7 +11,8 @@ use embedded_graphics::pixelcolor::raw::{LittleEndian, RawU16};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use fixray::{I16F16, Rules, Scalar, Scene, render, render_line};
+use fixray::scene::Rules;
+use fixray::{I16F16, Scalar, Scene, render, render_line};
 
 /// Camera for the 4×4 pattern scenes: screen [0,4]², eye at (2, 2, 5). Screen rows are at
 /// y = 3.5, 2.5, 1.5, 0.5 from the top.

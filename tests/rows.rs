@@ -14,7 +14,7 @@ use fixray::{Frame, KernelKind, Scalar, Scene, render_line};
 /// choice is the level-plane kernel when `expect_rows` and that the two pictures are
 /// equal. Returns the number of pixels compared.
 fn agree<S: Scalar>(name: &str, scene: &Scene<S>, expect_rows: bool) -> usize {
-    let kernel = Frame::new(scene).kernel();
+    let kernel = Frame::<_>::new(scene).kernel();
     if expect_rows {
         assert_eq!(kernel, KernelKind::Rows, "{name} {}", S::NAME);
     }
@@ -210,7 +210,7 @@ fn random_scene(rng: &mut Rng) -> String {
 
 fn random<S: Scalar>(text: &str, n: usize) -> usize {
     let scene = Scene::<S>::parse(text).unwrap();
-    let rows = Frame::new(&scene).kernel() == KernelKind::Rows;
+    let rows = Frame::<_>::new(&scene).kernel() == KernelKind::Rows;
     if rows {
         agree(&format!("random scene {n}:\n{text}"), &scene, false)
     } else {
@@ -253,7 +253,7 @@ fn edge_on<S: Scalar>() {
     // Row 19's rays have D.y = 0 exactly: the fast kernel draws it (and rows near it
     // within the epsilon's margin, more of them in the coarser formats); the rows far from
     // the horizon are the level-plane kernel's.
-    let frame = Frame::new(&scene);
+    let frame = Frame::<S>::new(&scene);
     assert_eq!(frame.row_kernel(19), KernelKind::Fast, "{}", S::NAME);
     assert_eq!(frame.row_kernel(0), KernelKind::Rows, "{}", S::NAME);
     assert_eq!(frame.row_kernel(39), KernelKind::Rows, "{}", S::NAME);
@@ -270,13 +270,13 @@ fn a_row_edge_on_to_the_floor_is_the_fast_kernels_bit_for_bit() {
 fn one_ray_a_pixel<S: Scalar>() {
     let count = |name: &str, scene: &Scene<S>| {
         assert_eq!(
-            Frame::new(scene).kernel(),
+            Frame::<_>::new(scene).kernel(),
             KernelKind::Rows,
             "{name} {}",
             S::NAME
         );
         let mut line = vec![Rgb888::new(0, 0, 0); usize::from(scene.camera.width)];
-        let mut counters = fixray::Counters::default();
+        let mut counters = fixray::stats::Counters::default();
         let frame = Frame::new(scene);
         for row in 0..scene.camera.height {
             frame.render_line_counted(row, &mut line, &mut counters);
@@ -351,17 +351,17 @@ fn counts_what_was_taken<S: Scalar>() {
         if frame.row_kernel(row) != KernelKind::Rows {
             continue;
         }
-        let mut whole = fixray::Counters::default();
+        let mut whole = fixray::stats::Counters::default();
         let mut line = vec![Rgb888::new(0, 0, 0); usize::from(width)];
         frame.render_line_counted(row, &mut line, &mut whole);
         for take in [1, 2, 7, 33, 40, 100] {
-            let mut counters = fixray::Counters::default();
+            let mut counters = fixray::stats::Counters::default();
             let mut display = Refusing {
                 take,
                 row: i32::from(row),
                 width: u32::from(width),
             };
-            assert!(frame.draw(&mut display, &mut counters).is_err());
+            assert!(frame.draw_counted(&mut display, &mut counters).is_err());
             let rays = u32::try_from(take).unwrap();
             assert_eq!(
                 counters.primary_rays,

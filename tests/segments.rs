@@ -10,10 +10,10 @@ mod common;
 
 use common::probes::sqrt_error;
 
+use fixray::geometry::{Plane, Ray, RayKind, Shape, Sphere, Triangle, Vec3};
 use fixray::num::formats::{FORMATS, REFERENCE};
-use fixray::{
-    Course, Fixray, I16F16, Plane, Ray, RayKind, RuleSet, Scalar, Shape, Sphere, Triangle, Vec3,
-};
+use fixray::shade::{Course, Fixray, RuleSet};
+use fixray::{I16F16, Scalar};
 
 /// xorshift64: a seeded, reproducible sequence in [−1, 1).
 struct Rng(u64);

@@ -9,8 +9,10 @@ mod common;
 use common::probes::{divides_exactly, sqrt_error};
 use common::v;
 
+use fixray::geometry::{Miss, Ray, RayKind, Triangle, TriangleError, Vec3};
 use fixray::num::formats::{FORMATS, REFERENCE};
-use fixray::{I16F16, Miss, Ray, RayKind, Rules, Scalar, Scene, Triangle, TriangleError, Vec3};
+use fixray::scene::Rules;
+use fixray::{I16F16, Scalar, Scene};
 
 fn down<S: Scalar>(x: f64, y: f64) -> Ray<S> {
     Ray {
@@ -198,7 +200,8 @@ fn differ_from_f64<S: Scalar>(text: &str) -> f64 {
     let mut differ = 0u32;
     for y in 0..h {
         for x in 0..w {
-            differ += u32::from(fixray::pixel(&scene, x, y) != fixray::pixel(&truth, x, y));
+            differ +=
+                u32::from(fixray::shade::pixel(&scene, x, y) != fixray::shade::pixel(&truth, x, y));
         }
     }
     f64::from(differ) / f64::from(u32::from(w) * u32::from(h))

@@ -5,8 +5,20 @@ use super::{Plane, PlaneError, Vec3};
 use crate::Scalar;
 
 /// Why a tiled or finite plane cannot be built.
+///
+/// ```
+/// use fixray::geometry::{PlaneFrame, PlaneFrameError, Vec3};
+/// use fixray::{Scalar, I16F16};
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// let (up, origin, one) = (v(0.0, 1.0, 0.0), v(0.0, 0.0, 0.0), I16F16::ONE);
+/// // `xdir` along the normal has no direction in the plane.
+/// assert_eq!(PlaneFrame::new(up, origin, up, [one; 2]), Err(PlaneFrameError::XdirInvalid));
+/// let x = v(1.0, 0.0, 0.0);
+/// assert_eq!(PlaneFrame::new(up, origin, x, [one, I16F16::ZERO]), Err(PlaneFrameError::NonPositiveSize));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FrameError {
+pub enum PlaneFrameError {
     /// The plane itself cannot be built.
     Plane(PlaneError),
     /// `xdir` has no component in the plane (zero, or parallel to the normal).
@@ -16,6 +28,21 @@ pub enum FrameError {
 }
 
 /// How a tiled plane lays out its checkerboard.
+///
+/// ```
+/// use fixray::geometry::{Shape, Tiling};
+/// use fixray::{Scene, I16F16};
+///
+/// let text = "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }
+///     material a { ambient 1 0 0 }  material b { ambient 0 0 1 }
+///     tiled_plane t { material a normal 0 1 0 point 0 0 0 dimension 1 1 altmaterial b }";
+/// let tiling = |text: &str| match Scene::<I16F16>::parse(text).unwrap().objects[0].shape {
+///     Shape::Tiled { tiling, .. } => tiling,
+///     _ => unreachable!(),
+/// };
+/// assert_eq!(tiling(text), Tiling::WorldXz); // no `xdir`: the course's older form
+/// assert_eq!(tiling(&text.replace("altmaterial b", "altmaterial b xdir 1 0 0")), Tiling::Frame);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Tiling {
     /// Along the frame's `u` and `v` (`xdir` given): tile `(floor(a / W), floor(b / H))`
@@ -31,6 +58,19 @@ pub enum Tiling {
 /// `v` = unit(N × u), and two lengths along them. Tiled planes (tile size) and finite
 /// planes (side lengths) are built on it. The plane coordinates of a point `p` are
 /// `a = (p − point)·u`, `b = (p − point)·v`.
+///
+/// ```
+/// use fixray::geometry::{PlaneFrame, Vec3};
+/// use fixray::I16F16;
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// // The floor y = 0 from the origin, u along x (so v = N × u = −z), tiles of 1 × 1.
+/// let floor = PlaneFrame::new(v(0.0, 1.0, 0.0), v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), [I16F16::from_num(1); 2]).unwrap();
+/// let p = v(2.5, 0.0, -1.5);
+/// assert_eq!(floor.coords(p), Some((I16F16::from_num(2.5), I16F16::from_num(1.5))));
+/// assert_eq!(floor.odd_tile(p), Some(true)); // floor(2.5) + floor(1.5) = 3
+/// assert!(!floor.contains(p)); // as a rectangle it is 1 × 1
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlaneFrame<S> {
     plane: Plane<S>,
@@ -44,29 +84,29 @@ impl<S: Scalar> PlaneFrame<S> {
     /// Builds the frame.
     ///
     /// # Errors
-    /// [`FrameError`] for a zero normal, an offset out of range, an `xdir` with no
+    /// [`PlaneFrameError`] for a zero normal, an offset out of range, an `xdir` with no
     /// component in the plane, or a non-positive size.
     pub fn new(
         normal: Vec3<S>,
         point: Vec3<S>,
         xdir: Vec3<S>,
         size: [S; 2],
-    ) -> Result<Self, FrameError> {
-        let plane = Plane::new(normal, point).map_err(FrameError::Plane)?;
+    ) -> Result<Self, PlaneFrameError> {
+        let plane = Plane::new(normal, point).map_err(PlaneFrameError::Plane)?;
         if size[0] <= S::ZERO || size[1] <= S::ZERO {
-            return Err(FrameError::NonPositiveSize);
+            return Err(PlaneFrameError::NonPositiveSize);
         }
         let n = plane.normal();
-        let along = n.dot(xdir).ok_or(FrameError::XdirInvalid)?;
+        let along = n.dot(xdir).ok_or(PlaneFrameError::XdirInvalid)?;
         let u = n
             .scale(along)
             .and_then(|p| xdir.diff(p))
             .and_then(Vec3::unit)
-            .ok_or(FrameError::XdirInvalid)?;
+            .ok_or(PlaneFrameError::XdirInvalid)?;
         let v = n
             .cross(u)
             .and_then(Vec3::unit)
-            .ok_or(FrameError::XdirInvalid)?;
+            .ok_or(PlaneFrameError::XdirInvalid)?;
         Ok(Self {
             plane,
             corner: point,
@@ -200,6 +240,25 @@ impl<S: Scalar> RowTiles<S> {
 }
 
 /// How a texture lies on a [`Slide`]'s rectangle (the course's `mode`).
+///
+/// ```
+/// # #[cfg(feature = "textures")] {
+/// use fixray::geometry::{Shape, TexMode};
+/// use fixray::{Scene, I16F16};
+///
+/// static CHECKER: &[u8] = b"P6 2 2 255\n\xff\xff\xff\x00\x00\x00\x00\x00\x00\xff\xff\xff";
+/// let text = "camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+///     material m { ambient 1 1 1 }
+///     texture checker { filename checker.ppm }
+///     texplane wall { material m normal 0 0 1 point 0 0 -1 xdir 1 0 0
+///                     dimensions 4 3 texname checker mode 1 }";
+/// let mut scene = Scene::<I16F16>::empty();
+/// scene.read_with(text, None, &mut |_| Some(CHECKER)).unwrap();
+/// let Shape::Textured(slide) = scene.objects[0].shape else { unreachable!() };
+/// assert_eq!((slide.mode, slide.texture), (TexMode::Tile, 0)); // `mode 1`: repeated
+/// assert_eq!(slide.frame.size(), [I16F16::from_num(4), I16F16::from_num(3)]);
+/// # }
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TexMode {
     /// `mode 0`: the texture is stretched over the rectangle.
@@ -210,6 +269,27 @@ pub enum TexMode {
 
 /// A rectangle of a plane with a texture on it: a textured plane (`texplane`) or a
 /// projector's slide. The texture is the scene's `textures[texture]`.
+///
+/// ```
+/// # #[cfg(feature = "textures")] {
+/// use fixray::geometry::{Shape, Slide};
+/// use fixray::{Scene, I16F16};
+///
+/// static CHECKER: &[u8] = b"P6 2 2 255\n\xff\xff\xff\x00\x00\x00\x00\x00\x00\xff\xff\xff";
+/// let text = "camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+///     material m { ambient 1 1 1 }
+///     texture checker { filename checker.ppm }
+///     texplane wall { material m normal 0 0 1 point 0 0 -1 xdir 1 0 0
+///                     dimensions 4 3 texname checker mode 0 }";
+/// let mut scene = Scene::<I16F16>::empty();
+/// scene.read_with(text, None, &mut |_| Some(CHECKER)).unwrap();
+/// let Shape::Textured(Slide { frame, texture, .. }) = scene.objects[0].shape else {
+///     unreachable!()
+/// };
+/// assert_eq!(scene.textures[usize::from(texture)].width(), 2);
+/// assert!(frame.contains(fixray::geometry::Vec3::from_f64([1.0, 1.0, -1.0]).unwrap()));
+/// # }
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Slide<S> {
     /// The rectangle.

@@ -42,7 +42,7 @@ mod triangle;
 mod vec3;
 
 pub(crate) use frame::RowTiles;
-pub use frame::{FrameError, PlaneFrame, Slide, TexMode, Tiling};
+pub use frame::{PlaneFrame, PlaneFrameError, Slide, TexMode, Tiling};
 #[cfg(feature = "course")]
 pub(crate) use plane::crossing_point;
 pub(crate) use plane::sides_differ;
@@ -61,6 +61,19 @@ pub use vec3::{Normalized, Vec3};
 use crate::Scalar;
 
 /// What a ray is for: primary rays (eye through pixel) reject hits in front of the screen.
+///
+/// ```
+/// use fixray::geometry::{Plane, Ray, RayKind, Vec3};
+/// use fixray::{Scalar, I16F16};
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// // A plane at z = 1, between the screen (z = 0) and the eye.
+/// let plane = Plane::new(v(0.0, 0.0, 1.0), v(0.0, 0.0, 1.0)).unwrap();
+/// let ray = |kind| Ray { base: v(0.0, 0.0, 5.0), dir: v(0.0, 0.0, -1.0), kind };
+/// let eps = I16F16::DEFAULT_EPSILON;
+/// assert!(plane.intersect(&ray(RayKind::Primary), eps).is_err()); // in front of the screen
+/// assert!(plane.intersect(&ray(RayKind::Secondary), eps).is_ok());
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RayKind {
     /// From the eye through a pixel: hits with `z > 0` are rejected.
@@ -71,6 +84,16 @@ pub enum RayKind {
 
 /// A ray: `base + t·dir` for `t >= 0`. `dir` is expected to be a unit vector (as made by
 /// [`Vec3::unit`]); the precision epsilon is defined for unit directions.
+///
+/// ```
+/// use fixray::geometry::{Ray, RayKind, Vec3};
+/// use fixray::I16F16;
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// let ray = Ray { base: v(1.0, 2.0, 5.0), dir: v(0.0, 0.0, -1.0), kind: RayKind::Secondary };
+/// let hit = ray.hit_at(I16F16::from_num(8)).unwrap(); // base + 8·dir
+/// assert_eq!(hit.point, v(1.0, 2.0, -3.0));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ray<S> {
     /// Where the ray starts.
@@ -102,6 +125,17 @@ impl<S: Scalar> Ray<S> {
 }
 
 /// An accepted intersection.
+///
+/// ```
+/// use fixray::geometry::{Ray, RayKind, Sphere, Vec3};
+/// use fixray::{Scalar, I16F16};
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// let ball = Sphere::new(v(0.0, 0.0, -10.0), I16F16::ONE).unwrap();
+/// let ray = Ray { base: v(0.0, 0.0, 5.0), dir: v(0.0, 0.0, -1.0), kind: RayKind::Primary };
+/// let hit = ball.intersect(&ray).unwrap();
+/// assert_eq!((hit.t, hit.point), (I16F16::from_num(14), v(0.0, 0.0, -9.0)));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hit<S> {
     /// Distance along the ray (in units of `dir`, i.e. world units for a unit `dir`).
@@ -111,6 +145,18 @@ pub struct Hit<S> {
 }
 
 /// Why a ray missed.
+///
+/// ```
+/// use fixray::geometry::{Miss, Plane, Ray, RayKind, Vec3};
+/// use fixray::{Scalar, I16F16};
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// let floor = Plane::new(v(0.0, 1.0, 0.0), v(0.0, 0.0, 0.0)).unwrap();
+/// let ray = |dir| Ray { base: v(0.0, 1.0, 5.0), dir, kind: RayKind::Primary };
+/// let eps = I16F16::DEFAULT_EPSILON;
+/// assert_eq!(floor.intersect(&ray(v(0.0, 0.0, -1.0)), eps), Err(Miss::Parallel));
+/// assert_eq!(floor.intersect(&ray(v(0.0, 0.6, -0.8)), eps), Err(Miss::Behind));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Miss {
     /// `|N·d| < epsilon`: the ray is parallel to the plane within the precision epsilon.

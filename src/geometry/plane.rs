@@ -6,6 +6,17 @@ use super::{Hit, Miss, Ray, RayKind, Vec3};
 use crate::Scalar;
 
 /// Why a plane cannot be built.
+///
+/// ```
+/// use fixray::geometry::{Plane, PlaneError, Vec3};
+/// use fixray::I16F16;
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// assert_eq!(Plane::new(v(0.0, 0.0, 0.0), v(0.0, 0.0, 0.0)), Err(PlaneError::ZeroNormal));
+/// // N·point = 30000·√3 ≈ 51962 does not fit I16F16.
+/// let far = v(30000.0, 30000.0, 30000.0);
+/// assert_eq!(Plane::new(v(1.0, 1.0, 1.0), far), Err(PlaneError::OffsetOutOfRange));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PlaneError {
     /// The normal is zero (or too short for the format to give it a direction).
@@ -17,7 +28,8 @@ pub enum PlaneError {
 /// An infinite plane `N·x = D'` with a unit normal.
 ///
 /// ```
-/// use fixray::{I16F16, Plane, Ray, RayKind, Scalar, Vec3};
+/// use fixray::{I16F16, Scalar};
+/// use fixray::geometry::{Plane, Ray, RayKind, Vec3};
 ///
 /// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
 /// // The numeric example of the course notes.

@@ -53,6 +53,17 @@ use crate::Scalar;
 use crate::num::series::cos::{cos_any, sin_any};
 
 /// Why a surface of revolution cannot be built.
+///
+/// ```
+/// use fixray::geometry::{Revsurf, RevsurfError, Vec3};
+/// use fixray::{Scalar, I16F16};
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// let (base, up, one) = (v(0.0, 0.0, -10.0), v(0.0, 1.0, 0.0), I16F16::ONE);
+/// assert_eq!(Revsurf::new(7, base, up, one), Err(RevsurfError::UnknownProfile));
+/// assert_eq!(Revsurf::new(1, base, v(0.0, 0.0, 0.0), one), Err(RevsurfError::ZeroDirection));
+/// assert_eq!(Revsurf::new(1, base, up, I16F16::ZERO), Err(RevsurfError::NonPositiveHeight));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RevsurfError {
     /// A `surfer` whose profile is not known (`1`, `2` and `3` are).
@@ -101,6 +112,19 @@ struct Axial<S> {
 }
 
 /// A surface of revolution (see the module documentation).
+///
+/// ```
+/// use fixray::geometry::{Ray, RayKind, Revsurf, Vec3};
+/// use fixray::{Scalar, I16F16};
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// // The hourglass (`surfer 2`: radius 1 + cos(s)/2 at `s` along the axis), 3 units tall.
+/// let glass = Revsurf::new(2, v(0.0, 0.0, -10.0), v(0.0, 1.0, 0.0), I16F16::from_num(3)).unwrap();
+/// // At 1.5 up the axis its radius is 1 + cos(1.5)/2 ≈ 1.0354.
+/// let ray = Ray { base: v(0.0, 1.5, 5.0), dir: v(0.0, 0.0, -1.0), kind: RayKind::Primary };
+/// let hit = glass.intersect(&ray).unwrap();
+/// assert!((hit.t.to_f64() - (15.0 - 1.0354)).abs() < 0.01);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Revsurf<S> {
     base: Vec3<S>,

@@ -9,6 +9,25 @@ use crate::Scalar;
 /// Without the cargo feature `spheres` the sphere code is not built in: a
 /// [`Shape::Sphere`] (which the parser then refuses, but code can still build one) is
 /// never hit ([`Miss::NotBuiltIn`]).
+///
+/// ```
+/// use fixray::geometry::{Plane, Ray, RayKind, Shape, Sphere, Vec3};
+/// use fixray::{Scalar, I16F16};
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// let shapes = [
+///     Shape::Plane(Plane::new(v(0.0, 0.0, 1.0), v(0.0, 0.0, -20.0)).unwrap()),
+///     Shape::Sphere(Sphere::new(v(0.0, 0.0, -10.0), I16F16::ONE).unwrap()),
+/// ];
+/// let ray = Ray { base: v(0.0, 0.0, 5.0), dir: v(0.0, 0.0, -1.0), kind: RayKind::Primary };
+/// let nearest = shapes
+///     .iter()
+///     .filter_map(|s| s.intersect(&ray, I16F16::DEFAULT_EPSILON).ok())
+///     .map(|hit| hit.t)
+///     .min();
+/// assert_eq!(nearest, Some(I16F16::from_num(14))); // the sphere, in front of the wall
+/// assert!(shapes[0].plane().is_some() && shapes[1].plane().is_none());
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Shape<S> {
     /// An infinite plane.
@@ -192,7 +211,7 @@ impl<S: Scalar> Shape<S> {
 
     /// For a shape that blocks the shadow ray `ray`: whether that is only the tie of a
     /// light lying on it (within `tol`), which it then does not shadow
-    /// ([`crate::RuleSet::shadows`]): a plane never shadows it (the segment to a point
+    /// ([`crate::shade::RuleSet::shadows`]): a plane never shadows it (the segment to a point
     /// on a plane meets the plane only at that point), a sphere only when the ray
     /// leaves the sphere at the light (it went through the sphere first). Asked only of
     /// blocking shapes: it costs a dot product.

@@ -40,7 +40,7 @@ pub(crate) fn surface_tolerance<S: Scalar>(t: S, m: S) -> Option<S> {
 }
 
 /// Whether [`surface_tolerance`]`(t, m)` fits the format, without forming it, in the
-/// fixed formats (`Scalar::EXACT_SUMS`; `false` in the others: form it), whose `ulp` is
+/// fixed formats (`KernelArith::EXACT_SUMS`; `false` in the others: form it), whose `ulp` is
 /// `DELTA` at every magnitude: the tolerance is then `(t + c)·DELTA`, no larger than
 /// `t + c` for `t ≥ 0`, and fits wherever that sum does.
 #[inline]

@@ -5,6 +5,16 @@ use super::{Hit, Miss, Ray, Vec3};
 use crate::Scalar;
 
 /// Why a sphere cannot be built.
+///
+/// ```
+/// use fixray::geometry::{Sphere, SphereError, Vec3};
+/// use fixray::I16F16;
+///
+/// let center = Vec3::<I16F16>::from_f64([0.0, 0.0, -10.0]).unwrap();
+/// assert_eq!(Sphere::new(center, I16F16::from_num(0)), Err(SphereError::NonPositiveRadius));
+/// // 200² = 40000 does not fit I16F16.
+/// assert_eq!(Sphere::new(center, I16F16::from_num(200)), Err(SphereError::RadiusOutOfRange));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SphereError {
     /// The radius is not positive.
@@ -23,7 +33,8 @@ pub enum SphereError {
 /// of the discriminant (the precision epsilon belongs to the plane tests).
 ///
 /// ```
-/// use fixray::{I16F16, Ray, RayKind, Scalar, Sphere, Vec3};
+/// use fixray::{I16F16, Scalar};
+/// use fixray::geometry::{Ray, RayKind, Sphere, Vec3};
 ///
 /// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
 /// let s = Sphere::new(v(0.0, 0.0, -10.0), I16F16::from_i32(2).unwrap()).unwrap();

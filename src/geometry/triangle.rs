@@ -5,6 +5,15 @@ use super::{Hit, Miss, Plane, Ray, Vec3};
 use crate::Scalar;
 
 /// Why a triangle cannot be built.
+///
+/// ```
+/// use fixray::geometry::{Triangle, TriangleError, Vec3};
+/// use fixray::I16F16;
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// let on_a_line = [v(0.0, 0.0, -5.0), v(1.0, 1.0, -5.0), v(2.0, 2.0, -5.0)];
+/// assert_eq!(Triangle::new(on_a_line), Err(TriangleError::Degenerate));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TriangleError {
     /// Two vertices coincide, or the three lie on one line (within the format's
@@ -26,7 +35,8 @@ pub const EDGE_SLACK_ULPS: i32 = 32;
 /// edges and vertices included.
 ///
 /// ```
-/// use fixray::{I16F16, Ray, RayKind, Scalar, Triangle, Vec3};
+/// use fixray::{I16F16, Scalar};
+/// use fixray::geometry::{Ray, RayKind, Triangle, Vec3};
 ///
 /// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
 /// let tri = Triangle::new([v(0.0, 0.0, -5.0), v(4.0, 0.0, -5.0), v(0.0, 4.0, -5.0)]).unwrap();

@@ -6,7 +6,8 @@ use crate::Scalar;
 /// A 3-vector in number format `S`.
 ///
 /// ```
-/// use fixray::{Scalar, Vec3, I16F16};
+/// use fixray::{Scalar, I16F16};
+/// use fixray::geometry::Vec3;
 ///
 /// let v = Vec3::<I16F16>::from_f64([3.0, 0.0, -4.0]).unwrap();
 /// assert_eq!(v.length().unwrap().to_f64(), 5.0);
@@ -241,6 +242,18 @@ impl<S: Scalar> Vec3<S> {
 }
 
 /// A vector split into its direction and its length (see [`Vec3::normalize`]).
+///
+/// ```
+/// use fixray::geometry::Vec3;
+/// use fixray::{Scalar, I16F16};
+///
+/// // |(30000, 40000, 0)| = 50000 does not fit I16F16 (range ±32768); split, it does.
+/// let big = Vec3::<I16F16>::new(I16F16::from_num(30_000), I16F16::from_num(20_000), I16F16::ZERO);
+/// let n = big.normalize().unwrap();
+/// assert_eq!(n.scale, I16F16::from_num(30_000));
+/// assert!((n.unit.x.to_f64() - 0.832).abs() < 0.001);
+/// assert_eq!(n.length(), None); // 36055.5: beyond the format, but the direction is known
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Normalized<S> {
     /// The unit vector, components in [−1, 1].

@@ -1,12 +1,12 @@
 //! Fast primary rays for scenes of planes (infinite, tiled, finite, triangles) and
 //! spheres, under the crate's rules.
 //!
-//! The reference path ([`crate::trace_pixel`]) normalises every primary ray and
+//! The reference path ([`crate::shade::trace_pixel`]) normalises every primary ray and
 //! divides once per plane. Here, per frame, `num = D' − N·eye` is computed once per plane
 //! (the eye is every primary ray's base), and per pixel the ray's direction is left
 //! unnormalised, `D = screen point − eye` (its x stepped along the scanline). `N·D` is
 //! linear along the scanline: it is kept as the unrounded double-width sum
-//! ([`crate::Scalar::Acc`]) and grows by the per-frame `N.x × step` per pixel, so that a
+//! ([`KernelArith::Acc`](crate::num::KernelArith::Acc)) and grows by the per-frame `N.x × step` per pixel, so that a
 //! pixel costs no product for it (in the fixed formats bit for bit the wide dot product
 //! of the stepped `D`). Spheres keep `oc·D` the same way (`oc = eye − centre`) and test
 //! the discriminant's sign exactly (`sphere_root`). The plane test of `docs/scene-format.md`
@@ -103,7 +103,7 @@ pub(crate) const fn block_starts<S: Scalar>() -> u16 {
 pub struct Primary<S: Scalar> {
     terms: Vec<Term<S>, FAST_OBJECTS>,
     /// `N_i.x × step_x` of every term, unrounded: what `N·D` grows by from pixel to
-    /// pixel ([`Scalar::Acc`]).
+    /// pixel ([`KernelArith::Acc`](crate::num::KernelArith::Acc)).
     steps: Vec<S::Acc, FAST_OBJECTS>,
     /// `D'_i − N_i·light_j` at `j × objects + i` (the lights' sides of every plane, for
     /// shadow segments: [`crate::shade::PlaneSides`]); empty when they do not fit
@@ -138,7 +138,7 @@ pub struct Primary<S: Scalar> {
     x_unit: S,
     /// Whether every term's `N·D` (and its unrounded sum, and the sum's rounding) fits
     /// the format at every `D` of the frame ([`Primary::frame_fits`]): a step then
-    /// needs no overflow test ([`Scalar::acc_step_fitting`]).
+    /// needs no overflow test ([`KernelArith::acc_step_fitting`](crate::num::KernelArith::acc_step_fitting)).
     fits: bool,
 }
 
@@ -798,7 +798,7 @@ impl<S: Scalar> Primary<S> {
 
     /// Brings a scanline's terms up to date with its `D` after [`Primary::advance_dir`]
     /// or [`Primary::restart_dir`]: in the formats whose products are exact
-    /// ([`Scalar::EXACT_PRODUCTS`]) bit for bit what [`Primary::advance`] would have stepped
+    /// ([`KernelArith::EXACT_PRODUCTS`](crate::num::KernelArith::EXACT_PRODUCTS)) bit for bit what [`Primary::advance`] would have stepped
     /// them to (both are the exact `N·D` of the same `D`). `None` where a term does not
     /// fit, or the row does not hold every term (it must be restarted whole).
     pub(crate) fn refresh(&self, scene: &SceneView<'_, S>, r: &mut Row<S>) -> Option<()> {
@@ -963,7 +963,7 @@ impl<S: Scalar> Primary<S> {
     /// Moves a scanline to its next pixel: `D.x` grows by the pixel step (rounded once
     /// per frame; callers restart the row from the exact screen x every
     /// [`resync_pixels`] pixels, so the drift stays below half as many DELTAs), and
-    /// `N·D` grows by the unrounded `N.x × step` ([`Scalar::Acc`]): in the fixed formats
+    /// `N·D` grows by the unrounded `N.x × step` ([`KernelArith::Acc`](crate::num::KernelArith::Acc)): in the fixed formats
     /// bit for bit the wide dot product of the new `D` (consistent with `D`, so the hit
     /// point lies on the ray through that screen point), with no product per pixel.
     pub fn advance(&self, row: &mut Row<S>) -> Option<()> {
@@ -1243,7 +1243,7 @@ impl<S: Scalar> Primary<S> {
     /// `ahead` alone), at or beyond the hit, the nearest. So the plane's exact side at
     /// the hit (`numᵢ − t'·(N·D)ᵢ` with the hit's exact `t'`) has the eye's sign, the
     /// lights'; the formed one (`sides_at`'s) lies within `(|N·D|ᵢ + 1)·DELTA` of it
-    /// (an exact quotient, `Scalar::EXACT_QUOTIENTS`), inside the segments' tolerance;
+    /// (an exact quotient, `KernelArith::EXACT_QUOTIENTS`), inside the segments' tolerance;
     /// so `sides_differ` passes the plane over towards every light, as it does the hit's
     /// own plane (`reference::lit_plane_color`). `t_max`: up to it, `t'·(N·D)ᵢ` and the
     /// side fit the format (`sides_at` would not have failed): `|numᵢ| ≤ MAX/4` and
@@ -1324,7 +1324,7 @@ impl<S: Scalar> Primary<S> {
     /// at least the epsilon bound away from it at both ends (so that no pixel between
     /// takes the exact parallel test, and its acceptance, monotone, is the same
     /// throughout). The winner must beat every other accepted plane at both ends by a
-    /// margin that the roundings of `N·D` cannot eat ([`Scalar::products_clearly_greater`]:
+    /// margin that the roundings of `N·D` cannot eat ([`KernelArith::products_clearly_greater`](crate::num::KernelArith::products_clearly_greater):
     /// the comparison with unrounded terms is linear, so it holds between the ends too).
     #[inline(never)]
     fn certify_block(&self, a: &Row<S>, winner: Option<usize>, last: u16) -> Option<Block> {

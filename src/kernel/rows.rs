@@ -15,8 +15,8 @@
 //! own test, and shaded its way.
 //!
 //! Every quantity has the fast kernel's value (the same operations; `|L|²` adds its
-//! exact terms in another order only where sums are exact, `Scalar::EXACT_SUMS`, and a
-//! shadow cone's `l·u` only where products are exact too, `Scalar::EXACT_PRODUCTS`), so a
+//! exact terms in another order only where sums are exact, `KernelArith::EXACT_SUMS`, and a
+//! shadow cone's `l·u` only where products are exact too, `KernelArith::EXACT_PRODUCTS`), so a
 //! pixel is the fast kernel's bit for bit (`tests/rows.rs`: every boing frame, an
 //! unshipped ball scene and seeded random level scenes, whole and partial scanlines, in
 //! every format). A row that cannot be decided once (a plane within the epsilon's margin
@@ -122,7 +122,7 @@ struct LeanLight<S: Scalar> {
     knl: Option<S>,
     weights: [[S; 3]; 2],
     overflow: [u16; 2],
-    /// Per tile parity, the quick term ([`Scalar::quick_term`]): the numerators
+    /// Per tile parity, the quick term ([`KernelArith::quick_term`](crate::num::KernelArith::quick_term)): the numerators
     /// `weights × knl` per channel and the slack `(⌊w_max⌋ + 3)·DELTA`, what the exact
     /// term's truncations can add to the quick quotients' bound ([`lean_color`]); `None`
     /// where `knl` is not known, that parity's weights are negative or overflow, the
@@ -346,10 +346,10 @@ fn level<S: Scalar, T: Stages>(
 /// Fills `out` with the per-row part of a lean row ([`LeanRow`]) of the row's plane `l`
 /// (`(dy, dz)`: the row's `D.y` and `D.z`, the same at every pixel); `None` where the
 /// row is not one. A lean row:
-/// sums are exact (`Scalar::EXACT_SUMS`), the sides are kept, every light has its row
+/// sums are exact (`KernelArith::EXACT_SUMS`), the sides are kept, every light has its row
 /// terms and weights, only spheres can shadow the row, each of them has exactly one
 /// shadow cone from that light and the format's products are exact
-/// (`Scalar::EXACT_PRODUCTS`: the cone's `l·u` is summed in another order), the row's
+/// (`KernelArith::EXACT_PRODUCTS`: the cone's `l·u` is summed in another order), the row's
 /// `|L.y|`, `|L.z|` and the cones' `u` lie within half the format's range; the plane is a
 /// plain plane, or a tiled one with its tile row and `u` along x ([`RowTiles`]); its
 /// materials are there; `t' > 0`, and at every `D.x` of the row ([`Primary::dx_range`])
@@ -451,7 +451,7 @@ fn lean_row<S: Scalar>(
             cones.push(row_cone).ok()?;
         }
         // The quick terms' numerators and their slack (`lean_color`).
-        // `Scalar::quick_pixel` maps colours to pixels as the crate's rules do.
+        // `KernelArith::quick_pixel` maps colours to pixels as the crate's rules do.
         let mut quick = [None; 2];
         if let (Some(knl), Rules::Fixray, true) = (rl.knl, scene.rules(), S::QUICK_PIXEL) {
             for (k, (w, o)) in [(w0, o0), (w1, o1)].into_iter().enumerate() {
@@ -986,7 +986,7 @@ fn lit<S: Scalar, T: Stages>(
 /// [`occluded_among`]).
 ///
 /// Its colour (`Err`), or its pixel (`Ok`) where the last light's term
-/// `w·(255·N·L/|L|²)` was taken quickly, by [`Scalar::quick_pixel`] (on cores where it
+/// `w·(255·N·L/|L|²)` was taken quickly, by [`KernelArith::quick_pixel`](crate::num::KernelArith::quick_pixel) (on cores where it
 /// pays): the pixel of `(w·255·N·L)/|L|²` over the colour so far by
 /// one approximate reciprocal, returned only where its error bound settles it. With
 /// `|L|² ≥ 1` and `w ≥ 0` the exact term (a truncated quotient times `w`, floored) is
@@ -1119,7 +1119,7 @@ impl<S: Scalar> LeanRow<S> {
 /// (where the quick term settles it), or by `plane_color` where a sphere's cone does
 /// not clear the pixel (its exact segment test, [`exact_shadow`]: shadowed, the
 /// ambient colour): the same operations in the same order for those cases (the step,
-/// the hit's `x`, the tile's parity, `L.x`, `|L|²`, the cones, [`Scalar::quick_pixel`]),
+/// the hit's `x`, the tile's parity, `L.x`, `|L|²`, the cones, [`KernelArith::quick_pixel`](crate::num::KernelArith::quick_pixel)),
 /// without the general cases' lookups and loops; `state` is stepped to `column`; with
 /// the pixel, whether the light lit it. `None` wherever the case is another, with
 /// `state` unchanged but at a resync column, which is restarted (the general path then

@@ -1,7 +1,7 @@
 //! [`Scalar`] for the fixed-point formats of the `fixed` crate: I16F16, I20F12, I32F32.
 //! Products are formed exactly in double width ([`super::wide`]) and rounded once.
 
-use super::{Decimal, EPSILON_DELTAS, Scalar, wide};
+use super::{Decimal, EPSILON_DELTAS, KernelArith, Scalar, wide};
 use ::fixed::FixedI32;
 use ::fixed::types::{I16F16, I20F12, I32F32};
 
@@ -54,7 +54,7 @@ fn div_i32(a: i32, b: i32, frac: u32) -> Option<i32> {
 /// simulator draw with the Cortex-M0's arithmetic (the pixels are the same either way).
 const QUICK_I32: bool = cfg!(any(no_long_multiply, not(target_os = "none")));
 
-/// [`super::recip::quick_pixel_term`] on the bit patterns ([`Scalar::quick_pixel`] of the
+/// [`super::recip::quick_pixel_term`] on the bit patterns ([`KernelArith::quick_pixel`] of the
 /// 32-bit formats), where it pays: on cores without a long multiply (the
 /// Cortex-M0, where the exact division and the colour's three double-width products are
 /// built from 16-bit products), and on hosted targets ([`QUICK_I32`]). Elsewhere `None`:
@@ -79,7 +79,7 @@ fn quick_i32<F: ::fixed::types::extra::LeEqU32>(
     }
 }
 
-/// [`Scalar::quick_term`] of the 32-bit formats with a quick pixel ([`quick_i32`]).
+/// [`KernelArith::quick_term`] of the 32-bit formats with a quick pixel ([`quick_i32`]).
 #[inline]
 fn quick_term_i32<F: ::fixed::types::extra::LeEqU32>(
     a: [FixedI32<F>; 3],
@@ -100,11 +100,6 @@ macro_rules! impl_fixed {
             const ONE: Self = <$t>::ONE;
             const MAX: Self = <$t>::MAX;
             const DELTA: Self = <$t>::DELTA;
-            const EXACT_SUMS: bool = true;
-            const EXACT_PRODUCTS: bool = true;
-            // `fixed`'s division and `recip::exact_div` (bit for bit the same) truncate
-            // the exact quotient.
-            const EXACT_QUOTIENTS: bool = true;
             const DEFAULT_EPSILON: Self = <$t>::from_bits(EPSILON_DELTAS as $bits);
             const INT_BITS: u32 = <$t>::INT_NBITS;
 
@@ -152,18 +147,6 @@ macro_rules! impl_fixed {
                 let div: fn(Self, Self) -> Option<Self> = $div;
                 div(self, rhs)
             }
-            const QUICK_PIXEL: bool = $has_quick;
-            type QuickTerm = $qterm;
-            #[inline]
-            fn quick_term(a: [Self; 3], slack: Self) -> Option<$qterm> {
-                let term: fn([Self; 3], Self) -> Option<$qterm> = $term;
-                term(a, slack)
-            }
-            #[inline]
-            fn quick_pixel(base: [Self; 3], term: &$qterm, b: Self) -> Option<[u8; 3]> {
-                let quick: fn([Self; 3], &$qterm, Self) -> Option<[u8; 3]> = $quick;
-                quick(base, term, b)
-            }
             #[inline]
             fn checked_sqrt(self) -> Option<Self> {
                 <$t>::checked_sqrt(self)
@@ -172,28 +155,6 @@ macro_rules! impl_fixed {
             fn abs(self) -> Self {
                 self.saturating_abs()
             }
-            type Acc = $wide;
-            #[inline]
-            fn acc_mul(a: Self, b: Self) -> Option<$wide> {
-                Some(<$wide>::from_bits($mul(a.to_bits(), b.to_bits())))
-            }
-            #[inline]
-            fn acc_add(x: $wide, y: $wide) -> Option<$wide> {
-                x.checked_add(y)
-            }
-            #[inline]
-            fn acc_round(x: $wide) -> Option<Self> {
-                // Round to nearest: add half a narrow DELTA, then narrowing floors.
-                let half = <$wide>::from_num(<$t>::DELTA) >> 1u32;
-                <$t>::checked_from_num(x.checked_add(half)?)
-            }
-            #[inline]
-            fn acc_step_fitting(x: $wide, y: $wide) -> ($wide, Self) {
-                // `acc_add` and `acc_round` wrapping: the same values where they fit.
-                let sum = x.wrapping_add(y);
-                let half = <$wide>::from_num(<$t>::DELTA) >> 1u32;
-                (sum, <$t>::wrapping_from_num(sum.wrapping_add(half)))
-            }
             #[inline]
             fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
                 Self::acc_round(Self::acc_dot3(a, b)?)
@@ -201,15 +162,6 @@ macro_rules! impl_fixed {
             #[inline]
             fn cmp_products(a: Self, b: Self, c: Self, d: Self) -> Option<core::cmp::Ordering> {
                 Some($mul(a.to_bits(), b.to_bits()).cmp(&$mul(c.to_bits(), d.to_bits())))
-            }
-            #[inline]
-            fn products_clearly_greater(a: Self, b: Self, c: Self, d: Self) -> bool {
-                // Raw units: the products are in DELTA², `|a| + |c|` in DELTA × DELTA.
-                let margin =
-                    <$wide_bits>::from(a.to_bits()).abs() + <$wide_bits>::from(c.to_bits()).abs();
-                $mul(a.to_bits(), b.to_bits())
-                    .checked_sub($mul(c.to_bits(), d.to_bits()))
-                    .is_some_and(|g| g > margin)
             }
             #[inline]
             fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
@@ -236,6 +188,57 @@ macro_rules! impl_fixed {
             #[inline]
             fn floor_to_i32(self) -> Option<i32> {
                 self.checked_floor()?.checked_to_num::<i32>()
+            }
+        }
+
+        impl KernelArith for $t {
+            const EXACT_SUMS: bool = true;
+            const EXACT_PRODUCTS: bool = true;
+            // `fixed`'s division and `recip::exact_div` (bit for bit the same) truncate
+            // the exact quotient.
+            const EXACT_QUOTIENTS: bool = true;
+            const QUICK_PIXEL: bool = $has_quick;
+            type QuickTerm = $qterm;
+            #[inline]
+            fn quick_term(a: [Self; 3], slack: Self) -> Option<$qterm> {
+                let term: fn([Self; 3], Self) -> Option<$qterm> = $term;
+                term(a, slack)
+            }
+            #[inline]
+            fn quick_pixel(base: [Self; 3], term: &$qterm, b: Self) -> Option<[u8; 3]> {
+                let quick: fn([Self; 3], &$qterm, Self) -> Option<[u8; 3]> = $quick;
+                quick(base, term, b)
+            }
+            type Acc = $wide;
+            #[inline]
+            fn acc_mul(a: Self, b: Self) -> Option<$wide> {
+                Some(<$wide>::from_bits($mul(a.to_bits(), b.to_bits())))
+            }
+            #[inline]
+            fn acc_add(x: $wide, y: $wide) -> Option<$wide> {
+                x.checked_add(y)
+            }
+            #[inline]
+            fn acc_round(x: $wide) -> Option<Self> {
+                // Round to nearest: add half a narrow DELTA, then narrowing floors.
+                let half = <$wide>::from_num(<$t>::DELTA) >> 1u32;
+                <$t>::checked_from_num(x.checked_add(half)?)
+            }
+            #[inline]
+            fn acc_step_fitting(x: $wide, y: $wide) -> ($wide, Self) {
+                // `acc_add` and `acc_round` wrapping: the same values where they fit.
+                let sum = x.wrapping_add(y);
+                let half = <$wide>::from_num(<$t>::DELTA) >> 1u32;
+                (sum, <$t>::wrapping_from_num(sum.wrapping_add(half)))
+            }
+            #[inline]
+            fn products_clearly_greater(a: Self, b: Self, c: Self, d: Self) -> bool {
+                // Raw units: the products are in DELTA², `|a| + |c|` in DELTA × DELTA.
+                let margin =
+                    <$wide_bits>::from(a.to_bits()).abs() + <$wide_bits>::from(c.to_bits()).abs();
+                $mul(a.to_bits(), b.to_bits())
+                    .checked_sub($mul(c.to_bits(), d.to_bits()))
+                    .is_some_and(|g| g > margin)
             }
         }
     };
@@ -351,7 +354,7 @@ mod tests {
                 i64::from(d.to_bits()),
             );
             assert_eq!(
-                Scalar::products_clearly_greater(a, b, c, d),
+                KernelArith::products_clearly_greater(a, b, c, d),
                 expect,
                 "{a} {b} {c} {d}"
             );
@@ -363,7 +366,7 @@ mod tests {
                 w(d).to_bits(),
             );
             assert_eq!(
-                Scalar::products_clearly_greater(w(a), w(b), w(c), w(d)),
+                KernelArith::products_clearly_greater(w(a), w(b), w(c), w(d)),
                 expect,
                 "{a} {b} {c} {d} in I32F32"
             );

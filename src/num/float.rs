@@ -3,7 +3,7 @@
 
 use core::cmp::Ordering;
 
-use super::{Decimal, EPSILON_DELTAS, Scalar};
+use super::{Decimal, EPSILON_DELTAS, KernelArith, Scalar};
 
 /// An integral float (already rounded) as an `i32`, in its own width (a wider type would
 /// be soft float on an f32-only FPU); `None` outside the range, and for NaN, which the
@@ -45,8 +45,6 @@ macro_rules! impl_float {
             const ONE: Self = 1.0;
             const MAX: Self = <$t>::MAX;
             const DELTA: Self = <$t>::EPSILON;
-            const EXACT_SUMS: bool = false;
-            const EXACT_PRODUCTS: bool = false;
             // EPSILON_DELTAS is a small integer: exact in both float formats.
             const DEFAULT_EPSILON: Self = <$t>::EPSILON * EPSILON_DELTAS as $t;
             const INT_BITS: u32 = 0;
@@ -99,24 +97,6 @@ macro_rules! impl_float {
             fn abs(self) -> Self {
                 if self < 0.0 { -self } else { self }
             }
-            type Acc = $t;
-            type QuickTerm = ();
-            #[inline]
-            fn acc_mul(a: Self, b: Self) -> Option<Self> {
-                Some(a * b).filter(|v| v.is_finite())
-            }
-            #[inline]
-            fn acc_add(x: Self, y: Self) -> Option<Self> {
-                Some(x + y).filter(|v| v.is_finite())
-            }
-            #[inline]
-            fn acc_round(x: Self) -> Option<Self> {
-                Some(x).filter(|v| v.is_finite())
-            }
-            #[inline]
-            fn acc_dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
-                Self::dot3(a, b)
-            }
             #[inline]
             fn dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
                 Some(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).filter(|v| v.is_finite())
@@ -157,6 +137,29 @@ macro_rules! impl_float {
             fn ulp(self) -> Self {
                 let m = if self < 0.0 { -self } else { self };
                 <$t>::EPSILON * if m > 1.0 { m } else { 1.0 }
+            }
+        }
+
+        impl KernelArith for $t {
+            const EXACT_SUMS: bool = false;
+            const EXACT_PRODUCTS: bool = false;
+            type Acc = $t;
+            type QuickTerm = ();
+            #[inline]
+            fn acc_mul(a: Self, b: Self) -> Option<Self> {
+                Some(a * b).filter(|v| v.is_finite())
+            }
+            #[inline]
+            fn acc_add(x: Self, y: Self) -> Option<Self> {
+                Some(x + y).filter(|v| v.is_finite())
+            }
+            #[inline]
+            fn acc_round(x: Self) -> Option<Self> {
+                Some(x).filter(|v| v.is_finite())
+            }
+            #[inline]
+            fn acc_dot3(a: [Self; 3], b: [Self; 3]) -> Option<Self> {
+                Self::dot3(a, b)
             }
         }
     };

@@ -345,7 +345,7 @@ pub(crate) fn quick_pixel(
 
 /// A colour term's numerators and slack prepared once for many [`quick_pixel_term`]s
 /// (a row's pixels): the numerators scaled by [`quick_scale`], and the caller's slack
-/// ([`quick_pixel`]). The I16F16 and I20F12 formats' `Scalar::QuickTerm`.
+/// ([`quick_pixel`]). The I16F16 and I20F12 formats' `KernelArith::QuickTerm`.
 #[derive(Debug, Clone, Copy)]
 pub struct QuickTerm {
     scaled: [i32; 3],

@@ -30,7 +30,7 @@
 use micromath::F32Ext;
 
 use super::recip::recip_div;
-use super::{Decimal, I16F16, Scalar};
+use super::{Decimal, I16F16, KernelArith, Scalar};
 
 /// `f32` with `micromath`'s approximate square root (see the module documentation).
 #[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Default)]
@@ -44,18 +44,16 @@ pub struct I16F16Narrow(pub I16F16);
 #[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Default)]
 pub struct I16F16Recip(pub I16F16);
 
-/// Implements every `Scalar` method but the ones given by delegating to the wrapped type.
+/// Implements every `Scalar` and `KernelArith` method but the ones given by delegating to the
+/// wrapped type.
 macro_rules! delegate {
-    ($t:ident, $inner:ty, $name:literal, exact_products: $exact:expr, { $($own:item)* }) => {
+    ($t:ident, $inner:ty, $name:literal, exact_products: $exact:expr, { $($own:item)* }, kernel: { $($kernel:item)* }) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
-            type QuickTerm = ();
             const ZERO: Self = Self(<$inner as Scalar>::ZERO);
             const ONE: Self = Self(<$inner as Scalar>::ONE);
             const MAX: Self = Self(<$inner as Scalar>::MAX);
             const DELTA: Self = Self(<$inner as Scalar>::DELTA);
-            const EXACT_SUMS: bool = <$inner as Scalar>::EXACT_SUMS;
-            const EXACT_PRODUCTS: bool = $exact;
             const DEFAULT_EPSILON: Self = Self(<$inner as Scalar>::DEFAULT_EPSILON);
             const INT_BITS: u32 = <$inner as Scalar>::INT_BITS;
 
@@ -105,10 +103,6 @@ macro_rules! delegate {
                 <$inner>::cmp_products(a.0, b.0, c.0, d.0)
             }
             #[inline]
-            fn products_clearly_greater(a: Self, b: Self, c: Self, d: Self) -> bool {
-                <$inner>::products_clearly_greater(a.0, b.0, c.0, d.0)
-            }
-            #[inline]
             fn ulp(self) -> Self {
                 Self(self.0.ulp())
             }
@@ -118,27 +112,21 @@ macro_rules! delegate {
             }
             $($own)*
         }
+
+        impl KernelArith for $t {
+            type QuickTerm = ();
+            const EXACT_SUMS: bool = <$inner as KernelArith>::EXACT_SUMS;
+            const EXACT_PRODUCTS: bool = $exact;
+            #[inline]
+            fn products_clearly_greater(a: Self, b: Self, c: Self, d: Self) -> bool {
+                <$inner>::products_clearly_greater(a.0, b.0, c.0, d.0)
+            }
+            $($kernel)*
+        }
     };
 }
 
 delegate!(F32Micro, f32, "f32m", exact_products: false, {
-    type Acc = f32;
-    #[inline]
-    fn acc_mul(a: Self, b: Self) -> Option<f32> {
-        f32::acc_mul(a.0, b.0)
-    }
-    #[inline]
-    fn acc_add(x: f32, y: f32) -> Option<f32> {
-        f32::acc_add(x, y)
-    }
-    #[inline]
-    fn acc_round(x: f32) -> Option<Self> {
-        f32::acc_round(x).map(Self)
-    }
-    #[inline]
-    fn acc_dot3(a: [Self; 3], b: [Self; 3]) -> Option<f32> {
-        Self::dot3(a, b).map(|d| d.0)
-    }
     #[inline]
     fn checked_div(self, rhs: Self) -> Option<Self> {
         Scalar::checked_div(self.0, rhs.0).map(Self)
@@ -159,23 +147,27 @@ delegate!(F32Micro, f32, "f32m", exact_products: false, {
     fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
         f32::sub_dot3(c.0, [a[0].0, a[1].0, a[2].0], [b[0].0, b[1].0, b[2].0]).map(Self)
     }
+}, kernel: {
+    type Acc = f32;
+    #[inline]
+    fn acc_mul(a: Self, b: Self) -> Option<f32> {
+        f32::acc_mul(a.0, b.0)
+    }
+    #[inline]
+    fn acc_add(x: f32, y: f32) -> Option<f32> {
+        f32::acc_add(x, y)
+    }
+    #[inline]
+    fn acc_round(x: f32) -> Option<Self> {
+        f32::acc_round(x).map(Self)
+    }
+    #[inline]
+    fn acc_dot3(a: [Self; 3], b: [Self; 3]) -> Option<f32> {
+        Self::dot3(a, b).map(|d| d.0)
+    }
 });
 
 delegate!(I16F16Narrow, I16F16, "i16f16n", exact_products: false, {
-    // Narrow: every product rounded on its own, as its dot products.
-    type Acc = I16F16;
-    #[inline]
-    fn acc_mul(a: Self, b: Self) -> Option<I16F16> {
-        a.0.checked_mul(b.0)
-    }
-    #[inline]
-    fn acc_add(x: I16F16, y: I16F16) -> Option<I16F16> {
-        x.checked_add(y)
-    }
-    #[inline]
-    fn acc_round(x: I16F16) -> Option<Self> {
-        Some(Self(x))
-    }
     #[inline]
     fn checked_div(self, rhs: Self) -> Option<Self> {
         Scalar::checked_div(self.0, rhs.0).map(Self)
@@ -193,22 +185,24 @@ delegate!(I16F16Narrow, I16F16, "i16f16n", exact_products: false, {
     fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
         c.0.checked_sub(Self::dot3(a, b)?.0).map(Self)
     }
+}, kernel: {
+    // Narrow: every product rounded on its own, as its dot products.
+    type Acc = I16F16;
+    #[inline]
+    fn acc_mul(a: Self, b: Self) -> Option<I16F16> {
+        a.0.checked_mul(b.0)
+    }
+    #[inline]
+    fn acc_add(x: I16F16, y: I16F16) -> Option<I16F16> {
+        x.checked_add(y)
+    }
+    #[inline]
+    fn acc_round(x: I16F16) -> Option<Self> {
+        Some(Self(x))
+    }
 });
 
-delegate!(I16F16Recip, I16F16, "i16f16r", exact_products: <I16F16 as Scalar>::EXACT_PRODUCTS, {
-    type Acc = <I16F16 as Scalar>::Acc;
-    #[inline]
-    fn acc_mul(a: Self, b: Self) -> Option<Self::Acc> {
-        I16F16::acc_mul(a.0, b.0)
-    }
-    #[inline]
-    fn acc_add(x: Self::Acc, y: Self::Acc) -> Option<Self::Acc> {
-        I16F16::acc_add(x, y)
-    }
-    #[inline]
-    fn acc_round(x: Self::Acc) -> Option<Self> {
-        I16F16::acc_round(x).map(Self)
-    }
+delegate!(I16F16Recip, I16F16, "i16f16r", exact_products: <I16F16 as KernelArith>::EXACT_PRODUCTS, {
     #[inline]
     fn checked_div(self, rhs: Self) -> Option<Self> {
         recip_div(self.0.to_bits(), rhs.0.to_bits()).map(|q| Self(I16F16::from_bits(q)))
@@ -224,6 +218,20 @@ delegate!(I16F16Recip, I16F16, "i16f16r", exact_products: <I16F16 as Scalar>::EX
     #[inline]
     fn sub_dot3(c: Self, a: [Self; 3], b: [Self; 3]) -> Option<Self> {
         I16F16::sub_dot3(c.0, [a[0].0, a[1].0, a[2].0], [b[0].0, b[1].0, b[2].0]).map(Self)
+    }
+}, kernel: {
+    type Acc = <I16F16 as KernelArith>::Acc;
+    #[inline]
+    fn acc_mul(a: Self, b: Self) -> Option<Self::Acc> {
+        I16F16::acc_mul(a.0, b.0)
+    }
+    #[inline]
+    fn acc_add(x: Self::Acc, y: Self::Acc) -> Option<Self::Acc> {
+        I16F16::acc_add(x, y)
+    }
+    #[inline]
+    fn acc_round(x: Self::Acc) -> Option<Self> {
+        I16F16::acc_round(x).map(Self)
     }
 });
 

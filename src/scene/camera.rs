@@ -3,6 +3,26 @@
 use crate::{Ray, RayKind, Scalar, Vec3};
 
 /// The camera: image size, screen window and eye.
+///
+/// [`Scene::parse`](crate::Scene::parse) refuses a window whose pixel pitch the number
+/// format cannot resolve ([`MIN_SCALE_DELTAS`](crate::scene::MIN_SCALE_DELTAS)); a camera
+/// built in code is taken as it is.
+///
+/// ```
+/// use fixray::{Scalar, Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse(
+///     "rules fixray  camera c { pixeldim 4 2 worlddim 8 4 viewpoint 4 2 5 }",
+/// )?;
+/// let camera = &scene.camera;
+/// assert_eq!((camera.width, camera.height), (4, 2));
+/// // Pixel (0, 0) looks through the centre of its cell, (1, 3) on the screen z = 0.
+/// assert_eq!(camera.screen_x(0), Some(I16F16::ONE));
+/// assert_eq!(camera.screen_y(0), Some(I16F16::from_num(3)));
+/// let ray = camera.primary_ray(0, 0).unwrap();
+/// assert_eq!(ray.base, camera.viewpoint);
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Camera<S> {
     /// Image width in pixels, `1..=4096`.
@@ -21,6 +41,21 @@ pub struct Camera<S> {
 
 /// Where pixel (i, j) looks through the screen window `[0, WX] × [0, WY]`, row 0 at the
 /// top.
+///
+/// ```
+/// use fixray::scene::{PixelGrid, Rules};
+/// use fixray::{Scene, I16F16};
+///
+/// let text = "camera c { pixeldim 4 3 worlddim 8 4 viewpoint 4 2 5 }";
+/// let course = Scene::<I16F16>::parse_as(text, Rules::Course)?;
+/// let ours = Scene::<I16F16>::parse_as(text, Rules::Fixray)?;
+/// assert_eq!(course.camera.grid, PixelGrid::Corners);
+/// assert_eq!(ours.camera.grid, PixelGrid::Centres);
+/// // The last of 4 columns: the window's right edge, or the middle of the last cell.
+/// assert_eq!(course.camera.screen_x(3), Some(I16F16::from_num(8)));
+/// assert_eq!(ours.camera.screen_x(3), Some(I16F16::from_num(7)));
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PixelGrid {
     /// Pixel centres, `(WX (i + ½) / W, WY (1 − (j + ½) / H))` (the `fixray` rules).
@@ -70,7 +105,7 @@ impl<S: Scalar> Camera<S> {
     }
 
     /// The unit `u` of the screen x coordinates when every column's is a whole multiple
-    /// of it, in a format whose products are exact (`Scalar::EXACT_PRODUCTS`): the
+    /// of it, in a format whose products are exact (`KernelArith::EXACT_PRODUCTS`): the
     /// window's width divides exactly (`u·2W = WX` on the pixel-centre grid, `u·(W − 1) =
     /// WX` on the corner grid), so that [`Camera::screen_x`] is `u·(2i + 1)` (or `u·i`),
     /// bit for bit ([`Camera::screen_x_in`]): a product where it is otherwise a division

@@ -48,10 +48,70 @@ pub const MAX_PROJECTORS: usize = if cfg!(feature = "textures") { 2 } else { 0 }
 /// Largest `pixeldim` in either direction, as the scene format states.
 pub const MAX_PIXELDIM: u16 = 4096;
 
+/// The smallest scale a scene may have, in units of its number format's resolution:
+/// [`Scene::parse`] refuses a scene whose pixel pitch (`worlddim / pixeldim`, along
+/// either axis) or sphere radius is below this many [`Scalar::ulp`]s of the largest
+/// coordinate it is formed among (the window's size and the eye's coordinate along that
+/// axis; the sphere's centre and radius), or, in a fixed format, whose radius² is below
+/// this many `DELTA`s
+/// ([`SceneErrorKind::BelowResolution`], at the number at fault, naming the formats that
+/// resolve it). In a fixed format the ulp is `DELTA` everywhere; in a float it is `DELTA`
+/// (the machine epsilon) times the magnitude, at least 1, as every tolerance of the
+/// renderer has it; a float's radius² carries a relative error and is not checked.
+///
+/// Why 4: a screen point is rounded once, by at most ½ `DELTA`, which at a pitch of
+/// 4 `DELTA` is an eighth of a pixel, below what moves an edge by a pixel; a radius² of
+/// 4 `DELTA` (its rounding is under one) puts a sphere's outline within 14 % of its size.
+/// Below that a picture is garbage without a word: the default scene scaled down to a
+/// pitch of 0.33 `DELTA` in I16F16 draws 1.5 % of its pixels off f64's, at 0.2 `DELTA`
+/// in I20F12 23 %, while at 2 to 3.3 `DELTA`s both draw f64's picture; a millimetre
+/// scene (`worlddim 0.001 0.00075`, a sphere of radius 0.0005, pitch 0.4 `DELTA` and
+/// radius² 0.02 `DELTA` in I16F16) 91 %. Every shipped scene and course scene is at least
+/// 41 `DELTA`s per pixel and 2,000 per radius² in every format that reads it.
+///
+/// ```
+/// use fixray::{I16F16, I32F32, Scene};
+///
+/// let text = "camera c { pixeldim 160 120 worlddim 0.001 0.00075 viewpoint 0.0005 0.0004 0.002 }";
+/// let err = Scene::<I16F16>::parse(text).unwrap_err();
+/// assert_eq!(
+///     err.to_string(),
+///     "1:38: pixel pitch 6.25e-6 is below 4 DELTA of i16f16; i32f32, f32 or f64 resolve it"
+/// );
+/// assert!(Scene::<I32F32>::parse(text).is_ok());
+/// ```
+pub const MIN_SCALE_DELTAS: i32 = 4;
+
 /// An RGB colour in channel units (0 ..= 255 displays; larger values clamp).
+///
+/// ```
+/// use fixray::scene::Color;
+/// use fixray::{Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse("camera c { pixeldim 1 1 worlddim 1 1 viewpoint 0.5 0.5 5 } background 1 0.5 0")?;
+/// let sky: Color<I16F16> = scene.background; // a scene's 0 ..= 1, in channel units
+/// assert_eq!(sky.map(|c| c.to_num::<f64>()), [255.0, 127.5, 0.0]);
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 pub type Color<S> = [S; 3];
 
 /// A surface material.
+///
+/// ```
+/// use fixray::scene::Material;
+/// use fixray::{Scalar, Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse(
+///     "rules fixray
+///      camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+///      material shiny { ambient 0.2 0 0 diffuse 0.8 0.1 0.1 specular 0.5 shininess 20 }",
+/// )?;
+/// let m = scene.materials[0];
+/// assert!((m.ambient[0].to_f64() - 0.2 * 255.0).abs() < 1e-3); // in channel units
+/// assert_eq!(m.shininess, I16F16::from_num(20));
+/// assert_eq!(Material::<I16F16>::new().reflective, I16F16::ZERO); // the defaults: matte
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Material<S> {
     /// Ambient colour, in channel units (see the module documentation).
@@ -93,6 +153,20 @@ impl<S: Scalar> Default for Material<S> {
 
 /// A spotlight's cone: it lights a point only when the angle between its axis and the
 /// direction to the point is at most θ, i.e. `(point − location)·axis ≥ cos θ × |…|`.
+///
+/// ```
+/// use fixray::{Scalar, Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse(
+///     "rules fixray
+///      camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+///      spotlight spot { location 0 5 0 emissivity 1 1 1 point 0 0 0 theta 60 }",
+/// )?;
+/// let cone = scene.lights[0].cone().unwrap();
+/// assert_eq!(cone.axis.y, -I16F16::ONE); // straight down
+/// assert!((cone.cos_theta.to_f64() - 0.5).abs() < 1e-4);
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Cone<S> {
     /// Unit vector from the light towards the point it is aimed at.
@@ -102,6 +176,21 @@ pub struct Cone<S> {
 }
 
 /// Where a light shines.
+///
+/// ```
+/// use fixray::scene::Beam;
+/// use fixray::{Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse(
+///     "rules fixray
+///      camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+///      light bulb { location 0 5 0 emissivity 1 1 1 }
+///      spotlight spot { location 0 5 0 emissivity 1 1 1 point 0 0 0 theta 30 }",
+/// )?;
+/// assert_eq!(scene.lights[0].beam, Beam::Everywhere);
+/// assert!(matches!(scene.lights[1].beam, Beam::Cone(_)));
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Beam<S> {
     /// Everywhere: a point light.
@@ -115,6 +204,28 @@ pub enum Beam<S> {
 }
 
 /// A point light, a spotlight or a projector.
+///
+/// ```
+/// use fixray::geometry::Vec3;
+/// use fixray::scene::{Beam, Light};
+/// use fixray::{Scene, I16F16};
+///
+/// let mut scene = Scene::<I16F16>::parse(
+///     "rules fixray
+///      camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+///      light lamp { location 1 4 -2 emissivity 2 2 2 }",
+/// )?;
+/// assert_eq!(scene.lights[0].location, Vec3::from_f64([1.0, 4.0, -2.0]).unwrap());
+/// // Built in code: a second, red, point light.
+/// let red = Light {
+///     location: Vec3::from_f64([3.0, 4.0, -2.0]).unwrap(),
+///     emissivity: [I16F16::from_num(2), I16F16::from_num(0), I16F16::from_num(0)],
+///     beam: Beam::Everywhere,
+/// };
+/// scene.lights.push(red).unwrap();
+/// assert!(scene.plan().lighting);
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Light<S> {
     /// Position.
@@ -137,6 +248,21 @@ impl<S> Light<S> {
 }
 
 /// A shape with its material.
+///
+/// ```
+/// use fixray::geometry::Shape;
+/// use fixray::{Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse(
+///     "camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+///      material grey { ambient 0.5 0.5 0.5 }  material red { ambient 1 0 0 }
+///      sphere ball { material red center 2 1.5 -5 radius 1 }",
+/// )?;
+/// let ball = &scene.objects[0];
+/// assert!(matches!(ball.shape, Shape::Sphere(_)));
+/// assert_eq!(ball.material, 1); // `red`, the second material
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Object<S> {
     /// The geometry.
@@ -166,7 +292,8 @@ pub struct Object<S> {
 /// capacity is a [`SceneErrorKind::TooMany`] error that names the parameter to raise.
 ///
 /// ```
-/// use fixray::{Scene, SceneErrorKind, I16F16};
+/// use fixray::{Scene, I16F16};
+/// use fixray::scene::SceneErrorKind;
 ///
 /// let mut text = String::from("camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }");
 /// text += "material m { ambient 1 1 1 }";
@@ -209,10 +336,39 @@ pub struct Scene<
 
 /// Capacities for a host or a big chip: every real course file fits (the largest has 178
 /// objects).
+///
+/// ```
+/// use fixray::scene::LargeScene;
+/// use fixray::{Scene, I16F16};
+///
+/// let mut text = String::from("camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }");
+/// text += "material m { ambient 1 1 1 }";
+/// for i in 0..100 {
+///     text += &format!("sphere s{i} {{ material m center {i} 0 -10 radius 0.5 }}");
+/// }
+/// assert!(Scene::<I16F16>::parse(&text).is_err()); // 32 objects at most
+/// assert_eq!(LargeScene::<I16F16>::parse(&text).unwrap().objects.len(), 100);
+/// ```
 pub type LargeScene<S> = Scene<S, 1024, 256, 64>;
 
 /// A scene of any capacities seen through slices ([`Scene::view`]): what the renderer
 /// reads, so that its code is the same for every capacity.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb888;
+/// use fixray::scene::LargeScene;
+/// use fixray::{render_line, Scene, I16F16};
+///
+/// let text = "camera c { pixeldim 4 1 worlddim 4 1 viewpoint 2 0.5 5 } background 0 0 1";
+/// let (small, large) = (Scene::<I16F16>::parse(text)?, LargeScene::<I16F16>::parse(text)?);
+/// // Two capacities, one view type: what the renderer reads.
+/// assert_eq!(small.view().objects.len(), large.view().objects.len());
+/// let (mut a, mut b) = ([Rgb888::new(0, 0, 0); 4], [Rgb888::new(0, 0, 0); 4]);
+/// render_line(&small.view(), 0, &mut a);
+/// render_line(&large, 0, &mut b);
+/// assert_eq!(a, b);
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy)]
 pub struct SceneView<'a, S> {
     /// The camera.
@@ -256,6 +412,21 @@ pub(crate) fn light_tolerance<S: Scalar>(epsilon: S, light: Vec3<S>, eye: Vec3<S
 
 /// What the renderer's functions take: a [`Scene`] of any capacities, or a
 /// [`SceneView`] of one.
+///
+/// ```
+/// use fixray::scene::{AsView, LargeScene};
+/// use fixray::{Scalar, Scene, I16F16};
+///
+/// // One function for scenes of every capacity.
+/// fn objects<S: Scalar>(scene: &impl AsView<S>) -> usize {
+///     scene.view().objects.len()
+/// }
+/// let text = "camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+///             material m { ambient 1 1 1 }  plane p { material m normal 0 1 0 point 0 0 0 }";
+/// assert_eq!(objects(&Scene::<I16F16>::parse(text)?), 1);
+/// assert_eq!(objects(&LargeScene::<I16F16>::parse(text)?), 1);
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 pub trait AsView<S> {
     /// The scene through slices.
     fn view(&self) -> SceneView<'_, S>;

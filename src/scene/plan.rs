@@ -9,6 +9,17 @@ use crate::{Scalar, Shape};
 /// never evaluates lighting, one without specular materials never computes a half
 /// vector, and so on. The shapes (`tiles`, `finite_planes`, `spheres`) decide which
 /// primary-ray kernels apply.
+///
+/// ```
+/// use fixray::{Scene, I16F16};
+///
+/// let planes = Scene::<I16F16>::parse(include_str!("../../scenes/planes.scene"))?;
+/// let plan = planes.plan();
+/// assert!(plan.planes_only && !plan.lighting && !plan.shadows);
+/// let lit = Scene::<I16F16>::parse(include_str!("../../scenes/default.scene"))?.plan();
+/// assert!(lit.lighting && lit.shadows && !lit.spheres);
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Plan {
     /// Any light at all (diffuse term).

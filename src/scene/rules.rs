@@ -9,7 +9,8 @@ use core::str::FromStr;
 /// rules. [`crate::Scene::set_rules`] overrides either.
 ///
 /// ```
-/// use fixray::{Rules, Scene, I16F16};
+/// use fixray::{Scene, I16F16};
+/// use fixray::scene::Rules;
 ///
 /// let text = "camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }";
 /// assert_eq!(Scene::<I16F16>::parse(text).unwrap().rules(), Rules::Course);
@@ -53,6 +54,13 @@ impl fmt::Display for Rules {
 }
 
 /// A name that is not a rule set's.
+///
+/// ```
+/// use fixray::scene::{Rules, UnknownRules};
+///
+/// assert_eq!("fixray".parse::<Rules>(), Ok(Rules::Fixray));
+/// assert_eq!("pbrt".parse::<Rules>(), Err(UnknownRules));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct UnknownRules;
 

@@ -16,7 +16,7 @@
 //! cone with a strict `>`, the shadow ray from the hit itself skipping the object it
 //! leaves, and the glint `specular · (N·H)^shininess · emissivity` with
 //! `H = unit(−d + L)`, not divided by the light distance, only with a `shininess`. Plane-type hits with `z > 0.01` are rejected for every ray, and spheres
-//! take only their near root ([`Course::intersect`](crate::RuleSet::intersect)).
+//! take only their near root ([`Course::intersect`](crate::shade::RuleSet::intersect)).
 
 use super::color::clamp_channel;
 use super::light::{Lit, Passage, combine, light_with, spared};

@@ -322,7 +322,7 @@ impl Tracer for Fixray {
         trace::<S, T>(scene, ray, counters)
     }
 
-    /// Rounding, ties away from zero ([`crate::to_rgb888`]).
+    /// Rounding, ties away from zero ([`crate::shade::to_rgb888`]).
     fn to_pixel<S: Scalar>(c: Color<S>) -> Rgb888 {
         to_rgb888(c)
     }
@@ -388,7 +388,8 @@ impl Tracer for Fixray {
 
 #[cfg(test)]
 mod tests {
-    use crate::{I16F16, MAX_REFLECTION_DEPTH, Scalar, Scene, trace_pixel};
+    use crate::shade::{MAX_REFLECTION_DEPTH, trace_pixel};
+    use crate::{I16F16, Scalar, Scene};
 
     /// Two facing mirrors (the screen's plane and one behind the eye): the centre pixel's
     /// chain goes front, back, front, back, front, the last without reflection

@@ -39,7 +39,7 @@ impl<S> Passage<S> {
 }
 
 /// The lights' share of a hit's colour under the rule set `R`, added to `color` (see
-/// [`crate::Fixray`]'s and [`crate::Course`]'s tracers). `at.normal` is the one the rules
+/// [`crate::shade::Fixray`]'s and [`crate::shade::Course`]'s tracers). `at.normal` is the one the rules
 /// light with (facing the ray, or as given). Not inlined: its locals are not part of the
 /// frames of the tracers' loops.
 ///

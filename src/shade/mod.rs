@@ -7,11 +7,32 @@
 //! in sets (`stages.rs`); the lights' share is `light.rs`, colour arithmetic `color.rs`.
 //! Lighting work is done only when the scene has lights; a scene without lights costs one
 //! intersection per object per pixel and nothing more.
+//!
+//! The renderer draws with the kernels; this module's functions are the definition they
+//! are tested against, one ray or pixel at a time: [`trace_pixel`] and [`pixel`] (a
+//! pixel's primary ray), [`trace`] (any ray), [`shade`] (a hit), the colour mappings
+//! [`to_rgb888`] and [`to_pixel`], and the rule sets as types ([`Fixray`], [`Course`]).
+//!
+//! ```
+//! use embedded_graphics::pixelcolor::Rgb888;
+//! use fixray::{shade, Scene, I16F16};
+//!
+//! let scene = Scene::<I16F16>::parse(
+//!     "rules fixray
+//!      camera c { pixeldim 4 4 worlddim 4 4 viewpoint 2 2 5 }
+//!      material red { ambient 1 0 0 }
+//!      plane floor { material red normal 0 1 0 point 0 0.4 0 }",
+//! )?;
+//! assert_eq!(shade::pixel(&scene, 0, 3), Rgb888::new(255, 0, 0)); // the floor
+//! assert!(shade::trace_pixel(&scene, 0, 0).hit.is_none()); // the upper half: background
+//! # Ok::<(), fixray::SceneError>(())
+//! ```
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 pub(crate) mod color;
 pub(crate) use crate::scene::light_tolerance;
+pub use color::{to_pixel, to_rgb888};
 #[cfg(feature = "course")]
 mod course;
 #[cfg(feature = "course")]
@@ -19,6 +40,9 @@ pub use course::{MAX_COURSE_BOUNCES, MAX_PATH};
 mod fixray;
 mod light;
 pub(crate) mod rules;
+#[cfg(feature = "course")]
+pub use rules::Course;
+pub use rules::{Fixray, RuleSet};
 pub(crate) mod stages;
 mod texture;
 
@@ -27,7 +51,6 @@ use crate::stats::{Counters, count};
 use crate::{
     AsView, Color, Hit, Material, Object, Ray, Rules, Scalar, SceneView, Shape, Tiling, Vec3,
 };
-use color::to_pixel;
 use rules::{Tracer, with_rules};
 use stages::{Stages, planned, with_stages};
 

@@ -44,7 +44,9 @@ mod sealed {
 /// take the rule set as a type parameter.
 ///
 /// ```
-/// use fixray::{Course, Fixray, Miss, Plane, Ray, RayKind, RuleSet, Scalar, Shape, Vec3, I16F16};
+/// use fixray::{Scalar, I16F16};
+/// use fixray::geometry::{Miss, Plane, Ray, RayKind, Shape, Vec3};
+/// use fixray::shade::{Course, Fixray, RuleSet};
 ///
 /// let v = |x: f64, y: f64, z: f64| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
 /// // A plane at z = 0.5, in front of the screen (z = 0), met by a shadow ray.

@@ -14,7 +14,9 @@ pub mod sampling;
 
 use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::Rgb888;
-use fixray::{Rules, Scalar, Scene, Vec3, render};
+use fixray::geometry::Vec3;
+use fixray::scene::Rules;
+use fixray::{Scalar, Scene, render};
 
 /// A vector of format `S` from exact `f64` components.
 pub fn v<S: Scalar>(x: f64, y: f64, z: f64) -> Vec3<S> {

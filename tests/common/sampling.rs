@@ -2,7 +2,8 @@
 //! (`tests/properties.rs`) assert on these statistics and `cargo xtask numerics` writes
 //! them into `docs/numerics.md`. Part of the test-support module, shared with `xtask`.
 
-use fixray::{Hit, Miss, Plane, Ray, RayKind, Scalar, Vec3};
+use fixray::Scalar;
+use fixray::geometry::{Hit, Miss, Plane, Ray, RayKind, Vec3};
 
 /// SplitMix64: small, fast, and the same sequence on every machine.
 pub struct SplitMix(pub u64);
@@ -477,18 +478,18 @@ pub fn wave_stats<S: Scalar>(surfer: i64, n: u64, seed: u64) -> WaveStats {
 fn random_revsurf<S: Scalar>(
     rng: &mut SplitMix,
     surfer: i64,
-) -> Option<(fixray::Revsurf<S>, fixray::Revsurf<f64>)> {
+) -> Option<(fixray::geometry::Revsurf<S>, fixray::geometry::Revsurf<f64>)> {
     let base = rng.vector(8.0);
     let axis = rng.unit();
     let height = rng.uniform(1.0, 8.0);
-    let shape = fixray::Revsurf::new(
+    let shape = fixray::geometry::Revsurf::new(
         surfer,
         Vec3::<S>::from_f64(base)?,
         Vec3::<S>::from_f64(axis)?,
         S::from_f64(height)?,
     )
     .ok()?;
-    let exact = fixray::Revsurf::<f64>::new(
+    let exact = fixray::geometry::Revsurf::<f64>::new(
         surfer,
         to_f64(shape.base()),
         to_f64(shape.axis()),
@@ -531,7 +532,7 @@ fn aimed_ray<S: Scalar>(
 }
 
 /// The middle of a surface of revolution's axis, in f64.
-fn axis_middle<S: Scalar>(shape: &fixray::Revsurf<S>) -> [f64; 3] {
+fn axis_middle<S: Scalar>(shape: &fixray::geometry::Revsurf<S>) -> [f64; 3] {
     let (b, a, h) = (
         to_f64(shape.base()),
         to_f64(shape.axis()),

@@ -12,9 +12,9 @@ use crate::num::Decimal;
 use crate::ppm::Ppm;
 use crate::scene::{Beam, Cone, MAX_PIXELDIM, MAX_PROJECTORS, MAX_TEXTURES, Object};
 use crate::{
-    Camera, Color, FrameError, Light, Material, Plane, PlaneError, PlaneFrame, Revsurf,
-    RevsurfError, Rules, Scalar, Shape, Slide, Sphere, TexMode, Tiling, Triangle, TriangleError,
-    Vec3,
+    Camera, Color, Light, Material, Plane, PlaneError, PlaneFrame, PlaneFrameError as FrameError,
+    Revsurf, RevsurfError, Rules, Scalar, Shape, Slide, Sphere, TexMode, Tiling, Triangle,
+    TriangleError, Vec3,
 };
 
 impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '_, S, O, M, L> {

@@ -10,7 +10,8 @@
 //! ignored.
 //!
 //! ```
-//! use fixray::{Scene, SceneErrorKind, I16F16};
+//! use fixray::{Scene, I16F16};
+//! use fixray::scene::SceneErrorKind;
 //!
 //! let text = "camera c {\n  pixeldim 4 0 worlddim 4 3 viewpoint 2 1.5 5\n}";
 //! let err = Scene::<I16F16>::parse(text).unwrap_err();
@@ -423,7 +424,8 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
     /// A [`SceneError`] with the line and column of the first problem.
     ///
     /// ```
-    /// use fixray::{Rules, Scene, I16F16};
+    /// use fixray::{Scene, I16F16};
+    /// use fixray::scene::Rules;
     ///
     /// let text = "rules course camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }";
     /// let scene = Scene::<I16F16>::parse_as(text, Rules::Fixray).unwrap();

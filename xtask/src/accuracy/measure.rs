@@ -191,7 +191,7 @@ impl PerFormat for MeasurePaths<'_> {
                 .map(|(x, y)| f(x, y))
                 .collect()
         };
-        let truth_picture = every(&|x, y| fixray::pixel(&truth, x, y));
+        let truth_picture = every(&|x, y| fixray::shade::pixel(&truth, x, y));
         let lines = |scene: &Scene<S>, mode: PlaneMode| -> Picture {
             let mut out = Vec::new();
             let mut line = vec![Rgb888::BLACK; usize::from(w)];
@@ -202,8 +202,9 @@ impl PerFormat for MeasurePaths<'_> {
             }
             out
         };
-        let (ref_ms, reference) =
-            median_ms(self.runs, || every(&|x, y| fixray::pixel(&scene, x, y)));
+        let (ref_ms, reference) = median_ms(self.runs, || {
+            every(&|x, y| fixray::shade::pixel(&scene, x, y))
+        });
         let mut rows = Vec::new();
         let mut push = |path, ms: f64, picture: &Picture| {
             rows.push(PathRow {
@@ -217,7 +218,7 @@ impl PerFormat for MeasurePaths<'_> {
             })
         };
         push("reference (per pixel, normalised rays)", ref_ms, &reference);
-        if fixray::Frame::new(&scene).kernel() == fixray::KernelKind::Flat {
+        if fixray::Frame::<_>::new(&scene).kernel() == fixray::KernelKind::Flat {
             // The general fast path, as the renderer used it for these scenes before
             // the pure-geometry kernel: the plane `fast::Primary` picks, its ambient colour.
             let primary = fixray::internals::Primary::new(&scene.view()).expect("a plane scene");
@@ -228,10 +229,10 @@ impl PerFormat for MeasurePaths<'_> {
                 {
                     Some(Ok(Some(hit))) => {
                         let m = scene.objects[hit.index].material;
-                        fixray::to_rgb888(scene.materials[usize::from(m)].ambient)
+                        fixray::shade::to_rgb888(scene.materials[usize::from(m)].ambient)
                     }
-                    Some(Ok(None)) => fixray::to_rgb888(scene.background),
-                    _ => fixray::pixel(&scene, x, y),
+                    Some(Ok(None)) => fixray::shade::to_rgb888(scene.background),
+                    _ => fixray::shade::pixel(&scene, x, y),
                 })
             });
             push("fast: cross-products, one pixel at a time", ms, &picture);

@@ -38,7 +38,8 @@ use embedded_graphics::primitives::{Circle, Line, PrimitiveStyle, Rectangle, Tri
 use embedded_graphics::text::{Alignment, Text};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use fixray::compare::{Comparison, compare};
-use fixray::{Scalar, Scene, render_line, trace_pixel};
+use fixray::shade::trace_pixel;
+use fixray::{Scalar, Scene, render_line};
 
 /// The scenes: name, what it is, text. The grazing scene is third (the epsilon sweep).
 const SCENES: [(&str, &str, &str); 10] = [
