@@ -1,5 +1,5 @@
 //! Cross-check of fixray's renders against an independent f64 reference written from
-//! `scene-format.md` alone (Geometry and Shading sections, ambient-only subset).
+//! `docs/scene-format.md` alone (Geometry and Shading sections, ambient-only subset).
 //!
 //! The reference below does not share any code with fixray: it has its own parser for
 //! the ambient-only subset (camera, material, plane, background, precision) and its own
