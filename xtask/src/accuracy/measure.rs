@@ -219,8 +219,8 @@ impl PerFormat for MeasurePaths<'_> {
         };
         push("reference (per pixel, normalised rays)", ref_ms, &reference);
         if fixray::Frame::<_>::new(&scene).kernel() == fixray::KernelKind::Flat {
-            // The general fast path, as the renderer used it for these scenes before
-            // the pure-geometry kernel: the plane `fast::Primary` picks, its ambient colour.
+            // The general fast path, which the pure-geometry kernel replaces for these
+            // scenes: the plane `fast::Primary` picks, its ambient colour.
             let primary = fixray::internals::Primary::new(&scene.view()).expect("a plane scene");
             let (ms, picture) = median_ms(self.runs, || {
                 every(&|x, y| match primary
