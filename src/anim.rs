@@ -34,6 +34,15 @@ use core::fmt;
 use crate::{Object, Scalar, Scene, Shape, Sphere, Vec3};
 
 /// Why a [`Bounce`] cannot be made or applied.
+///
+/// ```
+/// use fixray::anim::{AnimError, Bounce};
+/// use fixray::{Scene, I16F16};
+///
+/// let planes = Scene::<I16F16>::parse(include_str!("../scenes/planes.scene"))?;
+/// assert_eq!(Bounce::boing(&planes.objects), Err(AnimError::NoSphere));
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum AnimError {
     /// The scene has no sphere to move.
@@ -60,6 +69,20 @@ impl fmt::Display for AnimError {
 impl core::error::Error for AnimError {}
 
 /// A sphere bouncing along a floor (see the module documentation for the path).
+///
+/// ```
+/// use fixray::anim::Bounce;
+/// use fixray::{Scene, I16F16};
+///
+/// let mut scene = Scene::<I16F16>::parse(include_str!("../scenes/boing.scene"))?;
+/// let bounce = Bounce::boing(&scene.objects)?;
+/// let start = scene.objects[bounce.object()];
+/// bounce.apply(&mut scene, 5)?;
+/// assert_ne!(scene.objects[bounce.object()], start);
+/// bounce.apply(&mut scene, bounce.frames())?; // frame n is frame 0: the loop closes
+/// assert_eq!(scene.objects[bounce.object()], start);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bounce<S> {
     object: usize,

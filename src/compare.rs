@@ -23,6 +23,18 @@ use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use crate::{AsView, Frame, Scalar, Traced};
 
 /// How a render in one format differs from a reference render of the same scene.
+///
+/// ```
+/// use fixray::compare::compare;
+/// use fixray::{Scene, I16F16};
+///
+/// let text = include_str!("../scenes/default.scene");
+/// let c = compare(&Scene::<I16F16>::parse(text)?, &Scene::<f64>::parse(text)?, |_, _, _, _| {});
+/// assert_eq!(c.pixels, 160 * 120);
+/// assert!(c.differing_share() < 0.05); // I16F16 draws the default scene as f64 does, nearly
+/// assert!(c.psnr() > 40.0);
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Comparison {
     /// Pixels compared (the smaller of the two cameras).

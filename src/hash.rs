@@ -22,6 +22,23 @@ const PRIME: u32 = 0x0100_0193;
 
 /// FNV-1a (32 bits) over the R, G, B bytes of each pixel, in the order pushed (row by
 /// row, left to right, for a frame).
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb888;
+/// use fixray::hash::FrameHash;
+/// use fixray::{render_line, Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse(include_str!("../scenes/planes.scene"))?;
+/// let mut line = [Rgb888::new(0, 0, 0); 160];
+/// let mut hash = FrameHash::new();
+/// for row in 0..scene.camera.height {
+///     render_line(&scene, row, &mut line);
+///     line.iter().for_each(|&c| hash.push(c));
+/// }
+/// // What a firmware prints for the same scene in the same format, bit for bit.
+/// assert_ne!(hash.value(), FrameHash::new().value());
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FrameHash(u32);
 

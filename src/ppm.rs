@@ -29,6 +29,17 @@ use core::fmt;
 pub const MAX_SIDE: u32 = 16_384;
 
 /// What is wrong with a PPM file.
+///
+/// ```
+/// use fixray::ppm::{Ppm, PpmError};
+///
+/// assert_eq!(Ppm::parse(b"P3 1 1 255\n0 0 0").unwrap_err(), PpmError::NotPpm); // ASCII PPM
+/// assert_eq!(Ppm::parse(b"P6 0 1 255\n").unwrap_err(), PpmError::ZeroSize);
+/// assert_eq!(
+///     Ppm::parse(b"P6 1 1 255\n\x00").unwrap_err(),
+///     PpmError::Truncated { expected: 3, found: 1 }
+/// );
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PpmError {
     /// It does not start with `P6` (a binary PPM).
@@ -72,6 +83,15 @@ impl fmt::Display for PpmError {
 impl core::error::Error for PpmError {}
 
 /// A binary PPM image borrowed from its bytes ([`Ppm::parse`]).
+///
+/// ```
+/// use fixray::ppm::Ppm;
+///
+/// // Two bytes a sample where maxval is above 255, scaled to 0 ..= 255.
+/// let image = Ppm::parse(b"P6 1 1 65535\n\xff\xff\x80\x00\x00\x10").unwrap();
+/// assert_eq!(image.maxval(), 65535);
+/// assert_eq!(image.pixel(0, 0), Some([255, 128, 0]));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Ppm<'a> {
     width: u32,

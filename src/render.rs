@@ -67,7 +67,8 @@ use crate::{AsView, Scalar, SceneView, Traced};
 /// let scene = Scene::<I16F16>::parse(include_str!("../scenes/planes.scene")).unwrap();
 /// let frame = Frame::new(&scene);
 /// let spans = Frame::with_mode(&scene, PlaneMode::Spans);
-/// let (mut a, mut b, mut c) = ([Rgb565::new(0, 0, 0); 160], [Rgb565::new(0, 0, 0); 160], [Rgb565::new(0, 0, 0); 160]);
+/// let black = Rgb565::new(0, 0, 0);
+/// let (mut a, mut b, mut c) = ([black; 160], [black; 160], [black; 160]);
 /// for row in 0..scene.camera.height {
 ///     frame.render_line(row, &mut a); // send `a` to the display here
 ///     render_line(&scene, row, &mut b);
@@ -240,9 +241,10 @@ impl<S: Scalar, C: PixelColor + From<Rgb888>> Drawable for Frame<'_, S, C> {
 
 impl<S: Scalar, C> Frame<'_, S, C> {
     /// Columns `start..start + out.len()` of scanline `row` into `out` (the shading's
-    /// colours, whatever the frame's `C`), streamed as [`Frame::draw_counted`] computes them (no line buffer of the frame's width: a tool compares
-    /// two frames chunk by chunk). Chunks that start at multiples of 64 give exactly the
-    /// pixels of [`Frame::render_line`] (its block and resync points).
+    /// colours, whatever the frame's `C`), streamed as [`Frame::draw_counted`] computes them
+    /// (no line buffer of the frame's width: a tool compares two frames chunk by chunk).
+    /// Chunks that start at multiples of 64 give exactly the pixels of
+    /// [`Frame::render_line`] (its block and resync points).
     pub(crate) fn render_columns(&self, row: u16, start: u16, out: &mut [Rgb888]) {
         let end = u16::try_from(out.len())
             .ok()

@@ -14,8 +14,8 @@ use crate::Scalar;
 /// let (up, origin, one) = (v(0.0, 1.0, 0.0), v(0.0, 0.0, 0.0), I16F16::ONE);
 /// // `xdir` along the normal has no direction in the plane.
 /// assert_eq!(PlaneFrame::new(up, origin, up, [one; 2]), Err(PlaneFrameError::XdirInvalid));
-/// let x = v(1.0, 0.0, 0.0);
-/// assert_eq!(PlaneFrame::new(up, origin, x, [one, I16F16::ZERO]), Err(PlaneFrameError::NonPositiveSize));
+/// let (x, flat) = (v(1.0, 0.0, 0.0), [one, I16F16::ZERO]);
+/// assert_eq!(PlaneFrame::new(up, origin, x, flat), Err(PlaneFrameError::NonPositiveSize));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PlaneFrameError {
@@ -65,7 +65,8 @@ pub enum Tiling {
 ///
 /// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
 /// // The floor y = 0 from the origin, u along x (so v = N × u = −z), tiles of 1 × 1.
-/// let floor = PlaneFrame::new(v(0.0, 1.0, 0.0), v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), [I16F16::from_num(1); 2]).unwrap();
+/// let (up, origin, x) = (v(0.0, 1.0, 0.0), v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0));
+/// let floor = PlaneFrame::new(up, origin, x, [I16F16::from_num(1); 2]).unwrap();
 /// let p = v(2.5, 0.0, -1.5);
 /// assert_eq!(floor.coords(p), Some((I16F16::from_num(2.5), I16F16::from_num(1.5))));
 /// assert_eq!(floor.odd_tile(p), Some(true)); // floor(2.5) + floor(1.5) = 3

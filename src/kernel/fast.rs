@@ -6,7 +6,7 @@
 //! (the eye is every primary ray's base), and per pixel the ray's direction is left
 //! unnormalised, `D = screen point − eye` (its x stepped along the scanline). `N·D` is
 //! linear along the scanline: it is kept as the unrounded double-width sum
-//! ([`KernelArith::Acc`](crate::num::KernelArith::Acc)) and grows by the per-frame `N.x × step` per pixel, so that a
+//! (`KernelArith::Acc`) and grows by the per-frame `N.x × step` per pixel, so that a
 //! pixel costs no product for it (in the fixed formats bit for bit the wide dot product
 //! of the stepped `D`). Spheres keep `oc·D` the same way (`oc = eye − centre`) and test
 //! the discriminant's sign exactly (`sphere_root`). The plane test of `docs/scene-format.md`
@@ -103,7 +103,7 @@ pub(crate) const fn block_starts<S: Scalar>() -> u16 {
 pub struct Primary<S: Scalar> {
     terms: Vec<Term<S>, FAST_OBJECTS>,
     /// `N_i.x × step_x` of every term, unrounded: what `N·D` grows by from pixel to
-    /// pixel ([`KernelArith::Acc`](crate::num::KernelArith::Acc)).
+    /// pixel (`KernelArith::Acc`).
     steps: Vec<S::Acc, FAST_OBJECTS>,
     /// `D'_i − N_i·light_j` at `j × objects + i` (the lights' sides of every plane, for
     /// shadow segments: [`crate::shade::PlaneSides`]); empty when they do not fit
@@ -138,7 +138,7 @@ pub struct Primary<S: Scalar> {
     x_unit: S,
     /// Whether every term's `N·D` (and its unrounded sum, and the sum's rounding) fits
     /// the format at every `D` of the frame ([`Primary::frame_fits`]): a step then
-    /// needs no overflow test ([`KernelArith::acc_step_fitting`](crate::num::KernelArith::acc_step_fitting)).
+    /// needs no overflow test (`KernelArith::acc_step_fitting`).
     fits: bool,
 }
 
@@ -798,7 +798,7 @@ impl<S: Scalar> Primary<S> {
 
     /// Brings a scanline's terms up to date with its `D` after [`Primary::advance_dir`]
     /// or [`Primary::restart_dir`]: in the formats whose products are exact
-    /// ([`KernelArith::EXACT_PRODUCTS`](crate::num::KernelArith::EXACT_PRODUCTS)) bit for bit what [`Primary::advance`] would have stepped
+    /// (`KernelArith::EXACT_PRODUCTS`) bit for bit what [`Primary::advance`] would have stepped
     /// them to (both are the exact `N·D` of the same `D`). `None` where a term does not
     /// fit, or the row does not hold every term (it must be restarted whole).
     pub(crate) fn refresh(&self, scene: &SceneView<'_, S>, r: &mut Row<S>) -> Option<()> {
@@ -963,7 +963,7 @@ impl<S: Scalar> Primary<S> {
     /// Moves a scanline to its next pixel: `D.x` grows by the pixel step (rounded once
     /// per frame; callers restart the row from the exact screen x every
     /// [`resync_pixels`] pixels, so the drift stays below half as many DELTAs), and
-    /// `N·D` grows by the unrounded `N.x × step` ([`KernelArith::Acc`](crate::num::KernelArith::Acc)): in the fixed formats
+    /// `N·D` grows by the unrounded `N.x × step` (`KernelArith::Acc`): in the fixed formats
     /// bit for bit the wide dot product of the new `D` (consistent with `D`, so the hit
     /// point lies on the ray through that screen point), with no product per pixel.
     pub fn advance(&self, row: &mut Row<S>) -> Option<()> {
@@ -1324,7 +1324,7 @@ impl<S: Scalar> Primary<S> {
     /// at least the epsilon bound away from it at both ends (so that no pixel between
     /// takes the exact parallel test, and its acceptance, monotone, is the same
     /// throughout). The winner must beat every other accepted plane at both ends by a
-    /// margin that the roundings of `N·D` cannot eat ([`KernelArith::products_clearly_greater`](crate::num::KernelArith::products_clearly_greater):
+    /// margin that the roundings of `N·D` cannot eat (`KernelArith::products_clearly_greater`:
     /// the comparison with unrounded terms is linear, so it holds between the ends too).
     #[inline(never)]
     fn certify_block(&self, a: &Row<S>, winner: Option<usize>, last: u16) -> Option<Block> {

@@ -56,6 +56,22 @@ pub const BLOCK: usize = 64;
 /// How a pure-geometry plane scene is drawn (a scene of infinite planes without lights
 /// or mirrors; other scenes draw the same either way). Choose it with
 /// [`Frame::with_mode`](crate::Frame::with_mode).
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb888;
+/// use fixray::{Frame, PlaneMode, Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse(include_str!("../../scenes/planes.scene"))?;
+/// let (per_pixel, spans) = (Frame::new(&scene), Frame::with_mode(&scene, PlaneMode::Spans));
+/// assert_eq!(spans.mode(), PlaneMode::Spans);
+/// let (mut a, mut b) = ([Rgb888::new(0, 0, 0); 160], [Rgb888::new(0, 0, 0); 160]);
+/// for row in 0..scene.camera.height {
+///     per_pixel.render_line(row, &mut a);
+///     spans.render_line(row, &mut b);
+///     assert_eq!(a, b); // the same picture in the fixed formats
+/// }
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum PlaneMode {
     /// Every pixel compares the planes accepted there.

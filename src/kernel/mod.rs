@@ -60,6 +60,17 @@ pub(crate) enum Kernel<S: Scalar> {
 /// [`crate::Frame::row_kernel`]): the renderer picks the cheapest that draws the scene's
 /// definition, once per frame; without the cargo feature `kernels` (on by default) it is
 /// always [`KernelKind::Reference`].
+///
+/// ```
+/// use fixray::{Frame, KernelKind, Scene, I16F16};
+///
+/// let spheres = Scene::<I16F16>::parse(include_str!("../../scenes/spheres.scene"))?;
+/// let frame: Frame<'_, I16F16> = Frame::new(&spheres);
+/// let kind = frame.kernel();
+/// assert_ne!(kind, KernelKind::Flat); // spheres are not pure plane geometry
+/// assert!((0..spheres.camera.height).all(|row| frame.row_kernel(row) != KernelKind::Flat));
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum KernelKind {
     /// Pure geometry (infinite planes, ambient colours only): no division per pixel

@@ -122,7 +122,7 @@ struct LeanLight<S: Scalar> {
     knl: Option<S>,
     weights: [[S; 3]; 2],
     overflow: [u16; 2],
-    /// Per tile parity, the quick term ([`KernelArith::quick_term`](crate::num::KernelArith::quick_term)): the numerators
+    /// Per tile parity, the quick term (`KernelArith::quick_term`): the numerators
     /// `weights × knl` per channel and the slack `(⌊w_max⌋ + 3)·DELTA`, what the exact
     /// term's truncations can add to the quick quotients' bound ([`lean_color`]); `None`
     /// where `knl` is not known, that parity's weights are negative or overflow, the
@@ -986,7 +986,7 @@ fn lit<S: Scalar, T: Stages>(
 /// [`occluded_among`]).
 ///
 /// Its colour (`Err`), or its pixel (`Ok`) where the last light's term
-/// `w·(255·N·L/|L|²)` was taken quickly, by [`KernelArith::quick_pixel`](crate::num::KernelArith::quick_pixel) (on cores where it
+/// `w·(255·N·L/|L|²)` was taken quickly, by `KernelArith::quick_pixel` (on cores where it
 /// pays): the pixel of `(w·255·N·L)/|L|²` over the colour so far by
 /// one approximate reciprocal, returned only where its error bound settles it. With
 /// `|L|² ≥ 1` and `w ≥ 0` the exact term (a truncated quotient times `w`, floored) is
@@ -1119,7 +1119,7 @@ impl<S: Scalar> LeanRow<S> {
 /// (where the quick term settles it), or by `plane_color` where a sphere's cone does
 /// not clear the pixel (its exact segment test, [`exact_shadow`]: shadowed, the
 /// ambient colour): the same operations in the same order for those cases (the step,
-/// the hit's `x`, the tile's parity, `L.x`, `|L|²`, the cones, [`KernelArith::quick_pixel`](crate::num::KernelArith::quick_pixel)),
+/// the hit's `x`, the tile's parity, `L.x`, `|L|²`, the cones, `KernelArith::quick_pixel`),
 /// without the general cases' lookups and loops; `state` is stepped to `column`; with
 /// the pixel, whether the light lit it. `None` wherever the case is another, with
 /// `state` unchanged but at a resync column, which is restarted (the general path then

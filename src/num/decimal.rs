@@ -23,6 +23,17 @@ use core::cmp::Ordering;
 ///
 /// At least 19 significant digits are kept exactly; further digits are dropped (truncation,
 /// a relative change below 1e-18, far under every format's resolution).
+///
+/// ```
+/// use fixray::num::Decimal;
+/// use fixray::{Scalar, I16F16};
+///
+/// let d = Decimal::parse("0.1").unwrap();
+/// assert_eq!((d.mantissa, d.exponent), (1, -1));
+/// // Converted once, straight into the format: the nearest I16F16 to one tenth.
+/// assert_eq!(I16F16::from_decimal(d), Some(I16F16::from_num(0.1)));
+/// assert_eq!(d.times(30).to_integer(), Some(3));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Decimal {
     /// Sign (`-0` is negative zero, which compares equal to zero).

@@ -58,6 +58,15 @@ pub const MAIN: [&str; 5] = ["i16f16", "i20f12", "i32f32", "f32", "f64"];
 pub const REFERENCE: &str = "f64";
 
 /// A format name that is not in [`FORMATS`].
+///
+/// ```
+/// use fixray::num::formats::{check, UnknownFormat};
+///
+/// assert_eq!(check("i16f16"), Ok("i16f16"));
+/// let err = check("i8f8").unwrap_err();
+/// assert_eq!(err, UnknownFormat::new("i8f8"));
+/// assert!(err.to_string().starts_with("unknown number format `i8f8` (known: i16f16, "));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct UnknownFormat<'a> {
     name: &'a str,

@@ -67,6 +67,22 @@ pub const EPSILON_DELTAS: i32 = 16;
 /// outside the crate. Its other supertrait, `KernelArith`, is private to the crate: the
 /// unrounded sums of products and the quick pixels the kernels step along a scanline,
 /// which generic code reaches through `Scalar` and a user never needs.
+///
+/// ```
+/// use fixray::{Scalar, I16F16, I32F32};
+///
+/// /// The hypotenuse in any format: `None` where it leaves the format's range.
+/// fn hypot<S: Scalar>(a: S, b: S) -> Option<S> {
+///     a.checked_mul(a)?.checked_add(b.checked_mul(b)?)?.checked_sqrt()
+/// }
+/// let int = |n| I16F16::from_i32(n).unwrap();
+/// assert_eq!(hypot(int(3), int(4)), Some(int(5)));
+/// assert_eq!(hypot(3.0_f64, 4.0), Some(5.0));
+/// // 300² + 400² = 250000 does not fit I16F16 (±32768); it fits I32F32.
+/// assert_eq!(hypot(int(300), int(400)), None);
+/// let (a, b) = (I32F32::from_i32(300).unwrap(), I32F32::from_i32(400).unwrap());
+/// assert_eq!(hypot(a, b).map(Scalar::to_f64), Some(500.0));
+/// ```
 pub trait Scalar: Series + KernelArith + Copy + PartialOrd + Debug + Send + Sync + 'static {
     /// Lower-case name as used on command lines: `i16f16`, `f32`, ...
     const NAME: &'static str;

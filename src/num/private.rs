@@ -69,10 +69,10 @@ pub trait KernelArith: Copy {
         Self::acc_add(sum, Self::acc_mul(a[2], b[2])?)
     }
 
-    /// Whether `a·b − c·d` exceeds `|a| + |c|` in units of `DELTA²`: far enough that `b`
-    /// and `d` each moving by a `DELTA` cannot bring `a·b` down to `c·d` (twice what two
-    /// roundings to nearest can move them). Exact in the fixed formats; `false` where the format cannot say
-    /// (the default: floats and the variants), so that a caller only ever skips work.
+    /// Whether `a·b − c·d` exceeds `|a| + |c|` in units of `DELTA²`: far enough that `b` and `d`
+    /// each moving by a `DELTA` cannot bring `a·b` down to `c·d` (twice what two roundings to
+    /// nearest can move them). Exact in the fixed formats; `false` where the format cannot say (the
+    /// default: floats and the variants), so that a caller only ever skips work.
     #[inline]
     fn products_clearly_greater(a: Self, b: Self, c: Self, d: Self) -> bool {
         let _ = (a, b, c, d);

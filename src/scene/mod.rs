@@ -88,7 +88,9 @@ pub const MIN_SCALE_DELTAS: i32 = 4;
 /// use fixray::scene::Color;
 /// use fixray::{Scene, I16F16};
 ///
-/// let scene = Scene::<I16F16>::parse("camera c { pixeldim 1 1 worlddim 1 1 viewpoint 0.5 0.5 5 } background 1 0.5 0")?;
+/// let scene = Scene::<I16F16>::parse(
+///     "camera c { pixeldim 1 1 worlddim 1 1 viewpoint 0.5 0.5 5 } background 1 0.5 0",
+/// )?;
 /// let sky: Color<I16F16> = scene.background; // a scene's 0 ..= 1, in channel units
 /// assert_eq!(sky.map(|c| c.to_num::<f64>()), [255.0, 127.5, 0.0]);
 /// # Ok::<(), fixray::SceneError>(())

@@ -39,8 +39,8 @@ impl<S> Passage<S> {
 }
 
 /// The lights' share of a hit's colour under the rule set `R`, added to `color` (see
-/// [`crate::shade::Fixray`]'s and [`crate::shade::Course`]'s tracers). `at.normal` is the one the rules
-/// light with (facing the ray, or as given). Not inlined: its locals are not part of the
+/// [`crate::shade::Fixray`]'s and [`crate::shade::Course`]'s tracers). `at.normal` is the one
+/// the rules light with (facing the ray, or as given). Not inlined: its locals are not part of the
 /// frames of the tracers' loops.
 ///
 /// A light whose `L = light − hit` squares within the format is lit by [`segment_terms`]

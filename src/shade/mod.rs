@@ -257,6 +257,25 @@ pub fn shade<S: Scalar>(
 }
 
 /// What a primary ray found: the nearest hit (object index and hit) and the colour.
+///
+/// ```
+/// use fixray::shade::trace_pixel;
+/// use fixray::{Scene, I16F16};
+///
+/// let scene = Scene::<I16F16>::parse(
+///     "rules fixray
+///      camera c { pixeldim 4 4 worlddim 4 4 viewpoint 2 2 5 }
+///      material red { ambient 1 0 0 }
+///      plane floor { material red normal 0 1 0 point 0 0.4 0 }",
+/// )?;
+/// let floor = trace_pixel(&scene, 0, 3);
+/// let (object, hit) = floor.hit.unwrap();
+/// assert_eq!(object, 0);
+/// assert!((hit.point.y.to_num::<f64>() - 0.4).abs() < 1e-3);
+/// assert_eq!(floor.color[0].to_num::<f64>(), 255.0);
+/// assert_eq!(trace_pixel(&scene, 0, 0).color, scene.background); // the sky
+/// # Ok::<(), fixray::SceneError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Traced<S> {
     /// The nearest accepted hit, or `None` for the background.

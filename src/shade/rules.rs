@@ -22,12 +22,37 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 /// The crate's own rules ([`Rules::Fixray`]): pixel centres, rounding, the normal facing
 /// the ray, secondary rays spawned off the surface by its error bound, the nearest root
 /// of a sphere, `reflective` mirrors, glints divided by the light distance.
+///
+/// ```
+/// use fixray::geometry::{Plane, Ray, RayKind, Shape, Vec3};
+/// use fixray::shade::{Fixray, RuleSet};
+/// use fixray::{Scalar, I16F16};
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// let wall = Shape::Plane(Plane::new(v(0.0, 0.0, 1.0), v(0.0, 0.0, -5.0)).unwrap());
+/// let ray = Ray { base: v(0.0, 0.0, 5.0), dir: v(0.0, 0.0, -1.0), kind: RayKind::Primary };
+/// let hit = Fixray::intersect(&wall, &ray, I16F16::DEFAULT_EPSILON).unwrap();
+/// assert_eq!(hit.t, I16F16::from_num(10));
+/// assert_eq!(Fixray::RULES.name(), "fixray");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Fixray;
 
 /// The course tracer's rules ([`Rules::Course`], `course/COURSE-RULES.md`): the screen
 /// rule for plane-type hits of every ray, the near sphere root only, secondary rays that
 /// start on the hit and skip its object, colours divided by the path length.
+///
+/// ```
+/// use fixray::geometry::{Miss, Plane, Ray, RayKind, Shape, Vec3};
+/// use fixray::shade::{Course, RuleSet};
+/// use fixray::{Scalar, I16F16};
+///
+/// let v = |x, y, z| Vec3::<I16F16>::from_f64([x, y, z]).unwrap();
+/// // The course's screen rule holds for every ray: a shadow ray meets nothing at z > 0.01.
+/// let near = Shape::Plane(Plane::new(v(0.0, 0.0, 1.0), v(0.0, 0.0, 0.5)).unwrap());
+/// let ray = Ray { base: v(0.0, 0.0, 5.0), dir: v(0.0, 0.0, -1.0), kind: RayKind::Secondary };
+/// assert_eq!(Course::intersect(&near, &ray, I16F16::DEFAULT_EPSILON), Err(Miss::InFrontOfScreen));
+/// ```
 #[cfg(feature = "course")]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Course;

@@ -19,6 +19,18 @@ use ::fixed::types::{I16F16, I20F12, I32F32};
 use super::variants::{F32Micro, I16F16Narrow, I16F16Recip};
 
 /// The shading series of a number format (a supertrait of [`super::Scalar`]).
+///
+/// ```
+/// use fixray::num::Series;
+/// use fixray::{Scalar, I16F16};
+///
+/// // A spotlight's cone of 60°: cos(π/3) = ½, within the series' stated error.
+/// let third_pi = I16F16::from_f64(core::f64::consts::FRAC_PI_3).unwrap();
+/// assert!((third_pi.cos().unwrap().to_f64() - 0.5).abs() < 1e-4);
+/// // A glint of shininess 8 at N·H = 0.9: 0.9⁸ ≈ 0.430.
+/// let nh = I16F16::from_f64(0.9).unwrap();
+/// assert!((nh.pow_unit(I16F16::from_i32(8).unwrap()).unwrap().to_f64() - 0.4305).abs() < 1e-3);
+/// ```
 pub trait Series: Sized {
     /// `self^exponent` for `self` in [0, 1] and `exponent >= 1` (the specular term).
     /// Floats use `libm`'s `pow`; fixed formats [`pow_unit::pow_unit`] (error at most
