@@ -6,6 +6,7 @@ use common::sampling;
 use sampling::SplitMix;
 
 use fixray::scene::Rules;
+use fixray::scene::SceneErrorKind;
 use fixray::{I16F16, I20F12, I32F32, Scalar, Scene, SceneError};
 
 const CAMERA: &str = "camera cam { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }\n";
@@ -38,6 +39,24 @@ fn check(text: &str, line: u32, column: u32, message: &str) {
         "position of `{e}` in:\n{text}"
     );
     assert_eq!(e.to_string(), format!("{line}:{column}: {message}"));
+    assert_one_line(&e);
+}
+
+/// An error's message is one line.
+fn assert_one_line(e: &SceneError) {
+    let text = e.to_string();
+    assert!(!text.contains(['\n', '\r']), "{text:?}");
+}
+
+/// The main formats (`fixray::num::formats::MAIN`) that read `text`.
+fn readers(text: &str) -> Vec<&'static str> {
+    fn reads<S: Scalar>(text: &str) -> bool {
+        Scene::<S>::parse_fixray(text).is_ok()
+    }
+    fixray::num::formats::MAIN
+        .into_iter()
+        .filter(|f| fixray::with_format!(f, reads(text)).unwrap())
+        .collect()
 }
 
 #[test]
@@ -80,7 +99,60 @@ fn unknown_attribute() {
         &format!("{CAMERA}material m {{\n  ambiant 1 1 1 }}"),
         3,
         3,
-        "`ambiant` is not an attribute of material",
+        "`ambiant` is not an attribute of material (did you mean `ambient`? material has: \
+         ambient, diffuse, specular, shininess, reflective, transparency)",
+    );
+}
+
+/// An unknown attribute lists the entity's attributes and names the nearest one: a
+/// letter changed, dropped, added or two swapped, up to a third of the name's letters;
+/// none when no attribute is that near.
+#[test]
+fn an_unknown_attribute_names_the_nearest_and_lists_the_attributes() {
+    let sphere = |attribute: &str| {
+        format!("{CAMERA}material m {{}}\nsphere s {{ material m {attribute} 0 0 -5 radius 1 }}")
+    };
+    let has = "sphere has: material, center, radius";
+    check(
+        &sphere("centre"),
+        3,
+        23,
+        &format!("`centre` is not an attribute of sphere (did you mean `center`? {has})"),
+    );
+    for (typo, nearest) in [
+        ("cnter", "center"),
+        ("centerr", "center"),
+        ("cetner", "center"),
+        ("Center", "center"),
+        ("materail", "material"),
+        ("radious", "radius"),
+    ] {
+        let kind = err::<I16F16>(&sphere(typo)).kind;
+        assert!(
+            matches!(kind, SceneErrorKind::UnknownAttribute { .. }),
+            "{kind:?}"
+        );
+        assert_eq!(kind.nearest(), Some(nearest), "{typo}");
+    }
+    // Too far from every attribute (three edits from `center`): no guess.
+    check(
+        &sphere("middle"),
+        3,
+        23,
+        &format!("`middle` is not an attribute of sphere ({has})"),
+    );
+    check(
+        &sphere("centroid"),
+        3,
+        23,
+        &format!("`centroid` is not an attribute of sphere ({has})"),
+    );
+    // `v0` is one edit from `v1` and `v2` as well: the first of the nearest.
+    check(
+        &format!("{CAMERA}material m {{}}\ntri t {{ material m v3 0 0 0 }}"),
+        3,
+        20,
+        "`v3` is not an attribute of tri (did you mean `v0`? tri has: material, v0, v1, v2)",
     );
 }
 
@@ -124,9 +196,76 @@ fn missing_open_brace() {
 fn missing_close_brace_at_end_of_input() {
     check(
         "camera c { pixeldim 8 6\n worlddim 8 6",
+        1,
+        10,
+        "`camera c` is not closed: missing `}`",
+    );
+    // In the middle of an attribute the missing number is the first problem.
+    check(
+        "camera c { pixeldim 8 6\n worlddim 8",
+        2,
+        12,
+        "unexpected end of input: expected a number",
+    );
+}
+
+/// A block whose `}` is missing is reported at its `{`, naming the block and the
+/// statement that follows it, not as an unknown attribute at the next block's keyword.
+#[test]
+fn an_unclosed_block_is_reported_at_its_brace() {
+    let red = "material red { ambient 1 0 0\n";
+    // The next block's keyword at the start of a line.
+    check(
+        &format!("{CAMERA}{red}plane p {{ material red normal 0 1 0 point 0 0 0 }}"),
         2,
         14,
-        "unexpected end of input: expected an attribute or `}`",
+        "`material red` is not closed: missing `}` before `plane`",
+    );
+    // On the same line: an entity keyword followed by a name and `{`.
+    check(
+        &format!("{CAMERA}material red {{ ambient 1 0 0 sphere s {{ }}"),
+        2,
+        14,
+        "`material red` is not closed: missing `}` before `sphere`",
+    );
+    // `material` is an attribute of a plane, but not when a name and `{` follow it.
+    check(
+        &format!(
+            "{CAMERA}material m {{}}\nplane p {{ material m normal 0 1 0 point 0 0 0\n\
+             material n {{ }}"
+        ),
+        3,
+        9,
+        "`plane p` is not closed: missing `}` before `material`",
+    );
+    // A statement keyword at the start of a line.
+    check(
+        &format!("{CAMERA}{red}background 0 0 0"),
+        2,
+        14,
+        "`material red` is not closed: missing `}` before `background`",
+    );
+    // At the end of the input.
+    check(
+        &format!("{CAMERA}{red}"),
+        2,
+        14,
+        "`material red` is not closed: missing `}`",
+    );
+    // An attribute at the start of a line is an attribute (`material` in a plane), and a
+    // keyword that starts no block, inside a line, is an unknown attribute.
+    assert!(
+        Scene::<I16F16>::parse_fixray(&format!(
+            "{CAMERA}material m {{}}\nplane p {{\nmaterial m\nnormal 0 1 0 point 0 0 0 }}"
+        ))
+        .is_ok()
+    );
+    check(
+        &format!("{CAMERA}material m {{ ambient 1 1 1 sphere }}"),
+        2,
+        28,
+        "`sphere` is not an attribute of material (material has: ambient, diffuse, \
+         specular, shininess, reflective, transparency)",
     );
 }
 
@@ -286,7 +425,8 @@ fn number_beyond_the_format() {
         &text,
         3,
         43,
-        "`40000` does not fit in the i16f16 number format",
+        "`40000` does not fit i16f16 (range ±32768); i20f12, i32f32, f32 \
+         and f64 hold it",
     );
     // The same scene fits in I20F12 (±524288) and f32.
     assert!(Scene::<I20F12>::parse_fixray(&text).is_ok());
@@ -296,7 +436,8 @@ fn number_beyond_the_format() {
         &format!("{CAMERA}background 40000 0 0"),
         2,
         12,
-        "`40000` does not fit in the i16f16 number format",
+        "`40000` does not fit i16f16 (range ±32768); i20f12, i32f32, f32 \
+         and f64 hold it",
     );
     // ... but its 255-fold (channel units) may saturate: 200 × 255 = 51000 > 32768 is
     // stored as I16F16::MAX, which displays as 255 exactly like 51000 would.
@@ -307,8 +448,67 @@ fn number_beyond_the_format() {
         "precision 1e999",
         1,
         11,
-        "`1e999` does not fit in the i16f16 number format",
+        "`1e999` does not fit i16f16 (range ±32768); no number format \
+         holds it",
     );
+}
+
+/// A number beyond the format gives the format's range and names exactly the main
+/// formats that read the scene.
+#[test]
+fn a_number_beyond_the_format_names_the_formats_that_hold_it() {
+    let scene = |x: &str| format!("{CAMERA}light l {{ location {x} 0 0 emissivity 1 1 1 }}");
+    for (x, format, message) in [
+        (
+            "-32768.00001",
+            "i16f16",
+            "`-32768.00001` does not fit i16f16 (range ±32768); i20f12, \
+             i32f32, f32 and f64 hold it",
+        ),
+        (
+            "600000",
+            "i20f12",
+            "`600000` does not fit i20f12 (range ±524288); i32f32, f32 and \
+             f64 hold it",
+        ),
+        (
+            "3e9",
+            "i32f32",
+            "`3e9` does not fit i32f32 (range ±2147483648); f32 and \
+             f64 hold it",
+        ),
+        (
+            "1e39",
+            "f32",
+            "`1e39` does not fit f32 (range ±3.4e38); f64 holds it",
+        ),
+        (
+            "2e308",
+            "f64",
+            "`2e308` does not fit f64 (range ±1.8e308); no number format holds it",
+        ),
+    ] {
+        let text = scene(x);
+        let e = fixray::with_format!(format, err(&text)).unwrap();
+        assert_eq!(e.to_string(), format!("2:20: {message}"));
+        assert!(matches!(e.kind, SceneErrorKind::DoesNotFit { .. }));
+        // The formats named are the ones that read it.
+        let named: Vec<&str> = readers(&text)
+            .into_iter()
+            .filter(|f| message.contains(&format!(" {f}")) && *f != format)
+            .collect();
+        assert_eq!(readers(&text), named, "{x}");
+    }
+    // At the edge: 32767.9999999 rounds to 32768, beyond I16F16; 32767.99999 to its
+    // largest value.
+    let e = err::<I16F16>(&scene("32767.9999999"));
+    assert!(
+        e.to_string()
+            .ends_with("; i20f12, i32f32, f32 and f64 hold it"),
+        "{e}"
+    );
+    assert_eq!(readers(&scene("32767.9999999"))[0], "i20f12");
+    assert_eq!(readers(&scene("32767.99999"))[0], "i16f16");
 }
 
 #[test]
@@ -456,8 +656,97 @@ fn duplicates_of_singletons() {
 
 #[test]
 fn missing_camera() {
-    check("material m {}\n", 2, 1, "the scene has no camera");
-    check("", 1, 1, "the scene has no camera");
+    let message = "no camera: add one, such as `camera cam { pixeldim 160 120 worlddim 4 3 \
+                   viewpoint 2 1.5 5 }`";
+    check("material m {}\n", 2, 1, message);
+    check("", 1, 1, message);
+    // The suggested camera is one, in both rule sets and every main format.
+    let suggested = message.split('`').nth(1).unwrap();
+    assert!(suggested.starts_with("camera cam {"), "{suggested}");
+    for rules in Rules::ALL {
+        let s = Scene::<I16F16>::parse_as(suggested, rules).unwrap();
+        assert_eq!((s.camera.width, s.camera.height), (160, 120));
+    }
+    assert_eq!(readers(suggested), fixray::num::formats::MAIN);
+}
+
+/// Control and invisible characters are shown escaped in quoted tokens; a byte order
+/// mark at the very start of a file is skipped.
+#[test]
+fn invisible_characters_are_shown_escaped() {
+    let keyword = |text: &str, line, column, token: &str| {
+        let e = err::<I16F16>(text);
+        assert_eq!((e.line, e.column), (line, column), "{e}");
+        let message = format!("{line}:{column}: unknown keyword `{token}` (expected camera, ");
+        assert!(e.to_string().starts_with(&message), "{e}");
+    };
+    // A byte order mark where two files were joined, a NUL, a no-break space.
+    keyword(
+        &format!("{CAMERA}\u{feff}camera c {{ }}"),
+        2,
+        1,
+        "\\u{feff}camera",
+    );
+    keyword("\0camera", 1, 1, "\\u{0}camera");
+    keyword("camera\u{a0}c { }", 1, 1, "camera\\u{a0}c");
+    check(
+        &format!("{CAMERA}material m {{ ambient\u{200b} 1 1 1 }}"),
+        2,
+        14,
+        "`ambient\\u{200b}` is not an attribute of material (did you mean `ambient`? \
+         material has: ambient, diffuse, specular, shininess, reflective, transparency)",
+    );
+    // A byte order mark that starts the file is skipped: columns count from the first
+    // visible character.
+    let s = Scene::<I16F16>::parse_fixray(&format!("\u{feff}{CAMERA}")).unwrap();
+    assert_eq!(s.camera.width, 8);
+    check(
+        "\u{feff}camera c {",
+        1,
+        10,
+        "`camera c` is not closed: missing `}`",
+    );
+}
+
+/// Every error's message is one line: every kind this file produces, in every main
+/// format, and a storm of mangled scenes ([`mangled_scenes_never_panic`] checks the same).
+#[test]
+fn every_message_is_one_line() {
+    fn all<S: Scalar>(texts: &[String]) -> usize {
+        texts
+            .iter()
+            .filter_map(|t| Scene::<S>::parse_fixray(t).err())
+            .inspect(assert_one_line)
+            .count()
+    }
+    let m = format!("{CAMERA}material m {{}}\n");
+    let texts: Vec<String> = [
+        "camer c { }".to_string(),
+        format!("{m}sphere s {{ material m centre 0 0 0 radius 1 }}"),
+        format!("{m}sphere s {{ material m center 0 0 0 radius 1"),
+        format!("{m}sphere s {{ material m center 0 0 0 radius 1\nplane p {{ }}"),
+        format!("{m}sphere s {{ material m center 0 0 0 radius 1e-9 }}"),
+        format!("{m}sphere s {{ material m center 0 0 0 radius 1000 }}"),
+        format!("{m}plane p {{ material m normal 0 0 0 point 0 0 0 }}"),
+        format!("{m}plane p {{ material x normal 0 0 1 point 0 0 0 }}"),
+        format!("{m}plane p {{ material m normal 1 1 0 point 3e4 3e4 0 }}"),
+        format!("{m}light l {{ location 1e40 0 0 emissivity 1 1 1 }}"),
+        format!("{m}material m {{}}"),
+        format!("{CAMERA}{CAMERA}"),
+        "camera c { pixeldim 160 120 worlddim 1e-5 1e-5 viewpoint 0 0 1 }".to_string(),
+        "camera c { pixeldim 0 1 }".to_string(),
+        "camera c pixeldim".to_string(),
+        "camera 9 {".to_string(),
+        "\u{feff}\u{85}\u{2028}\u{0}".to_string(),
+        "rules mine".to_string(),
+        format!("{m}texture t {{ filename a.ppm }}"),
+        String::new(),
+    ]
+    .into();
+    // Every text is an error in I16F16; most in the others.
+    assert_eq!(all::<I16F16>(&texts), texts.len());
+    let others = all::<I20F12>(&texts) + all::<I32F32>(&texts) + all::<f32>(&texts);
+    assert!(others + all::<f64>(&texts) > 3 * texts.len(), "{others}");
 }
 
 #[test]
@@ -651,6 +940,7 @@ fn mangled_scenes_never_panic() {
         .flatten()
         {
             errors += 1;
+            assert_one_line(&result);
             assert!(
                 result.line >= 1 && result.line <= lines,
                 "{result} in:\n{text}"

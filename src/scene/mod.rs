@@ -29,7 +29,10 @@ mod rules;
 pub(crate) use camera::PixelRay;
 pub use camera::{Camera, PixelGrid};
 pub use parse::schema;
-pub use parse::{MAX_QUOTED, Quoted, SceneError, SceneErrorKind, TextureProblem};
+pub use parse::{
+    MAX_NUMBER, MAX_QUOTED, Quantity, Quoted, QuotedNumber, SceneError, SceneErrorKind,
+    TextureProblem,
+};
 pub use plan::Plan;
 pub use rules::{Rules, UnknownRules};
 
@@ -48,26 +51,34 @@ pub const MAX_PROJECTORS: usize = if cfg!(feature = "textures") { 2 } else { 0 }
 /// Largest `pixeldim` in either direction, as the scene format states.
 pub const MAX_PIXELDIM: u16 = 4096;
 
-/// The smallest scale a scene may have, in units of its number format's resolution:
-/// [`Scene::parse`] refuses a scene whose pixel pitch (`worlddim / pixeldim`, along
-/// either axis) or sphere radius is below this many [`Scalar::ulp`]s of the largest
-/// coordinate it is formed among (the window's size and the eye's coordinate along that
-/// axis; the sphere's centre and radius), or, in a fixed format, whose radius² is below
-/// this many `DELTA`s
-/// ([`SceneErrorKind::BelowResolution`], at the number at fault, naming the formats that
-/// resolve it). In a fixed format the ulp is `DELTA` everywhere; in a float it is `DELTA`
-/// (the machine epsilon) times the magnitude, at least 1, as every tolerance of the
-/// renderer has it; a float's radius² carries a relative error and is not checked.
+/// The smallest scale a scene may have, in units of its number format's resolution.
+/// [`Scene::parse`] refuses, with [`SceneErrorKind::BelowResolution`] at the number at
+/// fault (its message names the formats that resolve it):
+///
+/// - a pixel pitch (`worlddim / pixeldim`, along either axis) below this many
+///   [`Scalar::ulp`]s of the larger of the window's size and the eye's coordinate along
+///   that axis (`screen − eye` is rounded there);
+/// - in a fixed format, a sphere whose radius² is below this many `DELTA`s (which puts
+///   its radius above as many);
+/// - in a float, a sphere whose radius is below this many ulps of its largest coordinate
+///   (its radius² carries a relative error: no floor of its own).
+///
+/// In a fixed format the ulp is `DELTA` at every magnitude; in a float it is `DELTA` (the
+/// machine epsilon) times the magnitude, at least 1, as the renderer's tolerances take
+/// it. A `worlddim` or radius that rounds to 0 is an [`SceneErrorKind::OutOfDomain`]
+/// error, and a radius² beyond the range is [`SceneErrorKind::BeyondRange`]. A scene
+/// built in code is not checked.
 ///
 /// Why 4: a screen point is rounded once, by at most ½ `DELTA`, which at a pitch of
 /// 4 `DELTA` is an eighth of a pixel, below what moves an edge by a pixel; a radius² of
 /// 4 `DELTA` (its rounding is under one) puts a sphere's outline within 14 % of its size.
-/// Below that a picture is garbage without a word: the default scene scaled down to a
-/// pitch of 0.33 `DELTA` in I16F16 draws 1.5 % of its pixels off f64's, at 0.2 `DELTA`
-/// in I20F12 23 %, while at 2 to 3.3 `DELTA`s both draw f64's picture; a millimetre
-/// scene (`worlddim 0.001 0.00075`, a sphere of radius 0.0005, pitch 0.4 `DELTA` and
-/// radius² 0.02 `DELTA` in I16F16) 91 %. Every shipped scene and course scene is at least
-/// 41 `DELTA`s per pixel and 2,000 per radius² in every format that reads it.
+/// Below that a picture is garbage without a word (pixels more than 8 levels off f64's):
+/// the default scene scaled down to a pitch of 0.33 `DELTA` draws 1.5 % of them in
+/// I16F16, to 0.2 `DELTA` 23 % in I20F12, while at 2 to 3.3 `DELTA`s both draw f64's
+/// picture; a millimetre scene (`worlddim 0.001 0.00075` over 160 × 120 pixels, a sphere
+/// of radius 0.0005: pitch 0.4 `DELTA` and radius² 0.02 `DELTA` in I16F16) 47 %. Every
+/// shipped scene and course scene is at least 41 ulps per pixel and 2,000 `DELTA`s per
+/// radius² in every format that reads it.
 ///
 /// ```
 /// use fixray::{I16F16, I32F32, Scene};

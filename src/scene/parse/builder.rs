@@ -4,7 +4,8 @@
 use core::cmp::Ordering;
 
 use super::error::TextureProblem;
-use super::error::{SceneError, SceneErrorKind};
+use super::error::{HINTS, Quantity, QuotedNumber, SceneError, SceneErrorKind};
+use super::lexer::quote_number;
 use super::schema::Entity;
 use super::too_many;
 use super::{Block, Number, Parser, Result, Value, quote};
@@ -90,14 +91,20 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                 }
                 self.register(b)?;
                 let material = self.material_index(b, "material")?;
+                // Checked against the format's scale (`MIN_SCALE_DELTAS`): in a fixed
+                // format the radius² (its DELTA is its ulp at every magnitude, `ZERO`'s;
+                // r² ≥ 4 DELTA puts r above 4 DELTA), in a float the radius at the
+                // magnitude of the sphere's coordinates (its square's error is relative).
                 let center = vector::<S>(b.required("center")?)?;
-                let radius = positive::<S>(&b.required("radius")?.nums[0], "radius")?;
-                let sphere = Sphere::new(center, radius).map_err(|_| {
-                    b.error(SceneErrorKind::DerivedDoesNotFit {
-                        what: "the sphere's radius²",
-                        format: S::NAME,
-                    })
-                })?;
+                let r = &b.required("radius")?.nums[0];
+                let radius = positive::<S>(r, "radius")?;
+                let sphere =
+                    Sphere::new(center, radius).map_err(|_| radius_sq_beyond(r, S::NAME))?;
+                if S::INT_BITS > 0 {
+                    resolved(sphere.radius_sq(), S::ZERO, r, Quantity::RadiusSq, 1)?;
+                } else {
+                    resolved(radius, center.max_abs().max(radius), r, Quantity::Radius, 1)?;
+                }
                 self.push(b, Shape::Sphere(sphere), material)?;
             }
             Entity::TiledPlane | Entity::FPlane => {
@@ -395,6 +402,59 @@ fn cone<S: Scalar>(b: &Block<'_>, location: Vec3<S>) -> Result<Cone<S>> {
     Ok(Cone { axis, cos_theta })
 }
 
+/// The error of a radius whose square is beyond the range of `format`.
+#[cold]
+#[inline(never)]
+fn radius_sq_beyond(r: &Number<'_>, format: &'static str) -> SceneError {
+    r.pos.error(SceneErrorKind::BeyondRange {
+        quantity: Quantity::RadiusSq,
+        number: kept(r),
+        format,
+    })
+}
+
+/// A number as a scale error keeps it: only where its message shows it ([`HINTS`]).
+fn kept(n: &Number<'_>) -> QuotedNumber {
+    if HINTS {
+        quote_number(n.text)
+    } else {
+        QuotedNumber::new()
+    }
+}
+
+/// Checks that a length (`q` over `pixels`: a pitch is a window's width over its pixels)
+/// is at least [`crate::scene::MIN_SCALE_DELTAS`] ulps of `magnitude` ([`Scalar::ulp`]),
+/// as `q ≥ 4·ulp·pixels` (no division); the error is at the number `at` it is derived
+/// from.
+// Out of line: one copy in flash, not one per call.
+#[inline(never)]
+fn resolved<S: Scalar>(
+    q: S,
+    magnitude: S,
+    at: &Number<'_>,
+    quantity: Quantity,
+    pixels: u16,
+) -> Result<()> {
+    let deltas = crate::scene::MIN_SCALE_DELTAS * i32::from(pixels);
+    if magnitude
+        .ulp()
+        .checked_mul_int(deltas)
+        .is_some_and(|min| q >= min)
+    {
+        return Ok(());
+    }
+    // The magnitude's binary order: below 2^order (what a float's ulp scales with).
+    let whole = magnitude.floor_to_i32().and_then(|m| u32::try_from(m).ok());
+    let order = whole.map_or(32, |m| 32 - m.leading_zeros());
+    Err(at.pos.error(SceneErrorKind::BelowResolution {
+        quantity,
+        number: kept(at),
+        pixels,
+        order: u8::try_from(order).unwrap_or(u8::MAX),
+        format: S::NAME,
+    }))
+}
+
 /// Converts a number into the format, times `scale` (exact, in decimal).
 // Out of line: one copy in flash, not one per call.
 #[inline(never)]
@@ -526,11 +586,19 @@ fn camera<S: Scalar>(b: &Block<'_>) -> Result<Camera<S>> {
     let viewpoint = b.required("viewpoint")?;
     let eye = vector::<S>(viewpoint)?;
     in_domain(&viewpoint.nums[2], positive_value, "viewpoint", "at z > 0")?;
+    // The pixel pitch along each axis against the format's scale (`MIN_SCALE_DELTAS`), at
+    // the magnitude of the window and of the eye's coordinate along it (`screen − eye` is
+    // rounded there).
+    let [nx, ny] = [&worlddim.nums[0], &worlddim.nums[1]];
+    let wx = positive::<S>(nx, "worlddim")?;
+    resolved(wx, wx.max(eye.x.abs()), nx, Quantity::PixelPitch, dims[0])?;
+    let wy = positive::<S>(ny, "worlddim")?;
+    resolved(wy, wy.max(eye.y.abs()), ny, Quantity::PixelPitch, dims[1])?;
     Ok(Camera {
         width: dims[0],
         height: dims[1],
-        world_width: positive(&worlddim.nums[0], "worlddim")?,
-        world_height: positive(&worlddim.nums[1], "worlddim")?,
+        world_width: wx,
+        world_height: wy,
         viewpoint: Vec3::new(eye.x, eye.y, positive(&viewpoint.nums[2], "viewpoint")?),
         // Set from the scene's rules once the file is read.
         grid: crate::PixelGrid::Centres,

@@ -1,7 +1,9 @@
 //! The lexer: `{`, `}` and runs of other non-space characters, with positions; `#`
-//! comments run to the end of the line.
+//! comments run to the end of the line. A byte order mark is a character of its token,
+//! shown escaped in messages ([`quote`]); the parser skips one at the very start of a
+//! text (`Scene::read_with`).
 
-use super::error::{MAX_QUOTED, Pos, Quoted};
+use super::error::{MAX_NUMBER, MAX_QUOTED, Pos, Quoted, QuotedNumber};
 
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Token<'a> {
@@ -84,17 +86,70 @@ fn is_space(c: u8) -> bool {
     matches!(c, b' ' | b'\t' | b'\n' | 0x0B | 0x0C | b'\r')
 }
 
+/// A token as an error message quotes it: control and invisible characters escaped as
+/// Rust writes them (`\u{feff}` for a byte order mark, `\u{0}` for NUL, `\u{a0}` for a
+/// no-break space), so that a token that looks right but is not can be told apart; cut
+/// to [`MAX_QUOTED`] bytes, ending in `…`.
 pub(super) fn quote(text: &str) -> Quoted {
     let mut q = Quoted::new();
     for c in text.chars() {
-        if q.len() + c.len_utf8() > MAX_QUOTED - '…'.len_utf8() {
+        // The character, or its escape: `\u{` and at most six hex digits.
+        let mut one = heapless::String::<10>::new();
+        if super::error::HINTS && is_invisible(c) {
+            let code = u32::from(c);
+            let _ = one.push_str("\\u{");
+            for shift in (0..6).rev() {
+                let digit = (code >> (4 * shift)) & 0xF;
+                if digit != 0 || shift == 0 || one.len() > 3 {
+                    let _ = one.push(char::from_digit(digit, 16).unwrap_or('?'));
+                }
+            }
+            let _ = one.push('}');
+        } else {
+            let _ = one.push(c);
+        }
+        if q.len() + one.len() > MAX_QUOTED - '…'.len_utf8() {
             // Room for the ellipsis is kept above, so this push cannot fail.
             let _ = q.push('…');
             break;
         }
-        let _ = q.push(c);
+        let _ = q.push_str(&one);
     }
     q
+}
+
+/// A number as a scale error keeps it: cut to [`MAX_NUMBER`] bytes, ending in `…` (a
+/// number is ASCII: every byte is a character).
+#[inline(never)]
+pub(super) fn quote_number(text: &str) -> QuotedNumber {
+    let mut q = QuotedNumber::new();
+    if q.push_str(text).is_err() {
+        let cut = MAX_NUMBER - '…'.len_utf8();
+        let _ = q.push_str(text.get(..cut).unwrap_or(""));
+        let _ = q.push('…');
+    }
+    q
+}
+
+/// Whether `c` is a control character or one that shows as nothing or as a plain space:
+/// the C0 and C1 controls and DEL, the no-break, figure and other Unicode spaces, the soft
+/// hyphen, the zero-width characters and direction marks, the line and paragraph
+/// separators, the word joiner and the byte order mark. (A table of ranges, not
+/// Unicode's: a chip keeps it in a few bytes of flash.)
+fn is_invisible(c: char) -> bool {
+    matches!(
+        u32::from(c),
+        0..=0x1F
+            | 0x7F..=0xA0
+            | 0xAD
+            | 0x1680
+            | 0x180E
+            | 0x2000..=0x200F
+            | 0x2028..=0x202F
+            | 0x205F..=0x2064
+            | 0x3000
+            | 0xFEFF
+    )
 }
 
 /// Whether a token can be a name ([`crate::scene::language`], "Names"): any token that is
@@ -192,5 +247,34 @@ mod tests {
         let q = quote("abcdefghijklmnopqrstuvwxyz0123456789");
         assert!(q.ends_with('…'));
         assert!(q.len() <= MAX_QUOTED);
+        // An escape is never cut in half: it is quoted whole or not at all.
+        let q = quote("abcdefghijklmnopq\u{feff}xyz");
+        assert_eq!(q.as_str(), "abcdefghijklmnopq…");
+    }
+
+    /// Control and invisible characters are quoted escaped; visible ones as they are.
+    #[test]
+    fn invisible_characters_are_quoted_escaped() {
+        for (token, quoted) in [
+            ("\u{feff}camera", "\\u{feff}camera"),
+            ("a\0b", "a\\u{0}b"),
+            ("x\u{a0}y", "x\\u{a0}y"),
+            ("\u{7f}\u{85}\u{200b}", "\\u{7f}\\u{85}\\u{200b}"),
+            ("\u{2028}", "\\u{2028}"),
+            ("é→Ω", "é→Ω"),
+            ("\u{1}", "\\u{1}"),
+        ] {
+            assert_eq!(quote(token).as_str(), quoted);
+        }
+    }
+
+    /// A byte order mark is a character of its token, which starts a column.
+    #[test]
+    fn a_byte_order_mark_is_part_of_its_token() {
+        let mut lx = Lexer::new("camera c\n\u{feff}x");
+        assert_eq!(lx.next_token().map(|t| t.text), Some("camera"));
+        assert_eq!(lx.next_token().map(|t| t.text), Some("c"));
+        let t = lx.next_token().unwrap();
+        assert_eq!((t.text, t.pos), ("\u{feff}x", Pos { line: 2, column: 1 }));
     }
 }

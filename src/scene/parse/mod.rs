@@ -7,7 +7,15 @@
 //! characters) of the token at fault; no input makes the parser panic. The whole format is
 //! read and checked; an entity whose stage this build leaves out (a cargo feature) is
 //! refused with [`SceneErrorKind::NotBuiltIn`] after its block has been checked, never
-//! ignored.
+//! ignored. A byte order mark that starts the text is skipped.
+//!
+//! A message is one line and says what to do where it can: the attributes an entity has
+//! and the one a misspelt word most likely meant, the range of a number format and the
+//! formats that hold a number beyond it, where a block that is not closed was opened
+//! (at its `{`), an example camera for a scene without one, invisible characters
+//! escaped (`\u{feff}`). A scene whose scale the format cannot resolve is refused
+//! ([`crate::scene::MIN_SCALE_DELTAS`]). On bare metal (a chip's firmware) the messages
+//! leave these hints out, for flash.
 //!
 //! ```
 //! use fixray::{Scene, I16F16};
@@ -30,7 +38,10 @@ pub mod schema;
 
 use heapless::Vec;
 
-pub use error::{MAX_QUOTED, Quoted, SceneError, SceneErrorKind, TextureProblem};
+pub use error::{
+    MAX_NUMBER, MAX_QUOTED, Quantity, Quoted, QuotedNumber, SceneError, SceneErrorKind,
+    TextureProblem,
+};
 
 use crate::num::Decimal;
 use crate::{Camera, Color, Rules, Scalar, Scene, Vec3};
@@ -170,12 +181,30 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
         }
         out.name = name;
         let values = &mut out.values;
+        // The attribute just read if its value was a name: `material m` followed by `{`
+        // is the next block.
+        let mut named: Option<&'static str> = None;
+        let block = (entity, name, open.pos);
         loop {
-            let t = self.expect("an attribute or `}`")?;
+            let end = self.lexer.pos;
+            let Some(t) = self.lexer.next_token() else {
+                if error::HINTS
+                    && let Some(e) = self.unclosed(None, (None, false), block)
+                {
+                    return Err(e);
+                }
+                return Err(end.error(SceneErrorKind::UnexpectedEnd("an attribute or `}`")));
+            };
             if t.text == "}" {
                 break;
             }
             let Some(i) = specs.iter().position(|s| s.is(t.text)) else {
+                let after = if t.text == "{" { named } else { None };
+                if error::HINTS
+                    && let Some(e) = self.unclosed(Some(&t), (after, false), block)
+                {
+                    return Err(e);
+                }
                 if let Some(what) = schema::NOT_YET.iter().find(|w| **w == t.text) {
                     return Err(t.pos.error(SceneErrorKind::NotSupportedYet(what)));
                 }
@@ -186,6 +215,13 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
             };
             // The course reads a repeated attribute over the earlier one.
             if values[i].is_some() && self.rules == Rules::Fixray {
+                // Unless it starts the next block (`material m {`).
+                let keyword = Some(specs[i].name);
+                if error::HINTS
+                    && let Some(e) = self.unclosed(Some(&t), (keyword, true), block)
+                {
+                    return Err(e);
+                }
                 return Err(t
                     .pos
                     .error(SceneErrorKind::DuplicateAttribute(specs[i].name)));
@@ -230,6 +266,9 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                 }
             }
             values[i] = Some(v);
+            if error::HINTS {
+                named = (specs[i].arity == Arity::Name).then_some(specs[i].name);
+            }
         }
         for (spec, value) in specs.iter().zip(values.iter()) {
             if spec.required && value.is_none() {
@@ -240,6 +279,59 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
             }
         }
         Ok(())
+    }
+
+    /// The error of a block of `entity` named `name`, opened at `open`, that is not
+    /// closed, if `t`, read where the block expects an attribute or `}`, shows it: the end
+    /// of the input (`t` is `None`), or the start of the next statement. That is a keyword
+    /// of the format at the start of a line, an entity keyword followed by a name and `{`,
+    /// or a block whose keyword was read as an attribute (`keyword`: at its `{`, or, with
+    /// `ahead`, when a name and `{` follow: `material m {`). The error is at the block's
+    /// `{`. Not looked for on bare metal ([`error::HINTS`]: the end of the input and the
+    /// next statement's first word are then reported as they are). Out of line: only ever
+    /// on the way to an error.
+    #[cold]
+    #[inline(never)]
+    fn unclosed(
+        &self,
+        t: Option<&Token<'a>>,
+        (keyword, ahead): (Option<&'static str>, bool),
+        (entity, name, open): (Entity, Token<'a>, Pos),
+    ) -> Option<SceneError> {
+        if !error::HINTS {
+            return None;
+        }
+        let next = match t {
+            None => None,
+            Some(t) => Some(match keyword {
+                Some(k) => self::keyword(k).filter(|_| !ahead || self.opens_block())?,
+                None => {
+                    self::keyword(t.text).filter(|_| t.pos.column == 1 || self.opens_block())?
+                }
+            }),
+        };
+        // `keyword name`, cut to a quoted token's length.
+        let mut block = Quoted::new();
+        let _ = block.push_str(entity.keyword());
+        let _ = block.push(' ');
+        for c in quote(name.text).chars() {
+            if block.len() + c.len_utf8() > MAX_QUOTED - '…'.len_utf8() {
+                let _ = block.push('…');
+                break;
+            }
+            let _ = block.push(c);
+        }
+        Some(open.error(SceneErrorKind::Unclosed { block, next }))
+    }
+
+    /// Whether the next two tokens are a name and `{`.
+    #[inline(never)]
+    fn opens_block(&self) -> bool {
+        let mut ahead = self.lexer.clone();
+        ahead
+            .next_token()
+            .is_some_and(|n| n.text != "{" && n.text != "}")
+            && ahead.next_token().is_some_and(|b| b.text == "{")
     }
 
     /// Registers a name for the uniqueness rule (materials have their own list).
@@ -347,6 +439,11 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
         self.scene.set_rules(self.rules);
         Ok(())
     }
+}
+
+/// The keyword of the format that `word` is, as the schema spells it.
+fn keyword(word: &str) -> Option<&'static str> {
+    schema::keywords().find(|k| *k == word)
 }
 
 /// The rule set of a scene text: its top-level `rules` statement, [`Rules::Course`]
@@ -523,6 +620,9 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
         files: &mut dyn FnMut(&str) -> Option<&'static [u8]>,
     ) -> core::result::Result<(), SceneError> {
         self.clear();
+        // A byte order mark that starts the text is skipped (some editors write one; it
+        // is not part of the scene): the first character after it is at column 1.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let found = rules_of(text);
         let result = found.map(|r| rules.unwrap_or(r)).and_then(|rules| {
             // Without the course's tracer, a course file is refused at its start.
