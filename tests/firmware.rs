@@ -237,7 +237,7 @@ fn absent_effects_cost_nothing_on_the_chip() {
 }
 
 /// The host's hash of a scene drawn by the reference path, pixel by pixel
-/// ([`fixray::trace_pixel`], the definition): what a firmware without the kernels draws.
+/// ([`fixray::shade::trace_pixel`], the definition): what a firmware without the kernels draws.
 fn reference_hash<S: Scalar>(scene: &Scene<S>) -> u32 {
     let mut hash = FrameHash::new();
     for row in 0..scene.camera.height {
