@@ -9,7 +9,7 @@ use ::fixed::types::{I16F16, I20F12, I32F32};
 /// `(bits·num)/den` would give it, without dividing in double width: with
 /// `bits = q·den + r`, the result is `q·num + (r·num)/den`, where `|r·num| < |den·num|`
 /// nearly always fits an `i32` (screen coordinates: below 2²⁶), so the division is a
-/// 32-bit one (one instruction on the Cortex-M4 instead of the 64-bit helper's ~350).
+/// 32-bit one (one instruction on the Cortex-M4 instead of the 64-bit helper).
 /// Both parts have the same sign, so truncating the second truncates the sum.
 /// `None` on overflow or when `den` is zero.
 macro_rules! mul_ratio_bits {
