@@ -759,7 +759,7 @@ fn too_many() {
     let raise = |what: &str, n: usize, p: &str| {
         format!(
             "too many {what}: the scene type holds {n} (raise its `{p}` parameter, e.g. \
-             `fixray::LargeScene`)"
+             `fixray::scene::LargeScene`)"
         )
     };
     check(&text, line, 1, &raise("materials", 16, "MATERIALS"));

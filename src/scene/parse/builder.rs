@@ -13,7 +13,7 @@ use crate::num::Decimal;
 use crate::ppm::Ppm;
 use crate::scene::{Beam, Cone, MAX_PIXELDIM, MAX_PROJECTORS, MAX_TEXTURES, Object};
 use crate::{
-    Camera, Color, Light, Material, Plane, PlaneError, PlaneFrame, PlaneFrameError as FrameError,
+    Camera, Color, Light, Material, Plane, PlaneError, PlaneFrame, PlaneFrameError,
     Revsurf, RevsurfError, Rules, Scalar, Shape, Slide, Sphere, TexMode, Tiling, Triangle,
     TriangleError, Vec3,
 };
@@ -708,15 +708,15 @@ fn frame_error<S: Scalar>(
     b: &Block<'_>,
     [normal, xdir, dims]: [&Value<'_>; 3],
     dims_name: &'static str,
-    e: FrameError,
+    e: PlaneFrameError,
 ) -> SceneError {
     match e {
-        FrameError::Plane(e) => plane_error::<S>(b, normal, e),
-        FrameError::XdirInvalid => xdir.pos.error(SceneErrorKind::OutOfDomain {
+        PlaneFrameError::Plane(e) => plane_error::<S>(b, normal, e),
+        PlaneFrameError::XdirInvalid => xdir.pos.error(SceneErrorKind::OutOfDomain {
             attribute: "xdir",
             rule: "a direction with a component in the plane (not along the normal)",
         }),
-        FrameError::NonPositiveSize => dims.pos.error(SceneErrorKind::OutOfDomain {
+        PlaneFrameError::NonPositiveSize => dims.pos.error(SceneErrorKind::OutOfDomain {
             attribute: dims_name,
             rule: "> 0",
         }),
@@ -747,7 +747,7 @@ mod tests {
             &b,
             [&normal, &xdir, &dims],
             "dimensions",
-            FrameError::NonPositiveSize,
+            PlaneFrameError::NonPositiveSize,
         );
         assert_eq!((e.line, e.column), (1, 30));
         assert_eq!(e.to_string(), "1:30: `dimensions` must be > 0");
@@ -755,7 +755,7 @@ mod tests {
             &b,
             [&normal, &xdir, &dims],
             "dimensions",
-            FrameError::XdirInvalid,
+            PlaneFrameError::XdirInvalid,
         );
         assert_eq!((e.line, e.column), (1, 20));
     }

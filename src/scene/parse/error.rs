@@ -425,7 +425,7 @@ impl fmt::Display for SceneErrorKind {
             } => write!(
                 f,
                 "too many {what}: the scene type holds {capacity} (raise its `{parameter}` \
-                 parameter, e.g. `fixray::LargeScene`)"
+                 parameter, e.g. `fixray::scene::LargeScene`)"
             ),
             K::Full { what, capacity } => {
                 write!(f, "too many {what}: a scene holds {capacity}")

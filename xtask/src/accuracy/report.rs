@@ -309,7 +309,7 @@ pub(super) fn write_report(
     }
     let _ = writeln!(
         r,
-        "**Defaults.** Every format ships epsilon = 16 DELTAs (`fixray::EPSILON_DELTAS`): \
+        "**Defaults.** Every format ships epsilon = 16 DELTAs (`fixray::num::EPSILON_DELTAS`): \
          the computed N·d carries at most 7.5 DELTAs of rounding, so 16 keeps its sign right \
          with a 2× margin, and a ray that passes the test is never sent to the wrong side of \
          a plane. Measured here, per format:\n"
