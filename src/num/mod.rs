@@ -40,6 +40,21 @@ pub use decimal::Decimal;
 pub(crate) use private::KernelArith;
 pub use series::Series;
 
+/// The fixed-point formats, from the [`fixed`](::fixed) crate, each a [`Scalar`]: `I16F16`
+/// (16 integer bits, the sign's included, and 16 fraction bits: range ±32768, resolution
+/// 2^−16), `I20F12` (±524288, 2^−12) and `I32F32` (±2^31, 2^−32).
+///
+/// ```
+/// use fixray::{I16F16, I20F12, I32F32, Scalar};
+///
+/// assert_eq!(I16F16::DELTA.to_f64(), 1.0 / 65536.0);
+/// assert_eq!(I20F12::DELTA.to_f64(), 1.0 / 4096.0);
+/// assert_eq!(I32F32::DELTA.to_f64(), 2f64.powi(-32));
+/// // 40000 fits I20F12 and I32F32, not I16F16.
+/// assert_eq!(I16F16::from_f64(40000.0), None);
+/// assert_eq!(I20F12::from_f64(40000.0).map(Scalar::to_f64), Some(40000.0));
+/// assert_eq!(I32F32::from_f64(40000.0).map(Scalar::to_f64), Some(40000.0));
+/// ```
 pub use ::fixed::types::{I16F16, I20F12, I32F32};
 
 /// How many of a format's [`Scalar::DELTA`]s make its default precision epsilon.

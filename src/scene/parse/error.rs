@@ -24,6 +24,20 @@ pub(super) const HINTS: bool = cfg!(not(target_os = "none"));
 pub const MAX_QUOTED: usize = 24;
 
 /// A token quoted in an error message (cut to [`MAX_QUOTED`] bytes).
+///
+/// ```
+/// use fixray::scene::{MAX_QUOTED, Quoted, SceneErrorKind};
+/// use fixray::{I16F16, Scene};
+///
+/// let err = Scene::<I16F16>::parse("spheres ball { }").unwrap_err();
+/// let word = Quoted::try_from("spheres").unwrap();
+/// assert_eq!(err.kind, SceneErrorKind::UnknownKeyword(word));
+/// // A longer token is cut, and ends in `…`.
+/// let err = Scene::<I16F16>::parse("a_very_long_word_that_goes_on_and_on { }").unwrap_err();
+/// let SceneErrorKind::UnknownKeyword(word) = err.kind else { panic!("{err}") };
+/// assert_eq!(word.as_str(), "a_very_long_word_that…");
+/// assert!(word.len() <= MAX_QUOTED);
+/// ```
 pub type Quoted = String<MAX_QUOTED>;
 
 /// Longest number a scale error keeps as written ([`SceneErrorKind::BelowResolution`],
@@ -33,9 +47,40 @@ pub type Quoted = String<MAX_QUOTED>;
 pub const MAX_NUMBER: usize = 20;
 
 /// A number as a scale error keeps it (cut to [`MAX_NUMBER`] bytes).
+///
+/// ```
+/// use fixray::scene::{QuotedNumber, SceneErrorKind};
+/// use fixray::{I16F16, Scene};
+///
+/// let text = "camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+/// material red { ambient 1 0 0 }
+/// sphere ball { material red center 0 0 -300 radius 200.0 }";
+/// let err = Scene::<I16F16>::parse(text).unwrap_err();
+/// let SceneErrorKind::BeyondRange { number, .. } = err.kind else { panic!("{err}") };
+/// // As written: `200.0`, not `200`.
+/// let written: QuotedNumber = number;
+/// assert_eq!(written.as_str(), "200.0");
+/// ```
 pub type QuotedNumber = String<MAX_NUMBER>;
 
 /// A scene file error at a line and column.
+///
+/// ```
+/// use fixray::scene::SceneErrorKind;
+/// use fixray::{I16F16, Scene, SceneError};
+///
+/// let text = "camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+/// material red { ambient 1 0 0 }
+/// sphere ball { material blue center 0 0 -3 radius 1 }";
+/// let err: SceneError = Scene::<I16F16>::parse(text).unwrap_err();
+/// // Line 3, column 24: the word `blue`.
+/// assert_eq!((err.line, err.column), (3, 24));
+/// assert!(matches!(&err.kind, SceneErrorKind::UnknownMaterial(name) if name == "blue"));
+/// assert_eq!(
+///     err.to_string(),
+///     "3:24: unknown material `blue` (a material must be defined before it is named)"
+/// );
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct SceneError {
     /// 1-based line of the token at fault (for "end of input" errors: the last line).
@@ -47,6 +92,30 @@ pub struct SceneError {
 }
 
 /// What is wrong with a scene file.
+///
+/// ```
+/// use fixray::scene::SceneErrorKind;
+/// use fixray::{I16F16, Scene};
+///
+/// let camera = "camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }\n";
+/// // A misspelt attribute: the entity, the word, and the attribute it most likely meant.
+/// let text = [camera, "material red { ambeint 1 0 0 }"].concat();
+/// let err = Scene::<I16F16>::parse(&text).unwrap_err();
+/// match &err.kind {
+///     SceneErrorKind::UnknownAttribute { entity, found } => {
+///         assert_eq!((*entity, found.as_str()), ("material", "ambeint"));
+///     }
+///     other => panic!("{other}"),
+/// }
+/// assert_eq!(err.kind.nearest(), Some("ambient"));
+/// // The kind's message is the error's, without the line and column.
+/// assert_eq!(err.to_string(), format!("2:16: {}", err.kind));
+///
+/// // A scene without a camera: the message shows one.
+/// let err = Scene::<I16F16>::parse("material red { ambient 1 0 0 }").unwrap_err();
+/// assert_eq!(err.kind, SceneErrorKind::MissingCamera);
+/// assert!(err.kind.to_string().starts_with("no camera: add one, such as `camera cam {"));
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub enum SceneErrorKind {
     /// A word where an entity keyword (`camera`, `plane`, ...) was expected.
@@ -211,6 +280,26 @@ pub enum SceneErrorKind {
 
 /// A length a scene derives, whose scale the number format must resolve
 /// ([`SceneErrorKind::BelowResolution`], [`SceneErrorKind::BeyondRange`]).
+///
+/// ```
+/// use fixray::scene::{Quantity, SceneErrorKind};
+/// use fixray::{I16F16, I32F32, Scene};
+///
+/// // A radius of 200: its square, 40000, is beyond I16F16's range (±32768).
+/// let text = "camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+/// material red { ambient 1 0 0 }
+/// sphere ball { material red center 0 0 -300 radius 200 }";
+/// let err = Scene::<I16F16>::parse(text).unwrap_err();
+/// match &err.kind {
+///     SceneErrorKind::BeyondRange { quantity, number, .. } => {
+///         assert_eq!((*quantity, number.as_str()), (Quantity::RadiusSq, "200"));
+///     }
+///     other => panic!("{other}"),
+/// }
+/// assert_eq!(Quantity::RadiusSq.to_string(), "radius²");
+/// // I32F32 holds it.
+/// assert!(Scene::<I32F32>::parse(text).is_ok());
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Quantity {
     /// The camera's pixel pitch, `worlddim / pixeldim`, along either axis.
@@ -239,6 +328,34 @@ impl fmt::Display for Quantity {
 }
 
 /// What is wrong with a texture file.
+///
+/// ```
+/// # #[cfg(feature = "textures")] {
+/// use fixray::ppm::PpmError;
+/// use fixray::scene::{SceneErrorKind, TextureProblem};
+/// use fixray::{I16F16, Scene};
+///
+/// let text = "camera c { pixeldim 4 3 worlddim 4 3 viewpoint 2 1.5 5 }
+/// texture wall { filename wall.ppm }";
+/// // `Scene::parse` reads no files: the file is not found.
+/// let err = Scene::<I16F16>::parse(text).unwrap_err();
+/// assert!(matches!(
+///     err.kind,
+///     SceneErrorKind::TextureFile { problem: TextureProblem::NotFound, .. }
+/// ));
+/// // A file that is not a binary PPM.
+/// let mut scene = Scene::<I16F16>::empty();
+/// let err = scene.read_with(text, None, &mut |_| Some(&b"P3 1 1 255 0 0 0"[..])).unwrap_err();
+/// match &err.kind {
+///     SceneErrorKind::TextureFile { file, problem } => {
+///         assert_eq!(file.as_str(), "wall.ppm");
+///         assert_eq!(*problem, TextureProblem::Ppm(PpmError::NotPpm));
+///     }
+///     other => panic!("{other}"),
+/// }
+/// assert_eq!((err.line, err.column), (2, 25));
+/// # }
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TextureProblem {
     /// The file source has no such file ([`Scene::parse`](crate::Scene::parse) reads no

@@ -28,6 +28,17 @@ use core::fmt;
 use crate::scene::{LargeScene, MAX_PIXELDIM, MAX_PROJECTORS, MAX_TEXTURES, Scene};
 
 /// The entity kinds of the scene language (in the order of [`SCHEMA`]).
+///
+/// ```
+/// use fixray::scene::schema::Entity;
+///
+/// let sphere = Entity::from_keyword("sphere").unwrap();
+/// assert_eq!(sphere, Entity::Sphere);
+/// assert_eq!(sphere.keyword(), "sphere");
+/// let names: Vec<&str> = sphere.attributes().iter().map(|a| a.name).collect();
+/// assert_eq!(names, ["material", "center", "radius"]);
+/// assert_eq!(Entity::from_keyword("ball"), None);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum Entity {
@@ -62,6 +73,18 @@ pub enum Entity {
 }
 
 /// How an attribute's value is written.
+///
+/// ```
+/// use fixray::scene::schema::{Arity, Entity};
+///
+/// let arity = |entity: Entity, word: &str| {
+///     entity.attributes().iter().find(|a| a.is(word)).map(|a| a.arity)
+/// };
+/// assert_eq!(arity(Entity::Sphere, "material"), Some(Arity::Name));
+/// assert_eq!(arity(Entity::Sphere, "center"), Some(Arity::Numbers(3)));
+/// assert_eq!(arity(Entity::Texture, "filename"), Some(Arity::Path));
+/// assert_eq!(arity(Entity::Material, "specular"), Some(Arity::OneOrThree));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Arity {
@@ -77,6 +100,19 @@ pub enum Arity {
 }
 
 /// One attribute of an entity.
+///
+/// ```
+/// use fixray::scene::schema::{Arity, Entity};
+///
+/// let attributes = Entity::FPlane.attributes();
+/// let dimensions = attributes.iter().find(|a| a.name == "dimensions").unwrap();
+/// assert_eq!((dimensions.arity, dimensions.required), (Arity::Numbers(2), true));
+/// // Real files also write `dimension`.
+/// assert!(dimensions.either_number);
+/// assert!(dimensions.is("dimension") && !dimensions.is("dim"));
+/// // Every attribute of a material is optional (each has a default).
+/// assert!(Entity::Material.attributes().iter().all(|a| !a.required));
+/// ```
 #[derive(Debug)]
 #[non_exhaustive]
 pub struct AttrSpec {
@@ -148,6 +184,18 @@ const fn dimensions(name: &'static str) -> AttrSpec {
 }
 
 /// An entity: its kind, keyword and attributes.
+///
+/// ```
+/// use fixray::scene::schema::{Entity, EntitySpec, SCHEMA};
+///
+/// let light: &EntitySpec = Entity::Light.spec();
+/// assert_eq!((light.entity, light.keyword), (Entity::Light, "light"));
+/// assert_eq!(light.attributes.len(), 2);
+/// // The attributes a `camera` block must give, in the reference's order.
+/// let camera = SCHEMA.iter().find(|s| s.keyword == "camera").unwrap();
+/// let required = camera.attributes.iter().filter(|a| a.required).map(|a| a.name);
+/// assert!(required.eq(["pixeldim", "worlddim", "viewpoint"]));
+/// ```
 #[derive(Debug)]
 #[non_exhaustive]
 pub struct EntitySpec {
