@@ -54,19 +54,40 @@ fn differ_from_f64<S: Scalar>(text: &str) -> f64 {
     100.0 * compare(&fixed, &reference, |_, _, _, _| {}).differing_share()
 }
 
+/// `2^k` written with a superscript exponent.
+fn power_of_two(k: f64) -> String {
+    let digits: String = format!("{k}")
+        .chars()
+        .map(|c| match c {
+            '-' => '⁻',
+            '0' => '⁰',
+            '1' => '¹',
+            '2' => '²',
+            '3' => '³',
+            '4' => '⁴',
+            '5' => '⁵',
+            '6' => '⁶',
+            '7' => '⁷',
+            '8' => '⁸',
+            '9' => '⁹',
+            c => c,
+        })
+        .collect();
+    format!("2{digits}")
+}
+
 /// A format's range and resolution, as `(±MAX, DELTA)` written for people.
 fn range_and_delta<S: Scalar>() -> (String, String) {
-    let power = |x: f64| {
-        let k = x.log2().round();
-        if (x - k.exp2()).abs() <= x * 1e-9 {
-            format!("2^{k}")
-        } else {
-            format!("{x:.3e}")
-        }
+    let max = S::MAX.to_f64();
+    let k = max.log2().round();
+    let range = if (max - k.exp2()).abs() <= max * 1e-9 {
+        power_of_two(k)
+    } else {
+        format!("{max:.1e}")
     };
     (
-        format!("±{}", power(S::MAX.to_f64())),
-        format!("2^{}", S::DELTA.to_f64().log2().round()),
+        format!("±{range}"),
+        power_of_two(S::DELTA.to_f64().log2().round()),
     )
 }
 
@@ -77,8 +98,8 @@ fn formats() -> Result<String, String> {
     let default = include_str!("../../scenes/default.scene");
     let boing = include_str!("../../scenes/boing.scene");
     let mut out = String::from(
-        "| format | range | resolution (`DELTA`) | pixels ≠ f64, default | pixels ≠ f64, boing | \
-         Cortex-M0 | Cortex-M4F | RISC-V |\n|---|---|---|---|---|---|---|---|\n",
+        "| format | what | range | resolution (`DELTA`) | pixels ≠ f64, default | pixels ≠ f64, \
+         boing | Cortex-M0 | Cortex-M4F | RISC-V |\n|---|---|---|---|---|---|---|---|---|\n",
     );
     for (name, what) in fixray::num::formats::DESCRIBED {
         let (range, delta) = fixray::with_format!(name, range_and_delta()).expect("listed");
@@ -91,7 +112,7 @@ fn formats() -> Result<String, String> {
         };
         writeln!(
             out,
-            "| `{name}` ({what}) | {range} | {delta} | {d:.3} % | {b:.3} % | {} | {} | {} |",
+            "| `{name}` | {what} | {range} | {delta} | {d:.3} % | {b:.3} % | {} | {} | {} |",
             cost("cortex-m0"),
             cost("cortex-m4f"),
             cost("riscv32imc")
@@ -136,7 +157,15 @@ fn boing() -> Result<String, String> {
         let row = row
             .first()
             .ok_or(format!("boing-report.md has no mean for {format}"))?;
-        writeln!(out, "| {format} | {} | {} | {} |", row[2], row[3], row[4]).unwrap();
+        let plain = |cell: &str| cell.trim_matches('*').to_string();
+        writeln!(
+            out,
+            "| {format} | {} | {} | {} |",
+            plain(row[2]),
+            plain(row[3]),
+            plain(row[4])
+        )
+        .unwrap();
     }
     Ok(out)
 }
