@@ -45,8 +45,12 @@ use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use fixray::compare::{Comparison, compare, heat_color};
 use fixray::num::formats::{self, MAIN};
-use fixray::scene::{LargeScene as Scene, Rules, SceneErrorKind};
+use fixray::scene::{LargeScene as Scene, Rules};
 use fixray::{Scalar, SceneError, render_line};
+
+#[path = "common/scene_error.rs"]
+mod scene_error;
+use scene_error::explain;
 
 /// The built-in default scene, compiled in.
 const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
@@ -253,40 +257,6 @@ fn print_row(format: &str, run: &Run, f64_frame: Duration) {
         100.0 * c.differing_share(),
         c.psnr(),
     );
-}
-
-/// A scene error as this program prints it, `FILE:LINE:COL: message`, for the scene read
-/// in `format`. `reference` is the f64 reading's error (`None`: f64 read the scene): an
-/// error f64 shares at the same place is the scene's, in every format; one it does not
-/// share is `format`'s alone, and the message names it.
-fn explain(file: &str, format: &str, e: &SceneError, reference: Option<&SceneError>) -> String {
-    use SceneErrorKind as K;
-    let shared = reference
-        .filter(|r| (r.line, r.column) == (e.line, e.column))
-        .map(|r| &r.kind);
-    let message = match (&e.kind, shared) {
-        // The capacities are this program's (`LargeScene`), in every format.
-        (K::TooMany { what, capacity, .. }, _) => {
-            format!("too many {what}: this program holds at most {capacity} {what}")
-        }
-        (K::DoesNotFit { value, .. }, Some(K::DoesNotFit { .. })) => {
-            format!("`{value}` does not fit in any number format (not even f64)")
-        }
-        (K::DerivedDoesNotFit { what, .. }, Some(K::DerivedDoesNotFit { .. })) => {
-            format!("{what} does not fit in any number format (not even f64)")
-        }
-        (kind, Some(_)) => kind.to_string(),
-        // The format's own: say which, unless the message does.
-        (kind, None) => {
-            let message = kind.to_string();
-            if message.contains(format) {
-                message
-            } else {
-                format!("{message} (in the {format} number format)")
-            }
-        }
-    };
-    format!("{file}:{}:{}: {message}", e.line, e.column)
 }
 
 /// The error of reading the scene in the format named `format` (checked against the one

@@ -79,6 +79,9 @@ fn main() -> ExitCode {
     }
 }
 
+#[path = "common/scene_error.rs"]
+mod scene_error;
+
 mod window {
     use std::time::Instant;
 
@@ -95,8 +98,10 @@ mod window {
     use fixray::compare::heat_color;
     use fixray::geometry::Vec3;
     use fixray::num::formats::MAIN as FORMATS;
-    use fixray::scene::{LargeScene as Scene, PixelGrid, Rules, SceneErrorKind};
+    use fixray::scene::{LargeScene as Scene, PixelGrid, Rules};
     use fixray::{Scalar, SceneError, render_line};
+
+    use super::scene_error::explain;
 
     const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
     const DEFAULT_SCENE_NAME: &str = "scenes/default.scene";
@@ -309,40 +314,6 @@ mod window {
             Ok(Err(FrameError::View(e))) => Err(Failure::Other(e)),
             Err(unknown) => Err(Failure::Other(unknown.to_string())),
         }
-    }
-
-    /// A scene error as printed, `FILE:LINE:COL: message`, for the scene read in
-    /// `format`. `reference` is the f64 reading's error (`None`: f64 read the scene): an
-    /// error f64 shares at the same place is the scene's, in every format; one it does
-    /// not share is `format`'s alone, and the message names it.
-    fn explain(file: &str, format: &str, e: &SceneError, reference: Option<&SceneError>) -> String {
-        use SceneErrorKind as K;
-        let shared = reference
-            .filter(|r| (r.line, r.column) == (e.line, e.column))
-            .map(|r| &r.kind);
-        let message = match (&e.kind, shared) {
-            // The capacities are this program's (`LargeScene`), in every format.
-            (K::TooMany { what, capacity, .. }, _) => {
-                format!("too many {what}: this program holds at most {capacity} {what}")
-            }
-            (K::DoesNotFit { value, .. }, Some(K::DoesNotFit { .. })) => {
-                format!("`{value}` does not fit in any number format (not even f64)")
-            }
-            (K::DerivedDoesNotFit { what, .. }, Some(K::DerivedDoesNotFit { .. })) => {
-                format!("{what} does not fit in any number format (not even f64)")
-            }
-            (kind, Some(_)) => kind.to_string(),
-            // The format's own: say which, unless the message does.
-            (kind, None) => {
-                let message = kind.to_string();
-                if message.contains(format) {
-                    message
-                } else {
-                    format!("{message} (in the {format} number format)")
-                }
-            }
-        };
-        format!("{file}:{}:{}: {message}", e.line, e.column)
     }
 
     /// The picture's size on a `panel` (width, height): as large as fits with the aspect
