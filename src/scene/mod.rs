@@ -53,13 +53,14 @@ pub const MAX_PIXELDIM: u16 = 4096;
 
 /// The smallest scale a scene may have, in units of its number format's resolution.
 /// [`Scene::parse`] refuses, with [`SceneErrorKind::BelowResolution`] at the number at
-/// fault (its message names the formats that resolve it):
+/// fault (its message names the formats that resolve every pitch and sphere of the
+/// scene):
 ///
 /// - a pixel pitch (`worlddim / pixeldim`, along either axis) below this many
 ///   [`Scalar::ulp`]s of the larger of the window's size and the eye's coordinate along
 ///   that axis (`screen − eye` is rounded there);
-/// - in a fixed format, a sphere whose radius² is below this many `DELTA`s (which puts
-///   its radius above as many);
+/// - in a fixed format, a sphere whose radius² is below [`MIN_RADIUS_SQ_DELTAS`]
+///   `DELTA`s;
 /// - in a float, a sphere whose radius is below this many ulps of its largest coordinate
 ///   (its radius² carries a relative error: no floor of its own).
 ///
@@ -70,15 +71,15 @@ pub const MAX_PIXELDIM: u16 = 4096;
 /// built in code is not checked.
 ///
 /// Why 4: a screen point is rounded once, by at most ½ `DELTA`, which at a pitch of
-/// 4 `DELTA` is an eighth of a pixel, below what moves an edge by a pixel; a radius² of
-/// 4 `DELTA` (its rounding is under one) puts a sphere's outline within 14 % of its size.
-/// Below that a picture is garbage without a word (pixels more than 8 levels off f64's):
-/// the default scene scaled down to a pitch of 0.33 `DELTA` draws 1.5 % of them in
-/// I16F16, to 0.2 `DELTA` 23 % in I20F12, while at 2 to 3.3 `DELTA`s both draw f64's
-/// picture; a millimetre scene (`worlddim 0.001 0.00075` over 160 × 120 pixels, a sphere
-/// of radius 0.0005: pitch 0.4 `DELTA` and radius² 0.02 `DELTA` in I16F16) 47 %. Every
-/// shipped scene and course scene is at least 41 ulps per pixel and 2,000 `DELTA`s per
-/// radius² in every format that reads it.
+/// 4 `DELTA` is an eighth of a pixel, below what moves an edge by a pixel; a float's
+/// radius of 4 ulps of its coordinates keeps the rounding of a ray's base less its centre
+/// (an ulp at that magnitude) within a quarter of the radius. Below that a picture is
+/// garbage without a word (pixels more than 8 levels off f64's): the default scene scaled
+/// down to a pitch of 0.33 `DELTA` draws 1.5 % of them in I16F16, to 0.2 `DELTA` 23 % in
+/// I20F12, while at 2 to 3.3 `DELTA`s both draw f64's picture; a millimetre scene
+/// (`worlddim 0.001 0.00075` over 160 × 120 pixels, a sphere of radius 0.0005: pitch
+/// 0.4 `DELTA` and radius² 0.02 `DELTA` in I16F16) 47 %. Every shipped scene and course
+/// scene is at least 41 ulps per pixel in every format that reads it.
 ///
 /// ```
 /// use fixray::{I16F16, I32F32, Scene};
@@ -92,6 +93,41 @@ pub const MAX_PIXELDIM: u16 = 4096;
 /// assert!(Scene::<I32F32>::parse(text).is_ok());
 /// ```
 pub const MIN_SCALE_DELTAS: i32 = 4;
+
+/// The smallest radius² of a sphere in a fixed format, in `DELTA`s: [`Scene::parse`]
+/// refuses a sphere whose radius² is smaller, with [`SceneErrorKind::BelowResolution`]
+/// at its radius (a radius of at least ⅛ in I16F16, ½ in I20F12, 2⁻¹¹ in I32F32). In a
+/// float a radius is held to [`MIN_SCALE_DELTAS`] ulps of the sphere's coordinates.
+///
+/// Why 1024: a hit is placed on a sphere by the discriminant `r² − dist²` (`dist` the
+/// centre's distance from the ray), rounded once to `DELTA`. Where the ray meets the
+/// surface at an angle of cosine `s` (the discriminant is `(s·r)²`) that rounding moves
+/// the hit along the ray by `DELTA/(4sr)`, and its normal `(P − C)/r` by up to
+/// `DELTA/(4sr²)`, which is more than 1/256 (a level of a light's `255·N·L`) where
+/// `s < 64·DELTA/r²`: at `r² ≥ 1024 DELTA` only on the rim where `s < 1/16`, 1/256 of
+/// the sphere's pixels; below, on a rim that grows as `1/r⁴`, and a light nearer than 1
+/// (its falloff `N·L/|L|²`) magnifies the error further. The millimetre scene 100 times
+/// larger (a sphere of radius 0.05, r² = 164 `DELTA` of I16F16, on nearly half of the
+/// picture, lit from 0.27 away) draws 3.2 % of its pixels more than 2 levels off f64's in
+/// I16F16; with radius 0.15 (1,475 `DELTA`) 0.02 %, and the millimetre scene itself in
+/// I32F32 (1,073 `DELTA`) 0.5 %. [`crate::geometry::Sphere`] takes its normal's `1/r`
+/// shortcut from the same 1024 `DELTA` on. Every shipped scene and course scene has at
+/// least 2,000 `DELTA`s per radius² in every fixed format that reads it.
+///
+/// ```
+/// use fixray::{I16F16, I32F32, Scene};
+///
+/// let text = "camera c { pixeldim 8 6 worlddim 8 6 viewpoint 4 3 5 }
+///             material m { ambient 1 0 0 }
+///             sphere s { material m center 4 3 -1 radius 0.1 }";
+/// let err = Scene::<I16F16>::parse(text).unwrap_err();
+/// assert_eq!(
+///     err.to_string(),
+///     "3:56: radius² 0.01 is below 1024 DELTA of i16f16; i32f32, f32 or f64 resolve it"
+/// );
+/// assert!(Scene::<I32F32>::parse(text).is_ok());
+/// ```
+pub const MIN_RADIUS_SQ_DELTAS: i32 = 1024;
 
 /// An RGB colour in channel units (0 ..= 255 displays; larger values clamp).
 ///

@@ -4,6 +4,8 @@
 use core::cmp::Ordering;
 
 use super::error::TextureProblem;
+#[cfg(not(target_os = "none"))]
+use super::error::resolvers;
 use super::error::{HINTS, Quantity, QuotedNumber, SceneError, SceneErrorKind};
 use super::lexer::quote_number;
 use super::schema::Entity;
@@ -13,9 +15,9 @@ use crate::num::Decimal;
 use crate::ppm::Ppm;
 use crate::scene::{Beam, Cone, MAX_PIXELDIM, MAX_PROJECTORS, MAX_TEXTURES, Object};
 use crate::{
-    Camera, Color, Light, Material, Plane, PlaneError, PlaneFrame, PlaneFrameError,
-    Revsurf, RevsurfError, Rules, Scalar, Shape, Slide, Sphere, TexMode, Tiling, Triangle,
-    TriangleError, Vec3,
+    Camera, Color, Light, Material, Plane, PlaneError, PlaneFrame, PlaneFrameError, Revsurf,
+    RevsurfError, Rules, Scalar, Shape, Slide, Sphere, TexMode, Tiling, Triangle, TriangleError,
+    Vec3,
 };
 
 impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '_, S, O, M, L> {
@@ -27,7 +29,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                 if self.camera.is_some() {
                     return Err(b.error(SceneErrorKind::Duplicate("camera")));
                 }
-                self.camera = Some(camera(b)?);
+                self.camera = Some(camera(b, &mut self.scales)?);
             }
             Entity::Material => {
                 // The course allows a name twice; a lookup takes the first.
@@ -91,19 +93,23 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                 }
                 self.register(b)?;
                 let material = self.material_index(b, "material")?;
-                // Checked against the format's scale (`MIN_SCALE_DELTAS`): in a fixed
-                // format the radius² (its DELTA is its ulp at every magnitude, `ZERO`'s;
-                // r² ≥ 4 DELTA puts r above 4 DELTA), in a float the radius at the
-                // magnitude of the sphere's coordinates (its square's error is relative).
+                // Checked against the format's scale: in a fixed format the radius²
+                // (`MIN_RADIUS_SQ_DELTAS`; its ulp is DELTA at every magnitude), in a
+                // float the radius at the magnitude of the sphere's coordinates
+                // (`MIN_SCALE_DELTAS`; its square's error is relative).
                 let center = vector::<S>(b.required("center")?)?;
                 let r = &b.required("radius")?.nums[0];
                 let radius = positive::<S>(r, "radius")?;
                 let sphere =
                     Sphere::new(center, radius).map_err(|_| radius_sq_beyond(r, S::NAME))?;
+                let magnitude = center.max_abs().max(radius);
                 if S::INT_BITS > 0 {
-                    resolved(sphere.radius_sq(), S::ZERO, r, Quantity::RadiusSq, 1)?;
+                    let radius_sq = sphere.radius_sq();
+                    self.scales
+                        .check(radius_sq, magnitude, r, Quantity::RadiusSq, 1)?;
                 } else {
-                    resolved(radius, center.max_abs().max(radius), r, Quantity::Radius, 1)?;
+                    self.scales
+                        .check(radius, magnitude, r, Quantity::Radius, 1)?;
                 }
                 self.push(b, Shape::Sphere(sphere), material)?;
             }
@@ -422,10 +428,74 @@ fn kept(n: &Number<'_>) -> QuotedNumber {
     }
 }
 
+/// The scale rule over a parse: each length through [`Scales::check`], the parse's
+/// result through [`Scales::finish`]. On a host ([`HINTS`]) a length the format does
+/// not resolve does not end the parse: the first is kept and returned when the parse is
+/// over, or at a later error (which lies after it in the file), with the formats that
+/// resolve every pitch and sphere of the scene (`BelowResolution`'s `formats`), so that
+/// its message names no format that a later sphere rules out. On bare metal the error
+/// returns at once, as every other one, and this type is empty (no stack for a kept
+/// error: the fields exist only where [`HINTS`] holds).
+pub(super) struct Scales {
+    /// The first length the format does not resolve.
+    #[cfg(not(target_os = "none"))]
+    first: Option<SceneError>,
+    /// The formats of `MAIN` that resolve every length checked (bit `i`: `MAIN[i]`).
+    #[cfg(not(target_os = "none"))]
+    formats: u8,
+}
+
+impl Scales {
+    /// Nothing checked yet.
+    pub(super) const fn new() -> Self {
+        Self {
+            #[cfg(not(target_os = "none"))]
+            first: None,
+            #[cfg(not(target_os = "none"))]
+            formats: u8::MAX,
+        }
+    }
+
+    /// [`resolved`], kept on a host (see the type).
+    fn check<S: Scalar>(
+        &mut self,
+        q: S,
+        magnitude: S,
+        at: &Number<'_>,
+        quantity: Quantity,
+        pixels: u16,
+    ) -> Result<()> {
+        let verdict = resolved(q, magnitude, at, quantity, pixels);
+        #[cfg(not(target_os = "none"))]
+        {
+            self.formats &= resolvers(quantity, &at.value, pixels, order_of(magnitude));
+            if let Err(e) = verdict {
+                self.first.get_or_insert(e);
+                return Ok(());
+            }
+        }
+        verdict
+    }
+
+    /// The parse's result: the first length kept, with the formats that resolve every
+    /// length, or else `result`.
+    pub(super) fn finish(&mut self, result: Result<()>) -> Result<()> {
+        #[cfg(not(target_os = "none"))]
+        if let Some(mut e) = self.first.take() {
+            if let SceneErrorKind::BelowResolution { formats, .. } = &mut e.kind {
+                *formats = self.formats;
+            }
+            return Err(e);
+        }
+        result
+    }
+}
+
 /// Checks that a length (`q` over `pixels`: a pitch is a window's width over its pixels)
-/// is at least [`crate::scene::MIN_SCALE_DELTAS`] ulps of `magnitude` ([`Scalar::ulp`]),
-/// as `q ≥ 4·ulp·pixels` (no division); the error is at the number `at` it is derived
-/// from.
+/// is at least [`Quantity::min_deltas`] ulps of `magnitude` ([`Scalar::ulp`]): as
+/// `q ≥ deltas·ulp·pixels` (no division), [`crate::scene::MIN_SCALE_DELTAS`] of them,
+/// [`crate::scene::MIN_RADIUS_SQ_DELTAS`] for a radius²; the error is at the number `at`
+/// it is derived from.
 // Out of line: one copy in flash, not one per call.
 #[inline(never)]
 fn resolved<S: Scalar>(
@@ -435,7 +505,7 @@ fn resolved<S: Scalar>(
     quantity: Quantity,
     pixels: u16,
 ) -> Result<()> {
-    let deltas = crate::scene::MIN_SCALE_DELTAS * i32::from(pixels);
+    let deltas = quantity.min_deltas() * i32::from(pixels);
     if magnitude
         .ulp()
         .checked_mul_int(deltas)
@@ -443,16 +513,22 @@ fn resolved<S: Scalar>(
     {
         return Ok(());
     }
-    // The magnitude's binary order: below 2^order (what a float's ulp scales with).
-    let whole = magnitude.floor_to_i32().and_then(|m| u32::try_from(m).ok());
-    let order = whole.map_or(32, |m| 32 - m.leading_zeros());
     Err(at.pos.error(SceneErrorKind::BelowResolution {
         quantity,
         number: kept(at),
         pixels,
-        order: u8::try_from(order).unwrap_or(u8::MAX),
+        formats: 0,
         format: S::NAME,
     }))
+}
+
+/// The binary order of a magnitude: it is below 2^order (what a float's ulp scales
+/// with; 32 beyond `i32`).
+#[cfg(not(target_os = "none"))]
+fn order_of<S: Scalar>(magnitude: S) -> u8 {
+    let whole = magnitude.floor_to_i32().and_then(|m| u32::try_from(m).ok());
+    let order = whole.map_or(32, |m| 32 - m.leading_zeros());
+    u8::try_from(order).unwrap_or(u8::MAX)
 }
 
 /// Converts a number into the format, times `scale` (exact, in decimal).
@@ -566,7 +642,7 @@ pub(super) fn channel_colour<S: Scalar>(
 
 // Out of line: one copy in flash, not one per call.
 #[inline(never)]
-fn camera<S: Scalar>(b: &Block<'_>) -> Result<Camera<S>> {
+fn camera<S: Scalar>(b: &Block<'_>, scales: &mut Scales) -> Result<Camera<S>> {
     let pixeldim = b.required("pixeldim")?;
     let mut dims = [0u16; 2];
     for (d, n) in dims.iter_mut().zip(&pixeldim.nums) {
@@ -591,9 +667,9 @@ fn camera<S: Scalar>(b: &Block<'_>) -> Result<Camera<S>> {
     // rounded there).
     let [nx, ny] = [&worlddim.nums[0], &worlddim.nums[1]];
     let wx = positive::<S>(nx, "worlddim")?;
-    resolved(wx, wx.max(eye.x.abs()), nx, Quantity::PixelPitch, dims[0])?;
+    scales.check(wx, wx.max(eye.x.abs()), nx, Quantity::PixelPitch, dims[0])?;
     let wy = positive::<S>(ny, "worlddim")?;
-    resolved(wy, wy.max(eye.y.abs()), ny, Quantity::PixelPitch, dims[1])?;
+    scales.check(wy, wy.max(eye.y.abs()), ny, Quantity::PixelPitch, dims[1])?;
     Ok(Camera {
         width: dims[0],
         height: dims[1],

@@ -7,7 +7,7 @@ use heapless::String;
 use super::schema::Entity;
 use crate::num::Decimal;
 use crate::num::formats::MAIN;
-use crate::scene::MIN_SCALE_DELTAS;
+use crate::scene::{MIN_RADIUS_SQ_DELTAS, MIN_SCALE_DELTAS};
 
 /// Whether the parser looks for hints and its messages carry them: the entity's
 /// attributes and the nearest one, a format's range, the value of a derived length and
@@ -16,8 +16,10 @@ use crate::scene::MIN_SCALE_DELTAS;
 /// but on bare metal (`target_os = "none"`: a chip's firmware), where their code, some
 /// 8 KB, is more flash than a 64 KB chip has to spare. There a block that is not closed
 /// is reported at its next statement's first word, or at the end of the input,
-/// [`SceneErrorKind::nearest`] is `None`, a scale error keeps no number, and every other
-/// error is the same kind at the same position, its message without the hint.
+/// [`SceneErrorKind::nearest`] is `None`, a scale error keeps no number nor formats (it
+/// returns at once: on a host the parse reads on, for the formats that resolve the whole
+/// scene), and every other error is the same kind at the same position, its message
+/// without the hint.
 pub(super) const HINTS: bool = cfg!(not(target_os = "none"));
 
 /// Longest token quoted in an error message; longer ones are cut and end in `…`.
@@ -167,10 +169,11 @@ pub enum SceneErrorKind {
         format: &'static str,
     },
     /// A length the scene derives (a pixel's pitch, a radius or its square) below
-    /// [`MIN_SCALE_DELTAS`] of the format's resolution at the scene's scale: a scene the
-    /// format cannot draw ([`crate::scene::MIN_SCALE_DELTAS`] has the rule), at the number
-    /// it is derived from. The message gives the length and the formats of [`MAIN`] that
-    /// resolve it (not on bare metal).
+    /// [`MIN_SCALE_DELTAS`] (a radius² in a fixed format: [`MIN_RADIUS_SQ_DELTAS`]) of the
+    /// format's resolution at the scene's scale: a scene the format cannot draw
+    /// ([`crate::scene::MIN_SCALE_DELTAS`] has the rule), at the number it is derived
+    /// from. The message gives the length and the formats of [`MAIN`] that resolve every
+    /// scale of the scene (`formats`; not on bare metal).
     BelowResolution {
         /// What it is.
         quantity: Quantity,
@@ -179,10 +182,12 @@ pub enum SceneErrorKind {
         number: QuotedNumber,
         /// What that number is divided by: the pixels across, for a pitch; 1 otherwise.
         pixels: u16,
-        /// The binary order of the largest coordinate it is formed among: that coordinate
-        /// is below 2^`order` (and 0 for one below 1). A float's resolution is relative
-        /// ([`crate::Scalar::ulp`] of it).
-        order: u8,
+        /// The formats of [`MAIN`] (bit `i`: `MAIN[i]`) that resolve every pixel pitch
+        /// and sphere of the scene as the scale rule asks, this length among them, as
+        /// far as the scene was read (the error is returned once the parse is over, or
+        /// at a later error): a format that resolves this pitch but not a sphere further
+        /// on is not one. 0 on bare metal, where the error returns at once.
+        formats: u8,
         /// The number format.
         format: &'static str,
     },
@@ -317,6 +322,15 @@ impl Quantity {
             Quantity::PixelPitch => "pixel pitch",
             Quantity::Radius => "radius",
             Quantity::RadiusSq => "radius²",
+        }
+    }
+
+    /// The least the scale rule asks of it, in ulps of the format: [`MIN_SCALE_DELTAS`],
+    /// and [`MIN_RADIUS_SQ_DELTAS`] of a radius² (a fixed format's).
+    pub(crate) fn min_deltas(self) -> i32 {
+        match self {
+            Quantity::PixelPitch | Quantity::Radius => MIN_SCALE_DELTAS,
+            Quantity::RadiusSq => MIN_RADIUS_SQ_DELTAS,
         }
     }
 }
@@ -472,28 +486,20 @@ impl fmt::Display for SceneErrorKind {
                 quantity,
                 number,
                 pixels,
-                order,
+                formats,
                 format,
             } => {
                 f.write_str(quantity.name())?;
-                let value = derived(*quantity, number, *pixels);
-                if let Some(v) = &value {
+                if let Some(v) = derived(*quantity, number, *pixels) {
                     f.write_str(" ")?;
-                    write_decimal(f, v)?;
+                    write_decimal(f, &v)?;
                 }
-                let deltas = MIN_SCALE_DELTAS.unsigned_abs();
+                let deltas = quantity.min_deltas().unsigned_abs();
                 write!(f, " is below {deltas} DELTA of {format}")?;
-                if let Some(v) = &value {
+                if HINTS {
                     f.write_str("; ")?;
-                    // A fixed format is held to a radius's square (`MIN_SCALE_DELTAS`).
-                    let square = derived(Quantity::RadiusSq, number, 1);
-                    let resolves = |s: Shape| match (s, quantity, &square) {
-                        (Shape::Fixed { .. }, Quantity::Radius, Some(sq)) => {
-                            s.resolves(Quantity::RadiusSq, sq, *order)
-                        }
-                        _ => s.resolves(*quantity, v, *order),
-                    };
-                    holders(f, format, resolves, "or", ("resolves", "resolve"))?;
+                    let named = |i: usize| (1u32 << i) & u32::from(*formats) != 0;
+                    holders(f, format, |i, _| named(i), "or", ("resolves", "resolve"))?;
                 }
                 Ok(())
             }
@@ -592,7 +598,7 @@ fn beyond_range(f: &mut fmt::Formatter<'_>, format: &str, number: Option<Decimal
     match number {
         Some(n) => {
             f.write_str("; ")?;
-            holders(f, format, |s| s.holds(&n), "and", ("holds", "hold"))
+            holders(f, format, |_, s| s.holds(&n), "and", ("holds", "hold"))
         }
         None => Ok(()),
     }
@@ -605,7 +611,11 @@ fn derived(quantity: Quantity, number: &str, pixels: u16) -> Option<Decimal> {
     if !HINTS {
         return None;
     }
-    let mut d = Decimal::parse(number)?;
+    Some(derive(quantity, Decimal::parse(number)?, pixels))
+}
+
+/// The value of a derived quantity from the number `d` it is derived from ([`derived`]).
+fn derive(quantity: Quantity, mut d: Decimal, pixels: u16) -> Decimal {
     match quantity {
         Quantity::PixelPitch => {
             while let Some(m) = d.mantissa.checked_mul(10).filter(|m| *m < u64::MAX / 10) {
@@ -624,22 +634,39 @@ fn derived(quantity: Quantity, number: &str, pixels: u16) -> Option<Decimal> {
             d.exponent = d.exponent.saturating_mul(2);
         }
     }
-    Some(d)
+    d
 }
 
-/// Lists the formats of [`MAIN`] other than `format` for which `ok` holds: `a, b and c
-/// hold it` (`last` joins the last two; `verb` is the singular and plural verb), or
-/// `no number format holds it`.
+/// The formats of [`MAIN`] (bit `i`: `MAIN[i]`) that resolve a length the scene derives
+/// from `number` among coordinates below 2^`order`, as the parser's scale rule asks of
+/// each ([`Shape::resolves`]): a pixel pitch (`quantity`; `number` a `worlddim` over
+/// `pixels`), or a sphere's radius (either of the other quantities: `number` the radius,
+/// held to its square in a fixed format). Only where [`HINTS`] holds (the parser keeps
+/// the formats there).
+#[cfg(not(target_os = "none"))]
+pub(super) fn resolvers(quantity: Quantity, number: &Decimal, pixels: u16, order: u8) -> u8 {
+    let mut bits = 0;
+    for (i, name) in MAIN.iter().enumerate() {
+        if Shape::of(name).is_some_and(|s| s.resolves(quantity, number, pixels, order)) {
+            bits |= 1 << i;
+        }
+    }
+    bits
+}
+
+/// Lists the formats of [`MAIN`] other than `format` for which `ok` holds (given a
+/// format's index in [`MAIN`] and its shape): `a, b and c hold it` (`last` joins the last
+/// two; `verb` is the singular and plural verb), or `no number format holds it`.
 fn holders(
     f: &mut fmt::Formatter<'_>,
     format: &str,
-    ok: impl Fn(Shape) -> bool,
+    ok: impl Fn(usize, Shape) -> bool,
     last: &str,
     (one, many): (&str, &str),
 ) -> fmt::Result {
     let mut names = heapless::Vec::<&str, { MAIN.len() }>::new();
-    for name in MAIN {
-        if name != format && Shape::of(name).is_some_and(&ok) {
+    for (i, name) in MAIN.into_iter().enumerate() {
+        if name != format && Shape::of(name).is_some_and(|s| ok(i, s)) {
             let _ = names.push(name);
         }
     }
@@ -707,20 +734,41 @@ impl Shape {
         }
     }
 
-    /// Whether the format resolves `value` as the parser's scale rule asks
-    /// ([`MIN_SCALE_DELTAS`] of its `DELTA`; a float's `DELTA` times 2^`order`, and a
-    /// float resolves every square), and, a fixed format, holds 2^`order`.
-    fn resolves(self, quantity: Quantity, value: &Decimal, order: u8) -> bool {
+    /// Whether the format resolves the length `quantity` derived from `number` (a pitch
+    /// over `pixels`; a sphere's radius for either other quantity) among coordinates below
+    /// 2^`order` as the parser's scale rule asks: a pitch of [`MIN_SCALE_DELTAS`] ulps
+    /// (`DELTA`; a float's times 2^`order`); a radius, in a fixed format, whose square
+    /// it holds, of [`MIN_RADIUS_SQ_DELTAS`] `DELTA`s, in a float of [`MIN_SCALE_DELTAS`]
+    /// ulps. A fixed format must hold 2^`order` too.
+    #[cfg(not(target_os = "none"))]
+    fn resolves(self, quantity: Quantity, number: &Decimal, pixels: u16, order: u8) -> bool {
         let order = u32::from(order);
-        let bits = match self {
+        let pitch = quantity == Quantity::PixelPitch;
+        let (value, bits, min) = match self {
             Shape::Fixed { int, .. } if order >= int => return false,
-            Shape::Fixed { frac, .. } => frac,
-            Shape::Float { .. } if quantity == Quantity::RadiusSq => return true,
-            Shape::Float { mantissa, .. } => mantissa.saturating_sub(order),
+            Shape::Fixed { frac, .. } if pitch => {
+                (derive(quantity, *number, pixels), frac, MIN_SCALE_DELTAS)
+            }
+            Shape::Fixed { frac, .. } => {
+                let square = derive(Quantity::RadiusSq, *number, 1);
+                if !self.holds(&square) {
+                    return false;
+                }
+                (square, frac, MIN_RADIUS_SQ_DELTAS)
+            }
+            Shape::Float { mantissa, .. } => {
+                let length = if pitch { quantity } else { Quantity::Radius };
+                (
+                    derive(length, *number, pixels),
+                    mantissa.saturating_sub(order),
+                    MIN_SCALE_DELTAS,
+                )
+            }
         };
         // `None`: beyond i128 after the shift, far above the limit.
-        let min = i128::from(MIN_SCALE_DELTAS);
-        value.to_fixed_bits(bits).is_none_or(|v| v >= min)
+        value
+            .to_fixed_bits(bits)
+            .is_none_or(|v| v >= i128::from(min))
     }
 }
 

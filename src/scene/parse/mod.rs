@@ -14,8 +14,9 @@
 //! formats that hold a number beyond it, where a block that is not closed was opened
 //! (at its `{`), an example camera for a scene without one, invisible characters
 //! escaped (`\u{feff}`). A scene whose scale the format cannot resolve is refused
-//! ([`crate::scene::MIN_SCALE_DELTAS`]). On bare metal (a chip's firmware) the messages
-//! leave these hints out, for flash.
+//! ([`crate::scene::MIN_SCALE_DELTAS`], [`crate::scene::MIN_RADIUS_SQ_DELTAS`]), naming
+//! the formats that resolve every pitch and sphere of it. On bare metal (a chip's
+//! firmware) the messages leave these hints out, for flash.
 //!
 //! ```
 //! use fixray::{Scene, I16F16};
@@ -128,6 +129,8 @@ struct Parser<'a, 's, S, const O: usize, const M: usize, const L: usize> {
     texture_names: Vec<&'a str, { crate::scene::MAX_TEXTURES }>,
     /// Where texture files come from ([`Scene::read_with`]).
     files: &'s mut dyn FnMut(&str) -> Option<&'static [u8]>,
+    /// The scale rule's lengths ([`builder::Scales`]).
+    scales: builder::Scales,
 }
 
 type Result<T> = core::result::Result<T, SceneError>;
@@ -390,6 +393,23 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
     }
 
     fn parse(mut self) -> Result<()> {
+        // A length the format does not resolve, kept on a host, comes first.
+        let statements = self.statements();
+        self.scales.finish(statements)?;
+        let camera = self
+            .camera
+            .ok_or_else(|| self.lexer.pos.error(SceneErrorKind::MissingCamera))?;
+        self.scene.camera = camera;
+        self.scene.background = self.background.unwrap_or([S::ZERO; 3]);
+        self.scene.epsilon = self.epsilon.unwrap_or(S::DEFAULT_EPSILON);
+        self.scene.set_rules(self.rules);
+        Ok(())
+    }
+
+    /// Reads every statement of the text into the scene. Inlined: its frame is the
+    /// parse's, as one function's (stack on a chip).
+    #[inline(always)]
+    fn statements(&mut self) -> Result<()> {
         while let Some(t) = self.lexer.next_token() {
             match t.text {
                 "background" => {
@@ -430,13 +450,6 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                 }
             }
         }
-        let camera = self
-            .camera
-            .ok_or_else(|| self.lexer.pos.error(SceneErrorKind::MissingCamera))?;
-        self.scene.camera = camera;
-        self.scene.background = self.background.unwrap_or([S::ZERO; 3]);
-        self.scene.epsilon = self.epsilon.unwrap_or(S::DEFAULT_EPSILON);
-        self.scene.set_rules(self.rules);
         Ok(())
     }
 }
@@ -644,6 +657,7 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
                 light_names: Vec::new(),
                 texture_names: Vec::new(),
                 files,
+                scales: builder::Scales::new(),
             }
             .parse()
         });
