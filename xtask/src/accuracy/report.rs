@@ -161,10 +161,10 @@ pub(super) fn write_report(
                      division per pixel), shadow rays against planes divide no more \
                      (`Plane::occludes`), and on the M0 double-width products are formed \
                      from 16-bit halves instead of the 64-bit multiply helper. What remains \
-                     is per light and pixel: normalising the direction to the light (divisions \
-                     and a square root) and the falloff division, each I16F16 division a \
-                     ~370-instruction 64-bit helper call on the M0. Soft-float f32 has the \
-                     same structure, so the ratio moves less than the counts."
+                     is per light and pixel: the diffuse term's division (N·L/|L|²) and the \
+                     shadow tests, each division a call on the M0 (`docs/performance.md`, \
+                     per-operation costs). Soft-float f32 has the same structure, so the \
+                     ratio moves less than the counts."
                 }
             );
         }
