@@ -235,3 +235,19 @@ fn every_code_block_is_labelled() {
     }
     assert!(!open, "a code block is not closed");
 }
+
+/// The README's scene examples parse too (in f64 and I16F16).
+#[test]
+fn the_readmes_scene_examples_are_valid() {
+    let readme = include_str!("../README.md");
+    let examples = examples(readme);
+    assert!(!examples.is_empty(), "the README shows a scene");
+    for example in &examples {
+        for result in [
+            read_example::<f64>(example).map(|_| ()),
+            read_example::<I16F16>(example).map(|_| ()),
+        ] {
+            result.unwrap_or_else(|e| panic!("README.md (not the scene language): {e}"));
+        }
+    }
+}
