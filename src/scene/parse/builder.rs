@@ -1,23 +1,25 @@
 //! The builder: each parsed block becomes the scene's values (converted into the number
 //! format, checked against the attribute's domain), with the error at the token at fault.
+//! A number's conversion and domains are in `domain.rs`, the scale rule's checks of the
+//! lengths a scene derives in `scale.rs`.
 
 use core::cmp::Ordering;
 
-use super::error::TextureProblem;
-#[cfg(not(target_os = "none"))]
-use super::error::resolvers;
-use super::error::{HINTS, Quantity, QuotedNumber, SceneError, SceneErrorKind};
-use super::lexer::quote_number;
+use super::domain::{
+    channel_colour, colour3, convert, in_domain, non_negative_value, positive, positive_value,
+    vector,
+};
+use super::error::{Quantity, SceneError, SceneErrorKind, TextureProblem};
+use super::scale::{Scales, radius_sq_beyond};
 use super::schema::Entity;
 use super::too_many;
-use super::{Block, Number, Parser, Result, Value, quote};
+use super::{Block, Parser, Result, Value, quote};
 use crate::num::Decimal;
 use crate::ppm::Ppm;
 use crate::scene::{Beam, Cone, MAX_PIXELDIM, MAX_PROJECTORS, MAX_TEXTURES, Object};
 use crate::{
-    Camera, Color, Light, Material, Plane, PlaneError, PlaneFrame, PlaneFrameError, Revsurf,
-    RevsurfError, Rules, Scalar, Shape, Slide, Sphere, TexMode, Tiling, Triangle, TriangleError,
-    Vec3,
+    Camera, Light, Material, Plane, PlaneError, PlaneFrame, PlaneFrameError, Revsurf, RevsurfError,
+    Rules, Scalar, Shape, Slide, Sphere, TexMode, Tiling, Triangle, TriangleError, Vec3,
 };
 
 impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '_, S, O, M, L> {
@@ -408,238 +410,6 @@ fn cone<S: Scalar>(b: &Block<'_>, location: Vec3<S>) -> Result<Cone<S>> {
     Ok(Cone { axis, cos_theta })
 }
 
-/// The error of a radius whose square is beyond the range of `format`.
-#[cold]
-#[inline(never)]
-fn radius_sq_beyond(r: &Number<'_>, format: &'static str) -> SceneError {
-    r.pos.error(SceneErrorKind::BeyondRange {
-        quantity: Quantity::RadiusSq,
-        number: kept(r),
-        format,
-    })
-}
-
-/// A number as a scale error keeps it: only where its message shows it ([`HINTS`]).
-fn kept(n: &Number<'_>) -> QuotedNumber {
-    if HINTS {
-        quote_number(n.text)
-    } else {
-        QuotedNumber::new()
-    }
-}
-
-/// The scale rule over a parse: each length through [`Scales::check`], the parse's
-/// result through [`Scales::finish`]. On a host ([`HINTS`]) a length the format does
-/// not resolve does not end the parse: the first is kept and returned when the parse is
-/// over, or at a later error (which lies after it in the file), with the formats that
-/// resolve every pitch and sphere of the scene (`BelowResolution`'s `formats`), so that
-/// its message names no format that a later sphere rules out. On bare metal the error
-/// returns at once, as every other one, and this type is empty (no stack for a kept
-/// error: the fields exist only where [`HINTS`] holds).
-pub(super) struct Scales {
-    /// The first length the format does not resolve.
-    #[cfg(not(target_os = "none"))]
-    first: Option<SceneError>,
-    /// The formats of `MAIN` that resolve every length checked (bit `i`: `MAIN[i]`).
-    #[cfg(not(target_os = "none"))]
-    formats: u8,
-}
-
-impl Scales {
-    /// Nothing checked yet.
-    pub(super) const fn new() -> Self {
-        Self {
-            #[cfg(not(target_os = "none"))]
-            first: None,
-            #[cfg(not(target_os = "none"))]
-            formats: u8::MAX,
-        }
-    }
-
-    /// [`resolved`], kept on a host (see the type).
-    fn check<S: Scalar>(
-        &mut self,
-        q: S,
-        magnitude: S,
-        at: &Number<'_>,
-        quantity: Quantity,
-        pixels: u16,
-    ) -> Result<()> {
-        let verdict = resolved(q, magnitude, at, quantity, pixels);
-        #[cfg(not(target_os = "none"))]
-        {
-            self.formats &= resolvers(quantity, &at.value, pixels, order_of(magnitude));
-            if let Err(e) = verdict {
-                self.first.get_or_insert(e);
-                return Ok(());
-            }
-        }
-        verdict
-    }
-
-    /// The parse's result: the first length kept, with the formats that resolve every
-    /// length, or else `result`.
-    pub(super) fn finish(&mut self, result: Result<()>) -> Result<()> {
-        #[cfg(not(target_os = "none"))]
-        if let Some(mut e) = self.first.take() {
-            if let SceneErrorKind::BelowResolution { formats, .. } = &mut e.kind {
-                *formats = self.formats;
-            }
-            return Err(e);
-        }
-        result
-    }
-}
-
-/// Checks that a length (`q` over `pixels`: a pitch is a window's width over its pixels)
-/// is at least [`Quantity::min_deltas`] ulps of `magnitude` ([`Scalar::ulp`]): as
-/// `q ≥ deltas·ulp·pixels` (no division), [`crate::scene::MIN_SCALE_DELTAS`] of them,
-/// [`crate::scene::MIN_RADIUS_SQ_DELTAS`] for a radius²; the error is at the number `at`
-/// it is derived from.
-// Out of line: one copy in flash, not one per call.
-#[inline(never)]
-fn resolved<S: Scalar>(
-    q: S,
-    magnitude: S,
-    at: &Number<'_>,
-    quantity: Quantity,
-    pixels: u16,
-) -> Result<()> {
-    let deltas = quantity.min_deltas() * i32::from(pixels);
-    if magnitude
-        .ulp()
-        .checked_mul_int(deltas)
-        .is_some_and(|min| q >= min)
-    {
-        return Ok(());
-    }
-    Err(at.pos.error(SceneErrorKind::BelowResolution {
-        quantity,
-        number: kept(at),
-        pixels,
-        formats: 0,
-        format: S::NAME,
-    }))
-}
-
-/// The binary order of a magnitude: it is below 2^order (what a float's ulp scales
-/// with; 32 beyond `i32`).
-#[cfg(not(target_os = "none"))]
-fn order_of<S: Scalar>(magnitude: S) -> u8 {
-    let whole = magnitude.floor_to_i32().and_then(|m| u32::try_from(m).ok());
-    let order = whole.map_or(32, |m| 32 - m.leading_zeros());
-    u8::try_from(order).unwrap_or(u8::MAX)
-}
-
-/// Converts a number into the format, times `scale` (exact, in decimal).
-// Out of line: one copy in flash, not one per call.
-#[inline(never)]
-fn convert<S: Scalar>(n: &Number<'_>, scale: u64) -> Result<S> {
-    S::from_decimal(n.value.times(scale)).ok_or_else(|| {
-        n.pos.error(SceneErrorKind::DoesNotFit {
-            value: quote(n.text),
-            format: S::NAME,
-        })
-    })
-}
-
-// Out of line: one copy in flash, not one per call.
-#[inline(never)]
-fn vector<S: Scalar>(v: &Value<'_>) -> Result<Vec3<S>> {
-    Ok(Vec3::new(
-        convert(&v.nums[0], 1)?,
-        convert(&v.nums[1], 1)?,
-        convert(&v.nums[2], 1)?,
-    ))
-}
-
-/// `> 0`.
-fn positive_value(d: &Decimal) -> bool {
-    !d.negative && !d.is_zero()
-}
-
-/// `>= 0` (`-0` included).
-fn non_negative_value(d: &Decimal) -> bool {
-    !d.negative || d.is_zero()
-}
-
-fn in_domain(
-    n: &Number<'_>,
-    ok: impl Fn(&Decimal) -> bool,
-    attribute: &'static str,
-    rule: &'static str,
-) -> Result<()> {
-    if ok(&n.value) {
-        Ok(())
-    } else {
-        Err(n.pos.error(SceneErrorKind::OutOfDomain { attribute, rule }))
-    }
-}
-
-/// A number that must be > 0 and stay > 0 in the format.
-// Out of line: one copy in flash, not one per call.
-#[inline(never)]
-fn positive<S: Scalar>(n: &Number<'_>, attribute: &'static str) -> Result<S> {
-    in_domain(n, positive_value, attribute, "> 0")?;
-    let x = convert::<S>(n, 1)?;
-    if x > S::ZERO {
-        Ok(x)
-    } else {
-        Err(n.pos.error(SceneErrorKind::OutOfDomain {
-            attribute,
-            rule: "> 0 (it rounds to 0 in this number format)",
-        }))
-    }
-}
-
-/// Three reals ≥ 0.
-fn non_negative3<S: Scalar>(v: &Value<'_>, attribute: &'static str) -> Result<[S; 3]> {
-    let mut c = [S::ZERO; 3];
-    for (ck, n) in c.iter_mut().zip(&v.nums) {
-        in_domain(n, non_negative_value, attribute, ">= 0")?;
-        *ck = convert(n, 1)?;
-    }
-    Ok(c)
-}
-
-/// Three colour reals: ≥ 0 under the `fixray` rules; the course reads any value (a
-/// negative one darkens, and a pixel below 0 shows 0).
-fn colour3<S: Scalar>(v: &Value<'_>, attribute: &'static str, rules: Rules) -> Result<[S; 3]> {
-    if rules == Rules::Fixray {
-        return non_negative3(v, attribute);
-    }
-    Ok([
-        convert(&v.nums[0], 1)?,
-        convert(&v.nums[1], 1)?,
-        convert(&v.nums[2], 1)?,
-    ])
-}
-
-/// A displayed colour (ambient, background) in channel units: 255 × the value, computed
-/// exactly in decimal. The value itself must fit the format; if 255 × it does not, it
-/// saturates at the format's maximum (or minimum), which displays as 255 (or 0) exactly
-/// like the value would. Negative values only under the course rules.
-pub(super) fn channel_colour<S: Scalar>(
-    nums: &[Number<'_>; 3],
-    attribute: &'static str,
-    rules: Rules,
-) -> Result<Color<S>> {
-    let mut c = [S::ZERO; 3];
-    for (ck, n) in c.iter_mut().zip(nums) {
-        if rules == Rules::Fixray {
-            in_domain(n, non_negative_value, attribute, ">= 0")?;
-        }
-        convert::<S>(n, 1)?;
-        let limit = if n.value.negative {
-            S::MAX.checked_neg().unwrap_or(S::ZERO)
-        } else {
-            S::MAX
-        };
-        *ck = convert(n, 255).unwrap_or(limit);
-    }
-    Ok(c)
-}
-
 // Out of line: one copy in flash, not one per call.
 #[inline(never)]
 fn camera<S: Scalar>(b: &Block<'_>, scales: &mut Scales) -> Result<Camera<S>> {
@@ -762,20 +532,6 @@ fn share<S: Scalar>(
     let ok = |d: &Decimal| non_negative_value(d) && d.cmp_int(1) != Ordering::Greater;
     in_domain(&v.nums[0], ok, attribute, "in [0, 1]")?;
     Ok(Some(convert(&v.nums[0], 1)?))
-}
-
-/// The precision epsilon: a real > 0 that must stay > 0 in the format.
-pub(super) fn precision<S: Scalar>(n: &Number<'_>) -> Result<S> {
-    in_domain(n, positive_value, "precision", "> 0")?;
-    let eps = convert::<S>(n, 1)?;
-    if eps > S::ZERO {
-        Ok(eps)
-    } else {
-        Err(n.pos.error(SceneErrorKind::OutOfDomain {
-            attribute: "precision",
-            rule: "at least the number format's resolution (it rounds to 0)",
-        }))
-    }
 }
 
 /// The error of a tiled or finite plane's frame, at the attribute at fault: the normal

@@ -95,7 +95,7 @@ pub(super) fn quote(text: &str) -> Quoted {
     for c in text.chars() {
         // The character, or its escape: `\u{` and at most six hex digits.
         let mut one = heapless::String::<10>::new();
-        if super::error::HINTS && is_invisible(c) {
+        if super::hints::HINTS && is_invisible(c) {
             let code = u32::from(c);
             let _ = one.push_str("\\u{");
             for shift in (0..6).rev() {

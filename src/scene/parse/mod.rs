@@ -1,7 +1,10 @@
 //! The scene parser: the scene language ([`crate::scene::language`]), no_std, no allocator.
 //! `lexer.rs` splits the text into tokens, `schema.rs` says which entities and attributes
-//! there are, this file reads blocks by the schema, `builder.rs` turns each block into
-//! the scene's values and `error.rs` says what went wrong where.
+//! there are (`reference.rs` writes the language's reference tables from it), this file
+//! reads blocks by the schema, `builder.rs` turns each block into the scene's values
+//! (`domain.rs` converts and checks each number, `scale.rs` holds the scale rule) and
+//! `error.rs` says what went wrong where (`hints.rs` works out what a host's messages
+//! add).
 //!
 //! Every bad input ends in a [`SceneError`] that names the line and column (1-based, in
 //! characters) of the token at fault; no input makes the parser panic. The whole format is
@@ -33,8 +36,12 @@
 //! ```
 
 mod builder;
+mod domain;
 mod error;
+mod hints;
 mod lexer;
+mod reference;
+mod scale;
 pub mod schema;
 
 use heapless::Vec;
@@ -46,7 +53,7 @@ pub use error::{
 
 use crate::num::Decimal;
 use crate::{Camera, Color, Rules, Scalar, Scene, Vec3};
-use builder::{channel_colour, precision};
+use domain::{channel_colour, precision};
 use error::Pos;
 use lexer::{Lexer, Token, is_name, quote};
 use schema::{Arity, Entity, MAX_ATTRS, MAX_NUMBERS};
@@ -129,8 +136,8 @@ struct Parser<'a, 's, S, const O: usize, const M: usize, const L: usize> {
     texture_names: Vec<&'a str, { crate::scene::MAX_TEXTURES }>,
     /// Where texture files come from ([`Scene::read_with`]).
     files: &'s mut dyn FnMut(&str) -> Option<&'static [u8]>,
-    /// The scale rule's lengths ([`builder::Scales`]).
-    scales: builder::Scales,
+    /// The scale rule's lengths ([`scale::Scales`]).
+    scales: scale::Scales,
 }
 
 type Result<T> = core::result::Result<T, SceneError>;
@@ -191,7 +198,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
         loop {
             let end = self.lexer.pos;
             let Some(t) = self.lexer.next_token() else {
-                if error::HINTS
+                if hints::HINTS
                     && let Some(e) = self.unclosed(None, (None, false), block)
                 {
                     return Err(e);
@@ -203,7 +210,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
             }
             let Some(i) = specs.iter().position(|s| s.is(t.text)) else {
                 let after = if t.text == "{" { named } else { None };
-                if error::HINTS
+                if hints::HINTS
                     && let Some(e) = self.unclosed(Some(&t), (after, false), block)
                 {
                     return Err(e);
@@ -220,7 +227,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
             if values[i].is_some() && self.rules == Rules::Fixray {
                 // Unless it starts the next block (`material m {`).
                 let keyword = Some(specs[i].name);
-                if error::HINTS
+                if hints::HINTS
                     && let Some(e) = self.unclosed(Some(&t), (keyword, true), block)
                 {
                     return Err(e);
@@ -269,7 +276,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
                 }
             }
             values[i] = Some(v);
-            if error::HINTS {
+            if hints::HINTS {
                 named = (specs[i].arity == Arity::Name).then_some(specs[i].name);
             }
         }
@@ -290,7 +297,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
     /// of the format at the start of a line, an entity keyword followed by a name and `{`,
     /// or a block whose keyword was read as an attribute (`keyword`: at its `{`, or, with
     /// `ahead`, when a name and `{` follow: `material m {`). The error is at the block's
-    /// `{`. Not looked for on bare metal ([`error::HINTS`]: the end of the input and the
+    /// `{`. Not looked for on bare metal ([`hints::HINTS`]: the end of the input and the
     /// next statement's first word are then reported as they are). Out of line: only ever
     /// on the way to an error.
     #[cold]
@@ -301,7 +308,7 @@ impl<'a, S: Scalar, const O: usize, const M: usize, const L: usize> Parser<'a, '
         (keyword, ahead): (Option<&'static str>, bool),
         (entity, name, open): (Entity, Token<'a>, Pos),
     ) -> Option<SceneError> {
-        if !error::HINTS {
+        if !hints::HINTS {
             return None;
         }
         let next = match t {
@@ -657,7 +664,7 @@ impl<S: Scalar, const O: usize, const M: usize, const L: usize> Scene<S, O, M, L
                 light_names: Vec::new(),
                 texture_names: Vec::new(),
                 files,
-                scales: builder::Scales::new(),
+                scales: scale::Scales::new(),
             }
             .parse()
         });
