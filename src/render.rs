@@ -26,9 +26,10 @@ use embedded_graphics_core::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics_core::prelude::{DrawTarget, Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
 
+use crate::kernel::KernelStages;
 use crate::kernel::flat::PlaneMode;
 use crate::kernel::{self, Drawing, KernelKind, RowSink};
-use crate::shade::stages::{Shading, Stages, shading_for, stage, with_stages};
+use crate::shade::stages::{Shading, shading_for, stage, with_stages};
 use crate::stats::Counters;
 use crate::{AsView, Scalar, SceneView, Traced};
 
@@ -275,7 +276,7 @@ impl RowSink<Rgb888> for Slice<'_> {
     }
 }
 
-fn columns_with<S: Scalar, T: Stages, C>(
+fn columns_with<S: Scalar, T: KernelStages, C>(
     frame: &Frame<'_, S, C>,
     row: u16,
     columns: core::ops::Range<u16>,
@@ -299,7 +300,7 @@ fn draw_with<S, T, D>(
 ) -> Result<(), D::Error>
 where
     S: Scalar,
-    T: Stages,
+    T: KernelStages,
     D: DrawTarget,
     D::Color: From<Rgb888>,
 {

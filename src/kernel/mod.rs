@@ -22,8 +22,12 @@
 
 pub(crate) mod fast;
 pub(crate) mod flat;
-mod reference;
+mod memo;
 mod rows;
+mod scanline;
+mod shading;
+#[cfg(test)]
+mod tests;
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 
@@ -34,8 +38,8 @@ use fast::Primary;
 use flat::{Flat, PlaneMode};
 use rows::Rows;
 
-pub(crate) use reference::scanline;
-pub use reference::{MemoSlot, PlaneMemo};
+pub(crate) use memo::KernelStages;
+pub(crate) use scanline::scanline;
 
 /// Whether this build has the kernels (cargo feature `kernels`). Without them every frame
 /// is drawn by the reference path, the definition (the kernels draw it within their
@@ -217,7 +221,7 @@ pub(crate) fn fast_only<S: Scalar>(scene: &SceneView<'_, S>) -> Drawing<S> {
 }
 
 /// Fills `line` (at most the camera's width) with scanline `row` drawn by `kernel`.
-pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
+pub(crate) fn line<S: Scalar, T: KernelStages, C: From<Rgb888>>(
     scene: &SceneView<'_, S>,
     drawing: &Drawing<S>,
     mode: PlaneMode,
@@ -260,7 +264,7 @@ pub(crate) fn line<S: Scalar, T: Stages, C: From<Rgb888>>(
 /// A scanline the flat kernel handed back, on the next kernel of the chain
 /// ([`Drawing::handed_back`]).
 #[inline(never)]
-fn fallback_line<S: Scalar, T: Stages, C: From<Rgb888>>(
+fn fallback_line<S: Scalar, T: KernelStages, C: From<Rgb888>>(
     scene: &SceneView<'_, S>,
     drawing: &Drawing<S>,
     row: u16,
@@ -294,7 +298,7 @@ pub(crate) fn stream<S, T, C, K>(
 ) -> Result<(), K::Error>
 where
     S: Scalar,
-    T: Stages,
+    T: KernelStages,
     C: From<Rgb888> + Clone,
     K: RowSink<C>,
 {
@@ -347,7 +351,7 @@ fn rows_stream<'a, S, T, C, K>(
 ) -> Result<Result<(), K::Error>, &'a mut Counters>
 where
     S: Scalar,
-    T: Stages,
+    T: KernelStages,
     C: From<Rgb888> + Clone,
     K: RowSink<C>,
 {
@@ -395,7 +399,7 @@ fn flat_line<S: Scalar, C: From<Rgb888>>(
 /// inlined: its per-row data are on the stack only while it draws, never under the fast
 /// kernel's scanline.
 #[inline(never)]
-fn rows_line<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
+fn rows_line<'a, S: Scalar, T: KernelStages, C: From<Rgb888>>(
     scene: &'a SceneView<'a, S>,
     rows: &'a Rows<S>,
     row: u16,
@@ -419,7 +423,7 @@ fn rows_line<'a, S: Scalar, T: Stages, C: From<Rgb888>>(
 /// A scanline of the fast kernel (with its per-frame part `primary`) or, without it, of
 /// the reference path, into `line`.
 #[inline(never)]
-fn primary_line<S: Scalar, T: Stages, C: From<Rgb888>>(
+fn primary_line<S: Scalar, T: KernelStages, C: From<Rgb888>>(
     scene: &SceneView<'_, S>,
     primary: Option<&Primary<S>>,
     row: u16,

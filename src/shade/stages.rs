@@ -1,6 +1,5 @@
 //! Stage sets: the shading loop is compiled once per set, and the plan picks one.
 
-use crate::kernel::{MemoSlot, PlaneMemo};
 use crate::{AsView, Plan, Scalar, SceneView};
 
 /// A set of shading stages, fixed at compile time: the renderer is instantiated once per
@@ -24,12 +23,6 @@ pub trait Stages {
     /// Translucent materials (the course's `transparency`): transmitted rays and light
     /// filtered through translucent occluders.
     const TRANSPARENCY: bool;
-    /// What a fast-kernel scanline drawn with this set keeps from pixel to pixel for its
-    /// lit plane hits (`kernel/reference.rs`): a [`PlaneMemo`] for the diffuse sets that
-    /// take the flattened plane shading, nothing (`()`) for the others, so that their
-    /// scanlines carry no room for it (the deepest I32F32 stack on a 16 KB chip is
-    /// theirs).
-    type Memo<S: Scalar>: MemoSlot<S> + 'static;
 }
 
 /// The lighting stages of a set as values: the light loop (`light.rs`) is compiled once
@@ -78,7 +71,6 @@ impl Stages for AmbientOnly {
     const CONES: bool = false;
     const REFLECTION: bool = false;
     const TRANSPARENCY: bool = false;
-    type Memo<S: Scalar> = ();
 }
 impl Stages for Diffuse {
     const LIGHTING: bool = cfg!(feature = "lighting");
@@ -87,7 +79,6 @@ impl Stages for Diffuse {
     const CONES: bool = false;
     const REFLECTION: bool = false;
     const TRANSPARENCY: bool = false;
-    type Memo<S: Scalar> = PlaneMemo<S>;
 }
 impl Stages for DiffuseShadows {
     const LIGHTING: bool = cfg!(feature = "lighting");
@@ -96,7 +87,6 @@ impl Stages for DiffuseShadows {
     const CONES: bool = false;
     const REFLECTION: bool = false;
     const TRANSPARENCY: bool = false;
-    type Memo<S: Scalar> = PlaneMemo<S>;
 }
 impl Stages for Full {
     const LIGHTING: bool = cfg!(feature = "lighting");
@@ -105,7 +95,6 @@ impl Stages for Full {
     const CONES: bool = cfg!(feature = "lighting");
     const REFLECTION: bool = cfg!(feature = "reflection");
     const TRANSPARENCY: bool = true;
-    type Memo<S: Scalar> = ();
 }
 
 /// Which stage set a plan needs.

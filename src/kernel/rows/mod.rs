@@ -1,0 +1,393 @@
+//! Lit scenes of level planes and spheres (the boing ball's kind): each scanline's plane
+//! is found once per row, not once per pixel.
+//!
+//! A primary ray of scanline `j` is `D = (x − eye.x, dy_j, dz)`: only `D.x` changes
+//! along the row. For a plane whose normal has `N.x = 0` (a floor, a ceiling, a back
+//! wall, any plane tilted only about the x axis), `N·D` is therefore the same at every
+//! pixel of the row, and so are its test, its parameter `t' = num/(N·D)` and the hit's
+//! `y` and `z`. When every plane is of that kind, the nearest plane of a row, its
+//! division, the normal facing the ray, its tile row, every plane's side at the hit, the
+//! objects that can shadow the row and each light's terms are worked out once per row
+//! ([`Primary::level_row`], [`level`]); a pixel computes its hit's `x` (one product) and
+//! lights it: the tile column, `L.x`, `|L|²`, the shadow tests the row kept and one
+//! division for `255·(N·L)/|L|²`. Spheres are tested only inside their boxes on the
+//! screen (the fast kernel's `sphere_rows` and `sphere_columns`), by the fast kernel's
+//! own test, and shaded its way.
+//!
+//! Every quantity has the fast kernel's value (the same operations; `|L|²` adds its
+//! exact terms in another order only where sums are exact, `KernelArith::EXACT_SUMS`, and a
+//! shadow cone's `l·u` only where products are exact too, `KernelArith::EXACT_PRODUCTS`), so a
+//! pixel is the fast kernel's bit for bit (`tests/rows.rs`: every boing frame, an
+//! unshipped ball scene and seeded random level scenes, whole and partial scanlines, in
+//! every format). A row that cannot be decided once (a plane within the epsilon's margin
+//! of parallel at some pixel) and any pixel whose quantity leaves the format are drawn by
+//! the fast kernel itself. The statistics (`Counters`) of a pixel that this kernel hands
+//! to the general shading midway (a light's `|L|²` out of range) count its tile lookup and
+//! its earlier lights twice; its colour is not affected.
+//!
+//! Its files: this one, the scanline ([`scanline`], [`Pixels`]); `level.rs`, the row's
+//! plane and its per-row terms ([`level`]) and the colour of a pixel on it
+//! ([`plane_color`]); `lean.rs`, lean rows ([`lean_row`]): the commonest pixels'
+//! colours and quick runs.
+
+mod lean;
+mod level;
+
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+use super::fast::{self, FAST_OBJECTS, FastHit, Primary, Row};
+use super::scanline::{fast_color, reference_color};
+use crate::shade::color::to_pixel;
+use crate::shade::stages::Stages;
+use crate::stats::{Counters, count};
+use crate::{Color, Scalar, SceneView};
+use lean::{LeanRow, count_quick, lean_color, lean_row, quick_step};
+use level::{Level, Memo, level, plane_color, row_plane};
+
+/// The per-frame part: the fast kernel's (its terms, the lights' sides of every plane,
+/// the spheres' rows and shadow cones).
+#[derive(Debug, Clone)]
+pub(crate) struct Rows<S: Scalar> {
+    pub(crate) primary: Primary<S>,
+}
+
+/// Whether the stage set `T` is the one this kernel draws with (diffuse point lights and
+/// shadows, `DiffuseShadows`): [`super::select`] picks it only then, and the scanline
+/// code is compiled only for that set (flash: a scene lit without shadows, one plane
+/// under a light, is the fast kernel's).
+pub(crate) const fn draws_with<T: Stages>() -> bool {
+    T::LIGHTING && T::SHADOWS && !T::SPECULAR && !T::CONES && !T::REFLECTION && !T::TRANSPARENCY
+}
+
+/// Whether this kernel draws scanline `row` itself (`false`: it hands it to the fast
+/// kernel), for [`crate::Frame::row_kernel`].
+pub(crate) fn decides<S: Scalar>(scene: &SceneView<'_, S>, rows: &Rows<S>, row: u16) -> bool {
+    let p = &rows.primary;
+    p.row(scene, row, 0)
+        .is_some_and(|first| row_plane(scene, p, &first).is_some())
+}
+
+/// The pixels of columns `columns` of scanline `row`: the row's plane worked out once
+/// ([`Primary::level_row`]), then per pixel its hit's `x` and light, spheres by the fast
+/// kernel's test inside their boxes. `Err` (the counters handed back) when this kernel
+/// cannot decide the row once: the fast kernel then draws it, pixel by pixel. One pixel
+/// is one out-of-line call ([`Pixels::pixel`]): the kernel's code is compiled once per
+/// format, not again for every colour type and display driver that takes the pixels
+/// (flash on a small chip). Not inlined: the scanline is built in the caller's slot, not
+/// copied there (stack).
+#[inline(never)]
+pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
+    scene: &'a SceneView<'a, S>,
+    rows: &'a Rows<S>,
+    row: u16,
+    columns: core::ops::Range<u16>,
+    counters: &'a mut Counters,
+) -> Result<Pixels<'a, S, T>, &'a mut Counters> {
+    let p = &rows.primary;
+    let Some(first) = p.row(scene, row, 0) else {
+        return Err(counters);
+    };
+    let Some(level) = level::<S, T>(scene, p, &first) else {
+        return Err(counters);
+    };
+    let lazy = S::EXACT_PRODUCTS && p.terms_fit_row(scene, &first, scene.camera.width);
+    Ok(Pixels {
+        scene,
+        p,
+        level,
+        lean: LeanRow {
+            tiles: None,
+            ambient: [[S::ZERO; 3]; 2],
+            lit: [false; 2],
+            lights: heapless::Vec::new(),
+            cones: heapless::Vec::new(),
+            half: S::ZERO,
+            runs: false,
+        },
+        lean_built: None,
+        lazy,
+        stale: false,
+        state: first,
+        fresh: true,
+        // From another column than 0 the first pixel restarts there, as the fast
+        // kernel's scanline starts its row there.
+        valid: columns.start == 0,
+        at_hit: heapless::Vec::new(),
+        memo: Memo {
+            bound: None,
+            tol: None,
+        },
+        spheres: p.sphere_columns_on_row(row),
+        y: scene.camera.screen_y(row),
+        row,
+        columns,
+        counters,
+        stages: core::marker::PhantomData,
+        run: [Rgb888::new(0, 0, 0); RUN],
+        run_at: 0,
+        run_len: 0,
+        #[cfg(feature = "stats")]
+        run_lit: 0,
+    })
+}
+
+/// A scanline of the level-plane kernel, pixel by pixel ([`scanline`]).
+pub(crate) struct Pixels<'a, S: Scalar, T> {
+    scene: &'a SceneView<'a, S>,
+    p: &'a Primary<S>,
+    level: Option<Level<S>>,
+    /// The row's lean part ([`lean_row`]), built at the first pixel that needs it
+    /// (`lean_built`: `None` until then, then whether the row is a lean one).
+    lean: LeanRow<S>,
+    lean_built: Option<bool>,
+    /// The fast kernel's row at the current pixel: at column 0 as the fast kernel starts
+    /// it (`fresh`); after a pixel whose step failed (`valid` false) the next restarts,
+    /// as `reference::scanline` does.
+    state: Row<S>,
+    fresh: bool,
+    valid: bool,
+    /// Whether the row steps only `D` outside the spheres' columns (the formats whose
+    /// products and sums are exact, and every term fits along the whole row:
+    /// [`Primary::terms_fit_row`]), and whether its terms are behind its `D` now.
+    lazy: bool,
+    stale: bool,
+    at_hit: heapless::Vec<S, FAST_OBJECTS>,
+    memo: Memo<S>,
+    /// The columns where a sphere can be met on this row.
+    spheres: (u16, u16),
+    y: Option<S>,
+    row: u16,
+    columns: core::ops::Range<u16>,
+    counters: &'a mut Counters,
+    stages: core::marker::PhantomData<T>,
+    /// Pixels a quick run drew ahead ([`Pixels::quick_run`]): `run[run_at..run_len]`
+    /// are the next ones, before `columns`.
+    run: [Rgb888; RUN],
+    run_at: u8,
+    run_len: u8,
+    /// Which of `run` were lit (bit `i`: `run[i]`): their counts are added as they are
+    /// handed out, so that a caller that stops early counts only the pixels it took.
+    #[cfg(feature = "stats")]
+    run_lit: u32,
+}
+
+/// How many pixels a quick run draws ahead of the one asked for ([`Pixels::quick_run`]).
+const RUN: usize = 32;
+
+impl<S: Scalar, T: Stages> Iterator for Pixels<'_, S, T> {
+    type Item = Rgb888;
+
+    #[inline]
+    fn next(&mut self) -> Option<Rgb888> {
+        // The pixels a quick run drew ahead ([`Pixels::quick_run`]) first.
+        if self.run_at < self.run_len
+            && let Some(pixel) = self.run.get(usize::from(self.run_at))
+        {
+            #[cfg(feature = "stats")]
+            {
+                let lit = (self.run_lit >> self.run_at) & 1 != 0;
+                let tiled = u32::from(self.lean.tiles.is_some());
+                count_quick(self.counters, tiled, lit, true);
+            }
+            self.run_at += 1;
+            return Some(*pixel);
+        }
+        let column = self.columns.next()?;
+        Some(self.pixel(column))
+    }
+}
+
+impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
+    /// The pixel at `column` (the next of the row's columns).
+    #[inline(never)]
+    fn pixel(&mut self, column: u16) -> Rgb888 {
+        let (scene, p) = (self.scene, self.p);
+        count(&mut self.counters.primary_rays);
+        let in_spheres = column >= self.spheres.0 && column <= self.spheres.1;
+        // The commonest pixels first ([`Pixels::quick_run`]): a lazy row's columns
+        // outside the spheres' columns, on a lean row already built.
+        if S::QUICK_PIXEL
+            && S::EXACT_SUMS
+            && S::EXACT_PRODUCTS
+            && self.lazy
+            && !in_spheres
+            && !self.fresh
+            && self.valid
+            && self.lean_built == Some(true)
+            && self.lean.runs
+            && let Some(pixel) = self.quick_run(column)
+        {
+            return pixel;
+        }
+        // Outside the spheres' columns a lazy row steps `D` alone (the pixel's plane
+        // needs nothing else); its terms are brought up to date where a sphere can be met.
+        // (Only where products are exact: elsewhere none of it is compiled, flash.)
+        let lazy = S::EXACT_PRODUCTS && self.lazy;
+        let skip = lazy && !in_spheres;
+        let stale = S::EXACT_PRODUCTS && self.stale;
+        let stepped = if self.fresh && Primary::column(&self.state) == column {
+            Some(())
+        } else if self.valid
+            && Primary::column(&self.state).checked_add(1) == Some(column)
+            && !column.is_multiple_of(fast::resync_pixels::<S>())
+        {
+            if skip || stale {
+                p.advance_dir(&mut self.state)
+            } else {
+                p.advance(&mut self.state)
+            }
+        } else if skip {
+            // `D.y` is the row's at every pixel (`scanline` started it on this row).
+            let dy = Primary::dir(&self.state).y;
+            p.restart_dir_in_row(scene, self.row, dy, column, &mut self.state)
+        } else {
+            self.stale = false;
+            p.restart(scene, self.row, column, &mut self.state)
+        };
+        self.fresh = false;
+        self.stale |= skip;
+        let stepped = match stepped {
+            Some(()) if S::EXACT_PRODUCTS && self.stale && !skip => {
+                self.stale = false;
+                p.refresh(scene, &mut self.state)
+            }
+            s => s,
+        };
+        self.valid = stepped.is_some();
+        // What the pixel shows: the row's plane, or what the fast kernel found.
+        let found = match stepped {
+            None => Err(()),
+            Some(()) if in_spheres => match p.nearest(scene, &self.state) {
+                Ok(Some(h)) if self.level.as_ref().is_some_and(|l| l.index == h.index) => Ok(None),
+                Ok(Some(h)) => Ok(Some(h)),
+                Ok(None) => return to_pixel(scene.rules(), scene.background),
+                Err(()) => Err(()),
+            },
+            Some(()) => Ok(None),
+        };
+        let color = match found {
+            // The lean path exists only where sums are exact (fixed formats): elsewhere
+            // not even its call is made.
+            Ok(None) if S::EXACT_SUMS => match self.lean() {
+                Some(Ok(pixel)) => return pixel,
+                Some(Err(color)) => color,
+                None => self.plane(column),
+            },
+            Ok(None) => self.plane(column),
+            Ok(Some(h)) => self.other(&h),
+            Err(()) => self.reference(column),
+        };
+        to_pixel(scene.rules(), color)
+    }
+
+    /// The pixel at `column` and as many of the row's next columns as [`Pixels::run`]
+    /// holds, while each is a quick step ([`quick_step`]), in a loop: the row's lean part
+    /// is looked up once, not once a pixel, and one call draws them all. `None` when
+    /// `column`'s is not one (nothing changed but a resync column's restart, which the
+    /// general path then does again, to the same state).
+    #[inline(never)]
+    fn quick_run(&mut self, column: u16) -> Option<Rgb888> {
+        // `D.y` is the row's at every pixel (`scanline` started it on this row).
+        let (scene, p) = (self.scene, self.p);
+        let row = (self.row, Primary::dir(&self.state).y);
+        let (l, f) = (self.level.as_ref()?, &self.lean);
+        let [light] = f.lights.as_slice() else {
+            return None;
+        };
+        let tiled = u32::from(f.tiles.is_some());
+        let (first, lit) = quick_step(scene, p, l, f, light, &mut self.state, row, column)?;
+        // (The first pixel's primary ray was counted by `pixel`, the caller; the others'
+        // counts are added as `next` hands them out.)
+        count_quick(self.counters, tiled, lit, false);
+        #[cfg(feature = "stats")]
+        {
+            self.run_lit = 0;
+        }
+        let (end, spheres) = (self.columns.end, self.spheres);
+        let mut n = 0u8;
+        for slot in self.run.iter_mut() {
+            let c = self.columns.start;
+            if c >= end || (c >= spheres.0 && c <= spheres.1) {
+                break;
+            }
+            let Some((pixel, lit)) = quick_step(scene, p, l, f, light, &mut self.state, row, c)
+            else {
+                break;
+            };
+            #[cfg(feature = "stats")]
+            {
+                self.run_lit |= u32::from(lit) << n;
+            }
+            #[cfg(not(feature = "stats"))]
+            let _ = lit;
+            *slot = pixel;
+            n += 1;
+            self.columns.start = c + 1;
+        }
+        (self.run_at, self.run_len) = (0, n);
+        (self.fresh, self.stale, self.valid) = (false, true, true);
+        Some(first)
+    }
+
+    /// The row's plane at the current pixel ([`plane_color`]). Out of line, as is
+    /// [`Pixels::other`]: the plane's locals are not on the stack under the general
+    /// shading's deep calls (an I32F32 frame on a 16 KB chip).
+    #[inline(never)]
+    fn plane(&mut self, column: u16) -> Color<S> {
+        plane_color::<S, T>(
+            self.scene,
+            self.p,
+            &self.state,
+            self.level.as_ref(),
+            &mut self.memo,
+            self.y,
+            column,
+            self.counters,
+        )
+    }
+
+    /// The row's plane at the current column by [`lean_color`]: its pixel where the
+    /// quick term settled it, else its colour (`None`: [`Pixels::plane`] draws it).
+    #[inline(never)]
+    fn lean(&mut self) -> Option<Result<Rgb888, Color<S>>> {
+        // Only formats with exact sums have lean rows: in the others (floats) this is
+        // all there is of it (flash), and `pixel` does not call it.
+        if !S::EXACT_SUMS {
+            return None;
+        }
+        let l = self.level.as_ref()?;
+        let lean = match self.lean_built {
+            Some(lean) => lean,
+            None => {
+                let d = Primary::dir(&self.state);
+                let lean = lean_row(self.scene, self.p, l, (d.y, d.z), &mut self.lean).is_some();
+                self.lean_built = Some(lean);
+                lean
+            }
+        };
+        if !lean {
+            return None;
+        }
+        lean_color(self.scene, &self.state, l, &self.lean, self.counters)
+    }
+
+    /// The pixel on the reference path (a quantity out of the format's range).
+    #[inline(never)]
+    fn reference(&mut self, column: u16) -> Color<S> {
+        reference_color::<S, T>(self.scene, self.y, column, self.counters)
+    }
+
+    /// Another object the fast kernel found at the current pixel (a sphere), shaded the
+    /// fast kernel's way.
+    #[inline(never)]
+    fn other(&mut self, h: &FastHit<S>) -> Color<S> {
+        fast_color::<S, T>(
+            self.scene,
+            Some(self.p),
+            &self.state,
+            h,
+            &mut self.at_hit,
+            self.counters,
+        )
+    }
+}
