@@ -193,36 +193,26 @@ fn lit_plane_with<S: Scalar>(
             knl: None,
         }))
     };
-    // The objects that may stand between the hit and the light are the ones
-    // `occludes_segment` picks, less the hit's own plane where quotients are exact: its
-    // side at the hit is `num − t'·(N·D)` with `t'` within a DELTA of `num/(N·D)`, so it
-    // lies within `(|N·D| + 1)·DELTA` of zero, inside the tolerance
-    // `(t'·2|D|∞ + 12)·DELTA` (`t' ≥ 1`, `|N·D| ≤ √3|D|∞`), and `sides_differ` passes it
-    // over. (A quiet hit's segments cannot be stopped: `quiet_hit`.)
-    let eye = scene.camera.viewpoint;
     let shadowed = |j: usize, light: &Light<S>, t: &LightTerms<S>| {
+        // (A quiet hit's segments cannot be stopped: `quiet_hit`.)
         if quiet {
             return Some(false);
         }
-        let candidates = match sides {
-            Some(s) if S::EXACT_QUOTIENTS => Some(s.bits.candidates(j) & !object_bit(h.index)),
-            _ => None,
-        };
-        let tol = || segment_tolerance(eye, h.point, h.t_bound, None);
-        let segment = (h.point, t.to_light, t.ll);
-        shadowed_among(scene, sides, candidates, (j, light), segment, tol)
+        plane_hit_shadowed(scene, sides, h, (j, light), t)
     };
     let weight = |j: usize| {
         let (w, overflow) = weights.and_then(|m| m.weight(scene, j))?;
         Some((w, u16::from(overflow)))
     };
-    let diffuse = (material.diffuse, k);
+    let diffuse = material.diffuse;
     light_plane_hit(
         scene,
         color,
         diffuse,
         shadows,
-        (terms, shadowed, weight),
+        (terms, shadowed, weight, |t: &LightTerms<S>| {
+            t.nl.checked_mul(k)
+        }),
         counters,
     )
 }
@@ -259,9 +249,8 @@ pub(super) fn segment_tolerance<S: Scalar>(
 /// sides (`sides`, every object's); otherwise, or where the sides do not cover every
 /// object, every object is tested (`occludes_segment`). The segments' tolerance `tol`
 /// is formed only where a segment is tested (`None` where it does not fit: the caller
-/// then shades the pixel the general way). Out of line: the pixels that take it are few
-/// (most are quiet, or their rows' lights pass every plane, or a cone clears them).
-#[inline(never)]
+/// then shades the pixel the general way).
+#[inline(always)]
 pub(super) fn shadowed_among<S: Scalar>(
     scene: &SceneView<'_, S>,
     sides: Option<PlaneSides<'_, S>>,
@@ -290,15 +279,15 @@ pub(super) fn shadowed_among<S: Scalar>(
 }
 
 /// One light's terms at a lit plane hit, as the shading forms them: `L = light − hit`,
-/// `|L|²` (positive), `N·L` with the normal facing the ray (positive) and `255·N·L`
-/// (`Some(None)`: it does not fit, and `diffuse_falloff` divides first; `None`: formed
-/// by [`light_plane_hit`] once the light is known to reach the hit).
+/// `|L|²` (positive), `N·L` with the normal facing the ray (positive) and, where the
+/// caller forms it with the others, `255·N·L` (read by the caller's `knl`; `None` where
+/// it does not fit, and `diffuse_falloff` divides first).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct LightTerms<S> {
     pub(super) to_light: Vec3<S>,
     pub(super) ll: S,
     pub(super) nl: S,
-    pub(super) knl: Option<Option<S>>,
+    pub(super) knl: Option<S>,
 }
 
 /// The diffuse lights added to a plane hit's colour `color` (its ambient colour): the
@@ -314,19 +303,22 @@ pub(super) struct LightTerms<S> {
 /// - `shadowed(j, light, terms)`: whether the light is stopped (asked only where
 ///   `shadows`; `None`: the general shading);
 /// - `weight(j)`: the light's `emissivity × diffuse` per channel kept for the material
-///   shown, with its overflow bits ([`add_weighted`]), if the caller keeps it.
+///   shown, with its overflow bits ([`add_weighted`]), if the caller keeps it;
+/// - `knl(terms)`: `255·N·L`, formed once the light is known to reach the hit (the
+///   caller's `terms` may keep it: its `knl`).
 ///
-/// `diffuse`: the material's diffuse colour and `channel_max` (255 in the format).
+/// `diffuse`: the material's diffuse colour.
 #[inline(always)]
 pub(super) fn light_plane_hit<S: Scalar>(
     scene: &SceneView<'_, S>,
     mut color: Color<S>,
-    (diffuse, k): ([S; 3], S),
+    diffuse: [S; 3],
     shadows: bool,
-    (mut terms, mut shadowed, weight): (
+    (mut terms, mut shadowed, weight, knl): (
         impl FnMut(usize, &Light<S>) -> Option<Option<LightTerms<S>>>,
         impl FnMut(usize, &Light<S>, &LightTerms<S>) -> Option<bool>,
         impl Fn(usize) -> Option<([S; 3], u16)>,
+        impl Fn(&LightTerms<S>) -> Option<S>,
     ),
     counters: &mut Counters,
 ) -> Option<Color<S>> {
@@ -340,8 +332,7 @@ pub(super) fn light_plane_hit<S: Scalar>(
                 continue;
             }
         }
-        let knl = t.knl.unwrap_or_else(|| t.nl.checked_mul(k));
-        let falloff = diffuse_falloff(t.nl, knl, t.ll);
+        let falloff = diffuse_falloff(t.nl, knl(&t), t.ll);
         count(&mut counters.diffuse);
         color = match weight(j) {
             Some((w, overflow)) => add_weighted(color, w, overflow, falloff),
@@ -381,6 +372,32 @@ pub(super) fn add_weighted<S: Scalar>(
         add(color[1], w[1], 2),
         add(color[2], w[2], 4),
     ]
+}
+
+/// Whether the shadow segment from the fast kernel's plane hit `h` towards light `j` is
+/// stopped ([`shadowed_among`]). The objects that may stand between the hit and the
+/// light are the ones `occludes_segment` picks, less the hit's own plane where quotients
+/// are exact: its side at the hit is `num − t'·(N·D)` with `t'` within a DELTA of
+/// `num/(N·D)`, so it lies within `(|N·D| + 1)·DELTA` of zero, inside the tolerance
+/// `(t'·2|D|∞ + 12)·DELTA` (`t' ≥ 1`, `|N·D| ≤ √3|D|∞`), and `sides_differ` passes it
+/// over. Out of line: the pixels that take it are few (the others are quiet,
+/// `quiet_hit`).
+#[inline(never)]
+fn plane_hit_shadowed<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    sides: Option<PlaneSides<'_, S>>,
+    h: &fast::FastHit<S>,
+    (j, light): (usize, &Light<S>),
+    t: &LightTerms<S>,
+) -> Option<bool> {
+    let candidates = match sides {
+        Some(s) if S::EXACT_QUOTIENTS => Some(s.bits.candidates(j) & !object_bit(h.index)),
+        _ => None,
+    };
+    let eye = scene.camera.viewpoint;
+    let tol = || segment_tolerance(eye, h.point, h.t_bound, None);
+    let segment = (h.point, t.to_light, t.ll);
+    shadowed_among(scene, sides, candidates, (j, light), segment, tol)
 }
 
 /// Object `index`'s bit in a set of objects as bits (none beyond the eighth).

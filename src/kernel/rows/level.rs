@@ -352,7 +352,7 @@ pub(super) fn lit<S: Scalar, T: Stages>(
                 to_light,
                 ll,
                 nl,
-                knl: Some(rl.knl),
+                knl: rl.knl,
             }))
         }
         None => {
@@ -365,7 +365,7 @@ pub(super) fn lit<S: Scalar, T: Stages>(
                 to_light,
                 ll,
                 nl,
-                knl: None,
+                knl: nl.checked_mul(channel_max::<S>()),
             }))
         }
     };
@@ -379,13 +379,13 @@ pub(super) fn lit<S: Scalar, T: Stages>(
         let e = slot.saturating_add(j);
         Some((*l.weights.get(e)?, l.overflow >> (3 * e)))
     };
-    let diffuse = (material.diffuse, channel_max::<S>());
+    let diffuse = material.diffuse;
     light_plane_hit(
         scene,
         material.ambient,
         diffuse,
         T::SHADOWS,
-        (terms, shadowed, weight),
+        (terms, shadowed, weight, |t: &LightTerms<S>| t.knl),
         counters,
     )
 }
