@@ -35,6 +35,8 @@
 
 mod blocks;
 mod boxes;
+#[cfg(test)]
+mod invariants;
 mod search;
 mod shadows;
 mod step;

@@ -32,6 +32,8 @@
 
 mod lean;
 mod level;
+#[cfg(test)]
+mod invariants;
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 

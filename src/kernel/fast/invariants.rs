@@ -1,0 +1,1 @@
+//! The fast kernel's invariants, each tested on its own.

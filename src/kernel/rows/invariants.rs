@@ -1,0 +1,1 @@
+//! The level-plane kernel's invariants, each tested on its own.
