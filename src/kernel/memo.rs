@@ -59,14 +59,9 @@ pub struct PlaneMemo<S> {
     /// Whether the scene's lights send every plane hit to the general shading (a light
     /// on a surface, a projector), once asked.
     pub(super) general: Option<bool>,
-    /// Whether the scanline's row has stepped its certified block's plane alone since
-    /// its terms were last all up to date (`Primary::advance_one`): a pixel that needs
-    /// the others refreshes them first (`Primary::refresh`, bit for bit what stepping
-    /// them would have given, in the formats that step so: `Primary::steps_freely`).
-    pub(crate) stale: bool,
-    /// Whether the scanline steps its blocks' planes alone (until a restart, once a
-    /// pixel has had to refresh its terms: a block of such pixels steps them all).
-    pub(crate) lazy: bool,
+    /// How the scanline steps its certified blocks ([`fast::Stepping`]): a pixel of a
+    /// block whose hit needs only its plane steps that plane's term alone.
+    pub(super) stepping: fast::Stepping,
 }
 
 impl<S: Scalar> Default for PlaneMemo<S> {
@@ -79,8 +74,7 @@ impl<S: Scalar> Default for PlaneMemo<S> {
             quiet: None,
             facing: None,
             general: None,
-            stale: false,
-            lazy: true,
+            stepping: fast::Stepping::default(),
         }
     }
 }

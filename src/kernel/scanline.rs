@@ -30,12 +30,9 @@ pub(crate) fn scanline<'a, S: Scalar, T: KernelStages, C: From<Rgb888>>(
     let mut state: Option<Row<S>> = None;
     // The planes' sides at the current pixel's hit (see `Primary::sides_at`).
     let mut at_hit = heapless::Vec::new();
-    // A block of pixels from a resync column whose winner is certified
-    // (`Primary::start_block`, `Primary::block_hit`), and the last pixel's winner (the
-    // guess a resync column certifies first: `None` where there is none).
-    let mut block = fast::Block::default();
-    let mut guess = fast::Guess::default();
-    // What the stage set's plane hits keep from pixel to pixel (`Stages::Memo`).
+    // The scanline's certified blocks (`Primary::find`).
+    let mut blocks = fast::Blocks::default();
+    // What the stage set's plane hits keep from pixel to pixel (`KernelStages::Memo`).
     let mut memo = T::Memo::<S>::default();
     let last = columns.end.saturating_sub(1);
     columns.map(move |column| {
@@ -43,90 +40,19 @@ pub(crate) fn scanline<'a, S: Scalar, T: KernelStages, C: From<Rgb888>>(
         // Without the kernels (cargo feature `kernels`) the fast kernel's code is not
         // linked: the test is a constant here, where each pixel reads `primary`.
         let found = primary.filter(|_| super::KERNELS).and_then(|p| {
-            match state.as_mut() {
-                Some(r)
-                    if Primary::column(r).checked_add(1) == Some(column)
-                        && column % fast::resync_pixels::<S>() != 0 =>
-                {
-                    // Inside a certified block a stage set with a plane memo steps the
-                    // block's plane alone (its pixels need no other term unless they
-                    // take the general shading or a shadow test: `PlaneMemo::stale`).
-                    match (memo.memo(), block.plane_at(column)) {
-                        (Some(m), Some(w)) if m.lazy && p.steps_freely() => {
-                            p.advance_one(r, w)?;
-                            m.stale = true;
-                        }
-                        (m, _) => {
-                            if let Some(m) = m.filter(|m| m.stale) {
-                                p.refresh(scene, r)?;
-                                m.stale = false;
-                            }
-                            p.advance(r)?
-                        }
-                    }
-                }
-                Some(r) => {
-                    block = fast::Block::default();
-                    if let Some(m) = memo.memo() {
-                        (m.stale, m.lazy) = (false, true);
-                    }
-                    if p.restart(scene, row, column, r).is_none() {
-                        state = None;
-                        return None;
-                    }
-                }
-                None => {
-                    block = fast::Block::default();
-                    if let Some(m) = memo.memo() {
-                        (m.stale, m.lazy) = (false, true);
-                    }
-                    state = Some(p.row(scene, row, column)?);
-                }
-            }
-            let r = state.as_ref()?;
+            let stepping = memo.memo().map(|m| &mut m.stepping);
+            let r = p.step_to(scene, (row, column), &mut state, &mut blocks, stepping)?;
             // The still planes' hits the stage set's memo keeps (`fast::HitMemo`).
-            let mut hits = memo.memo().map(|m| &mut m.hits);
-            // Certified blocks: only in the formats that take them (compiled out of the
-            // others, `fast::blocks_for`).
-            if !fast::blocks_for::<S>() {
-                return p.nearest_with(scene, r, hits).ok();
-            }
-            if let Some(hit) = p.block_hit(scene, r, &block, hits.as_deref_mut()) {
-                return hit.ok();
-            }
-            if column % fast::block_starts::<S>() != 0 {
-                return p.nearest_with(scene, r, hits).ok();
-            }
-            // A resync column: the last pixel's winner certified first (no search where
-            // it holds), else the searched one (unless that was the guess).
-            if let Some(w) = guess.winner() {
-                p.start_block(r, w, last, &mut block);
-                if let Some(hit) = p.block_hit(scene, r, &block, hits.as_deref_mut()) {
-                    return hit.ok();
-                }
-            }
-            let hit = p.nearest_with(scene, r, hits).ok()?;
-            let winner = hit.as_ref().map(|h| h.index);
-            if guess.winner() != Some(winner) {
-                p.start_block(r, winner, last, &mut block);
-            }
-            // A restart's block that does not hold to the next restart may hold for its
-            // first half (the second half tries its own, `fast::block_starts::<S>()`).
-            if block.is_empty() && column % fast::resync_pixels::<S>() == 0 {
-                let half = last.min(column.saturating_add(fast::block_starts::<S>() - 1));
-                p.start_block(r, winner, half, &mut block);
-            }
-            Some(hit)
+            let hits = memo.memo().map(|m| &mut m.hits);
+            p.find(scene, r, (column, last), &mut blocks, hits)
         });
-        if fast::blocks_for::<S>() {
-            guess = fast::Guess::of(found.as_ref().map(|h| h.as_ref().map(|h| h.index)));
-        }
+        blocks.saw::<S>(found.as_ref().map(|h| h.as_ref().map(|h| h.index)));
         let color = match found {
             Some(Some(h)) => match state.as_mut() {
                 Some(r) => {
                     // The flattened plane shading first (not called at all for the
                     // other stage sets and formats), else the general one (with every
-                    // term up to date: `PlaneMemo::stale`).
+                    // term up to date: `fast::Stepping`).
                     let lit = match primary {
                         Some(p) if lit_planes::<S, T>() => {
                             let at = (&mut at_hit, memo.memo());
@@ -137,11 +63,10 @@ pub(crate) fn scanline<'a, S: Scalar, T: KernelStages, C: From<Rgb888>>(
                     match lit {
                         Some(color) => color,
                         None => {
-                            if let (Some(m), Some(p)) = (memo.memo(), primary)
-                                && m.stale
-                            {
-                                m.stale = p.refresh(scene, r).is_none();
-                                m.lazy = false;
+                            if let (Some(m), Some(p)) = (memo.memo(), primary) {
+                                // (Where a term does not fit, the general shading
+                                // forms what it needs itself.)
+                                let _ = p.catch_up(scene, r, &mut m.stepping);
                             }
                             fast_color::<S, T>(scene, primary, r, &h, &mut at_hit, counters)
                         }

@@ -121,15 +121,14 @@ fn lit_plane_with<S: Scalar>(
             .as_deref_mut()
             .is_some_and(|m| quiet_hit(scene, p, r, h, m));
     // The sides need every term: a row stepped by its block's plane alone is brought up
-    // to date first (`PlaneMemo::stale`).
+    // to date first (`fast::Stepping`).
     if set_shadows
         && !quiet
         && let Some(m) = memo.as_deref_mut()
-        && m.stale
     {
-        p.refresh(scene, r)?;
-        (m.stale, m.lazy) = (false, false);
+        p.catch_up(scene, r, &mut m.stepping)?;
     }
+
     // A term's position is its object's index (every object is a term): the row's `N·D`
     // of the plane is the shading's `D·N` (the exact products' sum, rounded once). Its
     // sign is `num`'s wherever the plane is hit (`ahead`), so the facing normal, and the

@@ -9,7 +9,7 @@ use crate::{Scalar, SceneView};
 /// Where a scanline outside a certified block tries to start one: every this many
 /// columns (a restart's, and half-way to the next, so that a block that fails for a
 /// crossing in one half may hold in the other).
-pub(crate) const fn block_starts<S: Scalar>() -> u16 {
+pub(super) const fn block_starts<S: Scalar>() -> u16 {
     resync_pixels::<S>() / 2
 }
 
@@ -31,20 +31,20 @@ pub(crate) const fn blocks_for<S: Scalar>() -> bool {
 /// A scanline's certified block ([`Primary::start_block`]): the column after it (0:
 /// none) and the term that wins throughout ([`NO_TERM`]: the background).
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Block {
+pub(super) struct Block {
     stop: u16,
     winner: u8,
 }
 
 impl Block {
     /// Whether the block holds no pixel (none was certified).
-    pub(crate) fn is_empty(&self) -> bool {
+    pub(super) fn is_empty(&self) -> bool {
         self.stop == 0
     }
 
     /// The plane that wins throughout the block, if `column` is in it.
     #[inline(always)]
-    pub(crate) fn plane_at(&self, column: u16) -> Option<usize> {
+    pub(super) fn plane_at(&self, column: u16) -> Option<usize> {
         (column < self.stop && self.winner != NO_TERM).then_some(usize::from(self.winner))
     }
 }
@@ -58,6 +58,40 @@ impl Default for Block {
     }
 }
 
+/// A scanline's certified blocks ([`Primary::find`]): the block its pixels are in (empty
+/// outside one) and the last pixel's winner, the guess its next resync column certifies
+/// first.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Blocks {
+    block: Block,
+    guess: Guess,
+}
+
+impl Blocks {
+    /// The plane that wins throughout the block at `column`, if it is in one.
+    #[inline(always)]
+    pub(crate) fn plane_at(&self, column: u16) -> Option<usize> {
+        self.block.plane_at(column)
+    }
+
+    /// Leaves the block: a block holds for the pixels stepped from its start, so a
+    /// restart of the scanline ends it.
+    #[inline(always)]
+    pub(super) fn reset(&mut self) {
+        self.block = Block::default();
+    }
+
+    /// Keeps the answer at the scanline's last pixel (`found`: its winner, `Some(None)`
+    /// for the background; `None` where the reference path decided) as the guess the
+    /// next resync column certifies first (in the formats that draw blocks).
+    #[inline(always)]
+    pub(crate) fn saw<S: Scalar>(&mut self, found: Option<Option<usize>>) {
+        if blocks_for::<S>() {
+            self.guess = Guess::of(found);
+        }
+    }
+}
+
 /// No term: a block of the background (a frame has at most [`FAST_OBJECTS`] terms).
 pub(super) const NO_TERM: u8 = u8::MAX;
 
@@ -65,7 +99,7 @@ pub(super) const NO_TERM: u8 = u8::MAX;
 /// ([`Primary::start_block`]): an object's index, [`NO_TERM`] for the background, or
 /// none known. One byte (an I32F32 scanline on a 16 KB chip has a few to spare).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Guess(u8);
+pub(super) struct Guess(u8);
 
 /// No winner known ([`Guess`]).
 pub(super) const UNKNOWN: u8 = u8::MAX - 1;
@@ -82,7 +116,7 @@ impl Default for Guess {
 
 impl Guess {
     /// The guess of a pixel's answer (`None`: not known; `Some(None)`: the background).
-    pub(crate) fn of(found: Option<Option<usize>>) -> Self {
+    pub(super) fn of(found: Option<Option<usize>>) -> Self {
         Self(match found {
             Some(Some(i)) => u8::try_from(i)
                 .ok()
@@ -94,7 +128,7 @@ impl Guess {
     }
 
     /// The guessed winner (`Some(None)`: the background), if one is known.
-    pub(crate) fn winner(self) -> Option<Option<usize>> {
+    pub(super) fn winner(self) -> Option<Option<usize>> {
         match self.0 {
             UNKNOWN => None,
             NO_TERM => Some(None),
@@ -104,6 +138,52 @@ impl Guess {
 }
 
 impl<S: Scalar> Primary<S> {
+    /// The nearest hit at the row's current pixel, `column` of a scanline whose last
+    /// column is `last` (`None`: the reference path decides): [`Primary::nearest_with`]'s
+    /// answer, bit for bit, from the scanline's certified block where the pixel is in one
+    /// (no search). A resync column certifies the last pixel's winner first (no search
+    /// where it holds), else the searched one (unless that was the guess); a restart's
+    /// block that does not hold to the next restart may hold for its first half (the
+    /// second half tries its own, [`block_starts`]). Only in the formats that draw blocks
+    /// ([`blocks_for`]: compiled out of the others).
+    #[inline(always)]
+    pub(crate) fn find(
+        &self,
+        scene: &SceneView<'_, S>,
+        r: &Row<S>,
+        (column, last): (u16, u16),
+        blocks: &mut Blocks,
+        hits: Option<&mut HitMemo<S>>,
+    ) -> Option<Option<FastHit<S>>> {
+        let mut hits = hits;
+        if !blocks_for::<S>() {
+            return self.nearest_with(scene, r, hits).ok();
+        }
+        let (block, guess) = (&mut blocks.block, blocks.guess);
+        if let Some(hit) = self.block_hit(scene, r, block, hits.as_deref_mut()) {
+            return hit.ok();
+        }
+        if column % block_starts::<S>() != 0 {
+            return self.nearest_with(scene, r, hits).ok();
+        }
+        if let Some(w) = guess.winner() {
+            self.start_block(r, w, last, block);
+            if let Some(hit) = self.block_hit(scene, r, block, hits.as_deref_mut()) {
+                return hit.ok();
+            }
+        }
+        let hit = self.nearest_with(scene, r, hits).ok()?;
+        let winner = hit.as_ref().map(|h| h.index);
+        if guess.winner() != Some(winner) {
+            self.start_block(r, winner, last, block);
+        }
+        if block.is_empty() && column % resync_pixels::<S>() == 0 {
+            let half = last.min(column.saturating_add(block_starts::<S>() - 1));
+            self.start_block(r, winner, half, block);
+        }
+        Some(hit)
+    }
+
     /// The row's current pixel (a resync column, just restarted) and the pixels after it
     /// up to `last` and the next restart ([`resync_pixels`]), if [`Primary::nearest`] answers
     /// `winner` (an object's index, `None`: the background) at every one of them: that
@@ -202,7 +282,7 @@ impl<S: Scalar> Primary<S> {
     /// can be one (else an empty block); `last`: the scanline's last column. Inside the
     /// block [`Primary::block_hit`] answers for [`Primary::nearest`].
     #[inline(never)]
-    pub(crate) fn start_block(
+    pub(super) fn start_block(
         &self,
         row: &Row<S>,
         winner: Option<usize>,
@@ -218,7 +298,7 @@ impl<S: Scalar> Primary<S> {
 
     /// The frame without certified blocks: every pixel searched (the tests' oracle).
     #[cfg(test)]
-    pub(crate) fn without_blocks(mut self) -> Self {
+    pub(super) fn without_blocks(mut self) -> Self {
         self.blocks = false;
         self
     }
@@ -227,7 +307,7 @@ impl<S: Scalar> Primary<S> {
     /// (`None`: the pixel is not in the block). Reset `block` at every restart of the
     /// scanline: a block holds for the pixels stepped from its start.
     #[inline(always)]
-    pub(crate) fn block_hit(
+    pub(super) fn block_hit(
         &self,
         scene: &SceneView<'_, S>,
         row: &Row<S>,

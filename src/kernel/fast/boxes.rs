@@ -23,21 +23,15 @@ pub(super) fn sphere_rows<S: Scalar>(
     rr: S,
     dz: S,
 ) -> (u16, u16) {
-    let all = (0, scene.camera.height.saturating_sub(1));
-    if !bounded(oc, rr, dz) {
-        return all;
-    }
-    let eye_y = scene.camera.viewpoint.y;
-    // Whether row `j`'s plane passes farther than r·√(9/8) from the centre:
-    // (dz·oc.y − dy·oc.z)² > (9/8)·r²·(dy² + dz²), in the format.
-    let far = |j: u16| -> Option<bool> {
-        let dy = scene.camera.screen_y(j)?.checked_sub(eye_y)?;
-        let k = dz.checked_mul(oc.y)?.checked_sub(dy.checked_mul(oc.z)?)?;
-        let nn = dy.checked_mul(dy)?.checked_add(dz.checked_mul(dz)?)?;
-        let rhs = rr.checked_mul(nn)?.mul_ratio(9, 8)?;
-        Some(k.checked_mul(k)? > rhs)
-    };
-    span(scene.camera.height, far)
+    let camera = &scene.camera;
+    let eye_y = camera.viewpoint.y;
+    lines_near(
+        camera.height,
+        |j| camera.screen_y(j)?.checked_sub(eye_y),
+        (oc, oc.y),
+        rr,
+        dz,
+    )
 }
 
 /// The columns whose primary rays can meet a sphere: [`sphere_rows`] with the roles of
@@ -48,28 +42,51 @@ pub(super) fn sphere_rows<S: Scalar>(
 /// that moves the ray's squared distance from the centre by about
 /// `2·RESYNC_PIXELS·r·DELTA·|oc|/|dz|`, inside the `r²/8` margin the guard leaves:
 /// `r ≥ 16 √DELTA (1 + 2|oc|∞/|dz|) ≥ 32 √DELTA |oc|/|dz|`, at least
-/// `256 DELTA |oc|/|dz|` for every format's `DELTA ≤ 2⁻⁶`. Bit for bit, as the rows. (The test is [`sphere_rows`]' own, written out again: a shared
-/// helper costs the frames of three-sphere scenes more on the M0.)
+/// `256 DELTA |oc|/|dz|` for every format's `DELTA ≤ 2⁻⁶`. Bit for bit, as the rows.
 pub(super) fn sphere_columns<S: Scalar>(
     scene: &SceneView<'_, S>,
     oc: Vec3<S>,
     rr: S,
     dz: S,
 ) -> (u16, u16) {
-    let all = (0, scene.camera.width.saturating_sub(1));
+    let camera = &scene.camera;
+    let eye_x = camera.viewpoint.x;
+    lines_near(
+        camera.width,
+        |i| camera.screen_x(i)?.checked_sub(eye_x),
+        (oc, oc.x),
+        rr,
+        dz,
+    )
+}
+
+/// The first and last of the screen's `n` rows or columns whose plane of rays passes
+/// within `r·√(9/8)` of a sphere's centre ([`sphere_rows`], [`sphere_columns`]): `d(i)`
+/// is line `i`'s `D.y` (a row) or `D.x` (a column), `oc_c` the same coordinate of
+/// `oc`. A line is far where `(dz·oc_c − d·oc_z)² > (9/8)·r²·(d² + dz²)`,
+/// in the format; every line is kept where the sphere is too small for the margin
+/// ([`bounded`]). Inlined into both: one copy of the source, and the set-up of a frame
+/// with three spheres costs no call per line on the M0.
+#[inline(always)]
+fn lines_near<S: Scalar>(
+    n: u16,
+    d: impl Fn(u16) -> Option<S>,
+    (oc, oc_c): (Vec3<S>, S),
+    rr: S,
+    dz: S,
+) -> (u16, u16) {
+    let oc_z = oc.z;
     if !bounded(oc, rr, dz) {
-        return all;
+        return (0, n.saturating_sub(1));
     }
-    let eye_x = scene.camera.viewpoint.x;
-    // (dz·oc.x − dx·oc.z)² > (9/8)·r²·(dx² + dz²), in the format.
     let far = |i: u16| -> Option<bool> {
-        let dx = scene.camera.screen_x(i)?.checked_sub(eye_x)?;
-        let k = dz.checked_mul(oc.x)?.checked_sub(dx.checked_mul(oc.z)?)?;
-        let nn = dx.checked_mul(dx)?.checked_add(dz.checked_mul(dz)?)?;
+        let d = d(i)?;
+        let k = dz.checked_mul(oc_c)?.checked_sub(d.checked_mul(oc_z)?)?;
+        let nn = d.checked_mul(d)?.checked_add(dz.checked_mul(dz)?)?;
         let rhs = rr.checked_mul(nn)?.mul_ratio(9, 8)?;
         Some(k.checked_mul(k)? > rhs)
     };
-    span(scene.camera.width, far)
+    span(n, far)
 }
 
 /// Whether a sphere is large enough for [`sphere_rows`]' and [`sphere_columns`]' margin:

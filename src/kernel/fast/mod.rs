@@ -40,11 +40,14 @@ mod invariants;
 mod search;
 mod shadows;
 mod step;
+#[cfg(test)]
+mod tests;
 
-pub(crate) use blocks::{Block, Guess, block_starts, blocks_for};
+pub(crate) use blocks::{Blocks, blocks_for};
 pub use search::FastHit;
 pub(crate) use search::{HitMemo, accepts};
 pub(crate) use shadows::Quiet;
+pub(crate) use step::Stepping;
 pub(crate) use step::resync_pixels;
 pub use step::{RESYNC_PIXELS, Row};
 

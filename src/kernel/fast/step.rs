@@ -4,6 +4,7 @@
 
 use heapless::Vec;
 
+use super::blocks::Blocks;
 use super::search::eps_l1_of;
 use super::{FAST_OBJECTS, Primary, axis_of};
 use crate::{Scalar, SceneView, Vec3};
@@ -48,7 +49,105 @@ pub struct Row<S: Scalar> {
     pub(super) dx_limit: S,
 }
 
+/// A scanline's stepping flags where its lit plane hits keep a memo (`PlaneMemo`):
+/// whether it steps its certified blocks' planes alone (`lazy`: until a restart, or until
+/// a pixel has had to bring its terms up to date, after which a block steps them all),
+/// and whether it has stepped a block's plane alone since its terms were last all up to
+/// date (`stale`): a pixel that needs the others (the general shading, a shadow test)
+/// brings them up to date first ([`Primary::catch_up`]), bit for bit what stepping them
+/// would have given, in the formats that step so ([`Primary::steps_freely`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Stepping {
+    stale: bool,
+    lazy: bool,
+}
+
+impl Default for Stepping {
+    fn default() -> Self {
+        Self {
+            stale: false,
+            lazy: true,
+        }
+    }
+}
+
 impl<S: Scalar> Primary<S> {
+    /// Moves a scanline's row `state` to pixel `column` of scanline `row` and returns it:
+    /// a step from the last column ([`Primary::advance`]; inside a certified block, with
+    /// a memo's `stepping`, the block's plane alone, [`Primary::advance_one`]), else a
+    /// restart from the exact screen point (every [`resync_pixels`], or after a step that
+    /// failed), which leaves the scanline's block. `None` where the row cannot be formed
+    /// (the pixel takes the reference path; the next pixel restarts).
+    #[inline(always)]
+    pub(crate) fn step_to<'r>(
+        &self,
+        scene: &SceneView<'_, S>,
+        (row, column): (u16, u16),
+        state: &'r mut Option<Row<S>>,
+        blocks: &mut Blocks,
+        stepping: Option<&mut Stepping>,
+    ) -> Option<&'r Row<S>> {
+        match state.as_mut() {
+            Some(r)
+                if r.column.checked_add(1) == Some(column)
+                    && column % resync_pixels::<S>() != 0 =>
+            {
+                match (stepping, blocks.plane_at(column)) {
+                    (Some(m), Some(w)) if m.lazy && self.steps_freely() => {
+                        self.advance_one(r, w)?;
+                        m.stale = true;
+                    }
+                    (m, _) => {
+                        if let Some(m) = m.filter(|m| m.stale) {
+                            self.refresh(scene, r)?;
+                            m.stale = false;
+                        }
+                        self.advance(r)?
+                    }
+                }
+            }
+            Some(r) => {
+                blocks.reset();
+                if let Some(m) = stepping {
+                    *m = Stepping::default();
+                }
+                if self.restart(scene, row, column, r).is_none() {
+                    *state = None;
+                    return None;
+                }
+            }
+            None => {
+                blocks.reset();
+                if let Some(m) = stepping {
+                    *m = Stepping::default();
+                }
+                *state = Some(self.row(scene, row, column)?);
+            }
+        }
+        state.as_ref()
+    }
+
+    /// Brings the terms of a row stepped by its block's plane alone up to date
+    /// ([`Stepping`]) for a pixel that needs them all, and steps every term from then on
+    /// (until a restart). `None` where a term does not fit (the row's terms are then
+    /// not all usable: the caller shades the pixel the general way).
+    #[inline(always)]
+    pub(crate) fn catch_up(
+        &self,
+        scene: &SceneView<'_, S>,
+        r: &mut Row<S>,
+        stepping: &mut Stepping,
+    ) -> Option<()> {
+        if stepping.stale {
+            if self.refresh(scene, r).is_none() {
+                stepping.lazy = false;
+                return None;
+            }
+            (stepping.stale, stepping.lazy) = (false, false);
+        }
+        Some(())
+    }
+
     /// Starts scanline `row` at column `column`.
     pub fn row(&self, scene: &SceneView<'_, S>, row: u16, column: u16) -> Option<Row<S>> {
         let mut r = Row {
@@ -225,7 +324,7 @@ impl<S: Scalar> Primary<S> {
     /// and products are exact, and every term fits throughout the frame (so that the
     /// refresh cannot fail where the steps would not have).
     #[inline(always)]
-    pub(crate) fn steps_freely(&self) -> bool {
+    pub(super) fn steps_freely(&self) -> bool {
         S::EXACT_SUMS && S::EXACT_PRODUCTS && self.fits
     }
 
@@ -233,7 +332,7 @@ impl<S: Scalar> Primary<S> {
     /// then stale until [`Primary::refresh`]): for a pixel of a certified block, whose
     /// hit needs only its plane's `N·D`.
     #[inline(always)]
-    pub(crate) fn advance_one(&self, row: &mut Row<S>, index: usize) -> Option<()> {
+    pub(super) fn advance_one(&self, row: &mut Row<S>, index: usize) -> Option<()> {
         row.dir.x = row.dir.x.checked_add(self.step_x)?;
         if self.still & 1u8.checked_shl(u32::try_from(index).ok()?)? == 0 {
             let (acc, nd) = (row.acc.get_mut(index)?, row.nd.get_mut(index)?);

@@ -30,10 +30,10 @@
 //! ([`plane_color`]); `lean.rs`, lean rows ([`lean_row`]): the commonest pixels'
 //! colours and quick runs.
 
-mod lean;
-mod level;
 #[cfg(test)]
 mod invariants;
+mod lean;
+mod level;
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 
