@@ -1,4 +1,4 @@
-//! The level-plane kernel (`kernel/rows.rs`) against the fast kernel it shortcuts: every
+//! The level-plane kernel (`kernel/rows/`) against the fast kernel it shortcuts: every
 //! pixel bit for bit, in every format of the one list, on every frame of the boing ball,
 //! on a ball scene of the same kind the repository does not ship, and on seeded random
 //! scenes of level planes (tiled and plain, some tilted about the x axis, some nearly

@@ -219,7 +219,7 @@ impl<S: Scalar> PlaneFrame<S> {
 /// A tiled plane's checkerboard along one scanline ([`PlaneFrame::row_tiles`]): what
 /// [`PlaneFrame::odd_tile_in_row`] needs of the frame when `u` lies along the x axis,
 /// one subtraction and the tile index per point instead of a vector difference and a
-/// dot product (a level-plane row's pixels, `kernel/rows.rs`).
+/// dot product (a level-plane row's pixels, `kernel/rows/`).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct RowTiles<S> {
     corner_x: S,

@@ -386,7 +386,7 @@ impl<S: Scalar> ShadowCone<S> {
     /// Whether every point `P` of the line `P = light + (s, wy, wz)` (any `s`: a
     /// scanline's hits on a plane with `N.x = 0` have one `y` and one `z`) is one whose
     /// exact segment test finds the sphere clear, so that a row of such points skips the
-    /// sphere (`kernel/rows.rs`). Every segment from the light to the line lies in the
+    /// sphere (`kernel/rows/`). Every segment from the light to the line lies in the
     /// plane through the light with normal `n = (0, −wz, wy)`; the line is cleared when
     /// the centre lies farther than `r·√(3/2)` from that plane,
     /// `(wy·u.z − wz·u.y)² > (3/2)·r²·(wy² + wz²)`, and every point of the line is at

@@ -39,7 +39,7 @@ pub(super) type Facing = (bool, Option<(u8, bool)>);
 const MEMO_LIGHTS: usize = 1;
 
 /// What a fast-kernel scanline of a diffuse stage set keeps from pixel to pixel for its
-/// lit plane hits ([`lit_plane_color`]; `Stages::Memo`): the material last shaded and,
+/// lit plane hits (`kernel::shading`; `KernelStages::Memo`): the material last shaded and,
 /// for the first [`MEMO_LIGHTS`] lights, `emissivity × diffuse` per channel, the first
 /// product of every term, the same for every hit that shows that material (bit
 /// `3 × light + channel` of `overflow`: the product does not fit, the term saturates);

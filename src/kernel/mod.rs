@@ -5,14 +5,16 @@
 //!
 //! - **flat** (`flat.rs`): pure geometry (infinite planes, no lighting, no mirrors), a
 //!   scanline at a time, no division per pixel; per-pixel or span mode.
-//! - **fast** (`fast.rs`): scenes of planes and spheres (the crate's rules): per-frame
+//! - **fast** (`fast/`): scenes of planes and spheres (the crate's rules): per-frame
 //!   `N·eye` and `|eye − c|² − r²`,
 //!   unnormalised directions stepped along the scanline, one division per pixel (and a
 //!   square root per sphere the ray meets).
-//! - **rows** (`rows.rs`): lit scenes of level planes (`N.x = 0`) and spheres with
+//! - **rows** (`rows/`): lit scenes of level planes (`N.x = 0`) and spheres with
 //!   diffuse lights and shadows: each scanline's plane and its light terms once per row,
 //!   the fast kernel's pixels bit for bit.
-//! - **reference** (`reference.rs`): the definition, one normalised ray per pixel.
+//! - **reference**: the definition, one normalised ray per pixel; `scanline.rs` draws a
+//!   scanline's pixels with the fast kernel's hits or the definition's, and `shading.rs`
+//!   shades the lit plane hits of every kernel (with the scanline's memo, `memo.rs`).
 //!
 //! A scanline the flat kernel hands back (a quantity out of the format's range) is drawn
 //! by the fast kernel if it applies, a scanline the level-plane kernel cannot decide once
@@ -81,13 +83,13 @@ pub enum KernelKind {
     /// (`kernel/flat.rs`).
     Flat,
     /// Planes and spheres under the crate's rules with unnormalised directions stepped
-    /// along the scanline (`kernel/fast.rs`).
+    /// along the scanline (`kernel/fast/`).
     Fast,
     /// Lit scenes of level planes (`N.x = 0`: floors, back walls) and spheres with
     /// diffuse lights and shadows: each scanline's plane found once per row, the fast
-    /// kernel's pixels bit for bit (`kernel/rows.rs`).
+    /// kernel's pixels bit for bit (`kernel/rows/`).
     Rows,
-    /// The definition: a normalised ray per pixel (`kernel/reference.rs`).
+    /// The definition: a normalised ray per pixel (`kernel/scanline.rs`).
     Reference,
 }
 
@@ -154,7 +156,7 @@ pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan
         fast,
     };
     // Level planes and spheres lit by diffuse point lights with shadows:
-    // each scanline's plane once per row (`rows.rs`, the fast kernel's pixels bit for bit).
+    // each scanline's plane once per row (`rows/`, the fast kernel's pixels bit for bit).
     let rows = fast
         && rows::draws_with::<T>()
         && plan.lighting

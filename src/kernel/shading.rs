@@ -36,7 +36,7 @@ pub(super) const fn lit_planes<S: Scalar, T: Stages>() -> bool {
 /// The colour of the fast kernel's hit `h` on a plain or tiled plane under a stage set
 /// of [`lit_planes`] (`None` for any other): the crate's shading of it (`own_color`, `light_with` and
 /// `segment_terms` of `shade/`) flattened to what such a hit needs: the same operations
-/// in the same order, so the same colour bit for bit (tested against [`fast_color`]'s
+/// in the same order, so the same colour bit for bit (tested against `fast_color`'s
 /// general shading), without building the general case's light loop state. The normal
 /// facing the ray is the plane's, turned by the sign of the row's `N·D`. `None` where the
 /// pixel needs the general shading: another shape, a light on a surface, a projector,

@@ -183,7 +183,7 @@ fn shadow_cones<S: Scalar>(
 impl<S: Scalar> Primary<S> {
     /// Prepares a frame, or `None` when the fast path does not apply (the eye inside a
     /// sphere, more than
-    /// [`FAST_OBJECTS`] objects, or a quantity out of range): the caller then uses the
+    /// `FAST_OBJECTS` objects, or a quantity out of range): the caller then uses the
     /// reference path.
     pub fn new(scene: &SceneView<'_, S>) -> Option<Self> {
         let eye = scene.camera.viewpoint;

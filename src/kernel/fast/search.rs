@@ -245,7 +245,7 @@ impl<S: Scalar> Primary<S> {
     /// then decides each pixel). `first` is the row started at column 0, `width` its
     /// pixels. Spheres are left out: the caller tests them inside their screen boxes
     /// ([`Self::sphere_columns_on_row`]). The same tests and the same tie rule as
-    /// `nearest`, so that a pixel's plane is `nearest`'s (`kernel/rows.rs`).
+    /// `nearest`, so that a pixel's plane is `nearest`'s (`kernel/rows/`).
     pub(crate) fn level_row(
         &self,
         scene: &SceneView<'_, S>,

@@ -48,7 +48,7 @@ impl<S: Scalar> Primary<S> {
     /// left zero without its product (and its bit clear) where it fits for certain
     /// (`|num| < MAX/2`: `t'·(N·D)` lies within a few DELTAs of `num`, so that
     /// `sides_at` would not have failed on it): for a caller that leaves the hit's own
-    /// plane out of its shadow tests (`reference::lit_plane_color`).
+    /// plane out of its shadow tests (`kernel::shading`).
     #[inline(always)]
     pub(crate) fn sides_but(
         &self,
@@ -96,7 +96,7 @@ impl<S: Scalar> Primary<S> {
     /// lights'; the formed one (`sides_at`'s) lies within `(|N·D|ᵢ + 1)·DELTA` of it
     /// (an exact quotient, `KernelArith::EXACT_QUOTIENTS`), inside the segments' tolerance;
     /// so `sides_differ` passes the plane over towards every light, as it does the hit's
-    /// own plane (`reference::lit_plane_color`). `t_max`: up to it, `t'·(N·D)ᵢ` and the
+    /// own plane (`kernel::shading`). `t_max`: up to it, `t'·(N·D)ᵢ` and the
     /// side fit the format (`sides_at` would not have failed): `|numᵢ| ≤ MAX/4` and
     /// `t'·|N·D|ᵢ ≤ MAX/4`.
     pub(crate) fn quiet_planes(&self, scene: &SceneView<'_, S>, row: &Row<S>) -> Quiet<S> {

@@ -199,7 +199,7 @@ impl<S: Scalar> Primary<S> {
 
     /// The part of [`Primary::restart`] that is not the terms: `D` from the exact screen
     /// point, the column and row, the epsilon bound. A scanline whose terms are not
-    /// needed at this pixel (`kernel/rows.rs`, outside the spheres' columns) restarts
+    /// needed at this pixel (`kernel/rows/`, outside the spheres' columns) restarts
     /// with this alone and brings its terms up to date with [`Primary::refresh`] where
     /// it needs them.
     pub(crate) fn restart_dir(
@@ -218,7 +218,7 @@ impl<S: Scalar> Primary<S> {
 
     /// [`Primary::restart_dir`] with the row's `D.y` (`screen_y(row) − eye.y`, the same at
     /// every pixel of the row) given: a scanline that keeps it restarts without its
-    /// division (`kernel/rows.rs`, every [`resync_pixels`]).
+    /// division (`kernel/rows/`, every [`resync_pixels`]).
     #[inline]
     pub(crate) fn restart_dir_in_row(
         &self,
@@ -428,7 +428,7 @@ impl<S: Scalar> Primary<S> {
 
     /// Moves a scanline to its next pixel: `D.x` grows by the pixel step (rounded once
     /// per frame; callers restart the row from the exact screen x every
-    /// [`resync_pixels`] pixels, so the drift stays below half as many DELTAs), and
+    /// `resync_pixels` pixels, so the drift stays below half as many DELTAs), and
     /// `N·D` grows by the unrounded `N.x × step` (`KernelArith::Acc`): in the fixed formats
     /// bit for bit the wide dot product of the new `D` (consistent with `D`, so the hit
     /// point lies on the ray through that screen point), with no product per pixel.

@@ -14,7 +14,7 @@ use crate::stats::{Counters, count};
 use crate::{Color, Rules, Scalar, SceneView, Shape, Vec3};
 
 /// A lean row's per-row part ([`lean_row`]): what [`lean_color`] would otherwise look up
-/// or check at each pixel. Built in place, in the scanline's [`Pixels`], at the row's
+/// or check at each pixel. Built in place, in the scanline's `Pixels`, at the row's
 /// first pixel that needs it (an I32F32 scanline on a 16 KB chip has no room for copies).
 #[derive(Debug, Clone)]
 pub(super) struct LeanRow<S: Scalar> {
@@ -30,16 +30,16 @@ pub(super) struct LeanRow<S: Scalar> {
     /// The shadow cones of the spheres that can shadow the row, light by light
     /// ([`LeanLight::cones`]).
     pub(super) cones: heapless::Vec<RowCone<S>, { fast::MAX_CONES }>,
-    /// Half the format's range: a pixel's `|L.x|` beyond takes [`plane_color`]
+    /// Half the format's range: a pixel's `|L.x|` beyond takes `plane_color`
     /// ([`RowCone::clears`]).
     pub(super) half: S,
-    /// Whether quick runs may draw the row ([`Pixels::quick_run`]): one light, with a
+    /// Whether quick runs may draw the row (`Pixels::quick_run`): one light, with a
     /// quick term and a lit material for every tile parity the row shows (else each
     /// pixel would try one and fall back).
     pub(super) runs: bool,
 }
 
-/// One light of a lean row: [`RowLight`]'s terms, the light's `x`, its weights per tile
+/// One light of a lean row: `RowLight`'s terms, the light's `x`, its weights per tile
 /// parity (with their overflow bits) and where in [`LeanRow::cones`] the shadow cones of
 /// the spheres that can shadow the row from it are (each must clear the pixel).
 #[derive(Debug, Clone)]
@@ -206,15 +206,15 @@ pub(super) fn lean_row<S: Scalar>(
     Some(())
 }
 
-/// [`plane_color`] for the rows it draws most (a lean row, [`lean_row`]): the same
+/// `plane_color` for the rows it draws most (a lean row, [`lean_row`]): the same
 /// operations in the same order, without its general cases (the per-row ones, the
 /// distance bound and the segments' tolerance among them, were checked once by
 /// [`lean_row`]). `None` (and nothing counted) where a pixel needs one of them: the
-/// caller then draws it with [`plane_color`]. Those cases: the hit's `x` or `L.x` out of
+/// caller then draws it with `plane_color`. Those cases: the hit's `x` or `L.x` out of
 /// the format's range, a light whose `|L|²` does not fit or is not positive, a pixel
 /// whose `|L.x|` is beyond half the range where a cone must be tested, and a sphere whose
 /// shadow cone does not clear the pixel (its exact segment test needs the tolerance,
-/// [`occluded_among`]).
+/// `occluded_among`).
 ///
 /// Its colour (`Err`), or its pixel (`Ok`) where the last light's term
 /// `w·(255·N·L/|L|²)` was taken quickly, by `KernelArith::quick_pixel` (on cores where it
@@ -344,7 +344,7 @@ impl<S: Scalar> LeanRow<S> {
 }
 
 /// The pixel at `column` of a lean row `f` (of level `l`) with one light, where
-/// [`Pixels::pixel`]'s general path would step `D` alone (a lazy row, a column outside
+/// `Pixels::pixel`'s general path would step `D` alone (a lazy row, a column outside
 /// the spheres' columns: [`Primary::advance_dir`] from the last column, or
 /// [`Primary::restart_dir`] at a resync) and draw the row's plane by [`lean_color`]
 /// (where the quick term settles it), or by `plane_color` where a sphere's cone does

@@ -8,7 +8,7 @@
 //! `y` and `z`. When every plane is of that kind, the nearest plane of a row, its
 //! division, the normal facing the ray, its tile row, every plane's side at the hit, the
 //! objects that can shadow the row and each light's terms are worked out once per row
-//! ([`Primary::level_row`], [`level`]); a pixel computes its hit's `x` (one product) and
+//! ([`Primary::level_row`], `level`); a pixel computes its hit's `x` (one product) and
 //! lights it: the tile column, `L.x`, `|L|²`, the shadow tests the row kept and one
 //! division for `255·(N·L)/|L|²`. Spheres are tested only inside their boxes on the
 //! screen (the fast kernel's `sphere_rows` and `sphere_columns`), by the fast kernel's
@@ -26,7 +26,7 @@
 //! its earlier lights twice; its colour is not affected.
 //!
 //! Its files: this one, the scanline ([`scanline`], [`Pixels`]); `level.rs`, the row's
-//! plane and its per-row terms ([`level`]) and the colour of a pixel on it
+//! plane and its per-row terms (`level`) and the colour of a pixel on it
 //! ([`plane_color`]); `lean.rs`, lean rows ([`lean_row`]): the commonest pixels'
 //! colours and quick runs.
 
@@ -144,7 +144,7 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     lean_built: Option<bool>,
     /// The fast kernel's row at the current pixel: at column 0 as the fast kernel starts
     /// it (`fresh`); after a pixel whose step failed (`valid` false) the next restarts,
-    /// as `reference::scanline` does.
+    /// as `kernel::scanline` does.
     state: Row<S>,
     fresh: bool,
     valid: bool,

@@ -15,7 +15,7 @@ pub(super) fn fast_section(
          reference time / path time) and, for I16F16 and its reciprocal variant, its cost on \
          the chips (instructions per pixel including about 11–13 of frame hashing; the default renderer's path is the \
          firmware table's, span mode is the same firmware built with `FIXRAY_FW_SPANS=1`).\n\n\
-         - *fast: cross-products* is the fast kernel (`kernel/fast.rs`): unnormalised directions, the epsilon and \
+         - *fast: cross-products* is the fast kernel (`kernel/fast/`): unnormalised directions, the epsilon and \
          screen tests in squared and cross-multiplied form, one division per pixel (for the \
          hit point); shadow rays against planes without division (`Plane::occludes`).\n\
          - *pure geometry* is the pure-geometry kernel (`kernel/flat.rs`), the renderer's path for scenes of infinite planes \
@@ -127,7 +127,7 @@ pub(super) fn write_report(
          draws (`render` / `render_line`, which the kernel chooses once per frame: \
          `tests/kernels.rs` checks they agree), so they and the host and chip costs \
          describe the same path, in which primary rays of plane scenes take the fast kernel \
-         (`kernel/fast.rs`) and scenes of infinite planes without lighting the pure-geometry \
+         (`kernel/fast/`) and scenes of infinite planes without lighting the pure-geometry \
          kernel (`kernel/flat.rs`, per-pixel mode). |Δt|, the hit-point error and hit/miss \
          disagreement are properties of the primary ray, defined by the reference path \
          (`trace_pixel`, the definition of `docs/scene-format.md`). The last section gives the \
@@ -157,7 +157,7 @@ pub(super) fn write_report(
                 if met {
                     ""
                 } else {
-                    "Primary rays take the fast kernel (`kernel/fast.rs`: no normalisation, one \
+                    "Primary rays take the fast kernel (`kernel/fast/`: no normalisation, one \
                      division per pixel), shadow rays against planes divide no more \
                      (`Plane::occludes`), and on the M0 double-width products are formed \
                      from 16-bit halves instead of the 64-bit multiply helper. What remains \
