@@ -210,7 +210,7 @@ fn lit_plane_with<S: Scalar>(
         diffuse,
         shadows,
         (terms, shadowed, weight, |t: &LightTerms<S>| {
-            t.nl.checked_mul(k)
+            falloff(t.nl, t.nl.checked_mul(k), t.ll)
         }),
         counters,
     )
@@ -303,8 +303,9 @@ pub(super) struct LightTerms<S> {
 ///   `shadows`; `None`: the general shading);
 /// - `weight(j)`: the light's `emissivity × diffuse` per channel kept for the material
 ///   shown, with its overflow bits ([`add_weighted`]), if the caller keeps it;
-/// - `knl(terms)`: `255·N·L`, formed once the light is known to reach the hit (the
-///   caller's `terms` may keep it: its `knl`).
+/// - `falloff(terms)`: the light's `diffuse_falloff`, `255·(N·L)/|L|²`, formed once
+///   the light is known to reach the hit (with the `255·N·L` the caller's `terms` kept,
+///   or formed then).
 ///
 /// `diffuse`: the material's diffuse colour.
 #[inline(always)]
@@ -313,11 +314,11 @@ pub(super) fn light_plane_hit<S: Scalar>(
     mut color: Color<S>,
     diffuse: [S; 3],
     shadows: bool,
-    (mut terms, mut shadowed, weight, knl): (
+    (mut terms, mut shadowed, weight, falloff): (
         impl FnMut(usize, &Light<S>) -> Option<Option<LightTerms<S>>>,
         impl FnMut(usize, &Light<S>, &LightTerms<S>) -> Option<bool>,
         impl Fn(usize) -> Option<([S; 3], u16)>,
-        impl Fn(&LightTerms<S>) -> Option<S>,
+        impl Fn(&LightTerms<S>) -> S,
     ),
     counters: &mut Counters,
 ) -> Option<Color<S>> {
@@ -331,7 +332,7 @@ pub(super) fn light_plane_hit<S: Scalar>(
                 continue;
             }
         }
-        let falloff = diffuse_falloff(t.nl, knl(&t), t.ll);
+        let falloff = falloff(&t);
         count(&mut counters.diffuse);
         color = match weight(j) {
             Some((w, overflow)) => add_weighted(color, w, overflow, falloff),
@@ -358,19 +359,28 @@ pub(super) fn add_weighted<S: Scalar>(
     overflow: u16,
     falloff: S,
 ) -> Color<S> {
-    let add = |c: S, w: S, bit: u16| {
-        let t = if overflow & bit == 0 {
-            w.checked_mul(falloff)
-        } else {
+    /// One channel (`saturated`: its weight did not fit).
+    #[inline(always)]
+    fn add<S: Scalar>(c: S, w: S, falloff: S, saturated: bool) -> S {
+        let t = if saturated {
             None
+        } else {
+            w.checked_mul(falloff)
         };
         add_sat(c, t.unwrap_or(S::MAX))
-    };
+    }
     [
-        add(color[0], w[0], 1),
-        add(color[1], w[1], 2),
-        add(color[2], w[2], 4),
+        add(color[0], w[0], falloff, overflow & 1 != 0),
+        add(color[1], w[1], falloff, overflow & 2 != 0),
+        add(color[2], w[2], falloff, overflow & 4 != 0),
     ]
+}
+
+/// `diffuse_falloff` out of line, for the fast kernel's plane hits: inlined into their
+/// light loop, its division (in I32F32 a 128-bit one) crowds the loop's registers.
+#[inline(never)]
+fn falloff<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
+    diffuse_falloff(nl, knl, ll)
 }
 
 /// Whether the shadow segment from the fast kernel's plane hit `h` towards light `j` is

@@ -6,7 +6,9 @@ use super::super::scanline::reference_color;
 use super::super::shading::{LightTerms, light_plane_hit, segment_tolerance, shadowed_among};
 use super::lean::{row_ll, row_x};
 use crate::shade::stages::Stages;
-use crate::shade::{Incoming, PlaneSides, SideBits, channel_max, shade_with, surface};
+use crate::shade::{
+    Incoming, PlaneSides, SideBits, channel_max, diffuse_falloff, shade_with, surface,
+};
 use crate::stats::{Counters, count};
 use crate::{Color, Hit, Light, Scalar, SceneView, Shape, Tiling, Vec3};
 
@@ -385,7 +387,9 @@ pub(super) fn lit<S: Scalar, T: Stages>(
         material.ambient,
         diffuse,
         T::SHADOWS,
-        (terms, shadowed, weight, |t: &LightTerms<S>| t.knl),
+        (terms, shadowed, weight, |t: &LightTerms<S>| {
+            diffuse_falloff(t.nl, t.knl, t.ll)
+        }),
         counters,
     )
 }
