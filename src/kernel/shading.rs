@@ -13,7 +13,8 @@ use crate::geometry::{surface_tolerance, surface_tolerance_fits};
 use crate::shade::color::{add_sat, term};
 use crate::shade::stages::Stages;
 use crate::shade::{
-    PlaneSides, channel_max, diffuse_falloff, material_at, occluded_among, occludes_segment,
+    PlaneSides, channel_max, diffuse_falloff_outlined, material_at, occluded_among,
+    occludes_segment,
 };
 use crate::stats::{Counters, count};
 use crate::{Beam, Color, Light, Scalar, SceneView, Shape, Vec3};
@@ -210,7 +211,7 @@ fn lit_plane_with<S: Scalar>(
         diffuse,
         shadows,
         (terms, shadowed, weight, |t: &LightTerms<S>| {
-            falloff(t.nl, t.nl.checked_mul(k), t.ll)
+            diffuse_falloff_outlined(t.nl, t.nl.checked_mul(k), t.ll)
         }),
         counters,
     )
@@ -374,13 +375,6 @@ pub(super) fn add_weighted<S: Scalar>(
         add(color[1], w[1], falloff, overflow & 2 != 0),
         add(color[2], w[2], falloff, overflow & 4 != 0),
     ]
-}
-
-/// `diffuse_falloff` out of line, for the fast kernel's plane hits: inlined into their
-/// light loop, its division (in I32F32 a 128-bit one) crowds the loop's registers.
-#[inline(never)]
-fn falloff<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
-    diffuse_falloff(nl, knl, ll)
 }
 
 /// Whether the shadow segment from the fast kernel's plane hit `h` towards light `j` is

@@ -140,6 +140,14 @@ pub(crate) fn diffuse_falloff<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
     .unwrap_or(S::MAX)
 }
 
+/// [`diffuse_falloff`] out of line: the one copy the light loop and the fast kernel's
+/// plane hits call (inlined into a light loop, its division, in I32F32 a 128-bit one,
+/// crowds the loop's registers; the level-plane kernel's lean pixels inline it).
+#[inline(never)]
+pub(crate) fn diffuse_falloff_outlined<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
+    diffuse_falloff(nl, knl, ll)
+}
+
 /// Whether a light at `light` lies in the plane of the surface it would light (see
 /// [`in_own_plane`]); asked only where the plan found a light on a surface.
 fn on_own_plane<S: Scalar>(at: &Lit<'_, '_, S>, light: Vec3<S>) -> bool {
@@ -206,7 +214,7 @@ fn segment_terms<S: Scalar, R: Tracer>(
             entered = e;
         }
         let k = channel_max::<S>();
-        let mut diffuse_falloff = diffuse_falloff(nl, nl.checked_mul(k), ll);
+        let mut diffuse_falloff = diffuse_falloff_outlined(nl, nl.checked_mul(k), ll);
         // Through a translucent sphere (the course's, `Passage::lit`): cos/dist' with
         // dist' = (1 − s)|L| from the entry point nearest the light, s its share of L.
         if let Some(e) = entered {
