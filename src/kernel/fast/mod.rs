@@ -155,6 +155,106 @@ pub const FAST_OBJECTS: usize = 8;
 // A frame's still terms and a row's occluders are bits of a `u8`, one per object.
 const _: () = assert!(FAST_OBJECTS <= 8);
 
+/// Object `index`'s term and the vector its `N·D` dots `D` with (`axis_of`); `None`
+/// where the fast kernel cannot take the object (a surface of revolution, a sphere with
+/// the eye inside or without the `spheres` feature, a quantity out of range).
+#[inline(always)]
+fn term_of<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    index: usize,
+    object: &crate::Object<S>,
+) -> Option<(Term<S>, Vec3<S>)> {
+    let eye = scene.camera.viewpoint;
+    let all_rows = (0, scene.camera.height.saturating_sub(1));
+    let all_columns = (0, scene.camera.width.saturating_sub(1));
+    let (num, axis, sphere, rows, columns) = match &object.shape {
+        Shape::Sphere(s) => {
+            // Only with the eye outside every sphere (the near root is then the one, and
+            // c/q has no cancellation), and with the sphere code built in.
+            if !cfg!(feature = "spheres") {
+                return None;
+            }
+            let oc = eye.diff(s.center())?;
+            let c = S::sub_dot3(s.radius_sq(), oc.to_array(), oc.to_array())?.checked_neg()?;
+            if c <= S::ZERO {
+                return None;
+            }
+            let dz = S::ZERO.checked_sub(eye.z)?;
+            let rr = s.radius_sq();
+            let rows = sphere_rows(scene, oc, rr, dz);
+            (c, oc, true, rows, sphere_columns(scene, oc, rr, dz))
+        }
+        // The kernel has no term for a surface of revolution: the reference path.
+        Shape::Revsurf(_) => return None,
+        shape @ (Shape::Plane(_)
+        | Shape::Tiled { .. }
+        | Shape::Finite(_)
+        | Shape::Textured(_)
+        | Shape::Triangle(_)) => {
+            let plane = shape.plane()?;
+            let num = S::sub_dot3(plane.offset(), plane.normal().to_array(), eye.to_array())?;
+            (num, plane.normal(), false, all_rows, all_columns)
+        }
+    };
+    let term = Term {
+        index: u8::try_from(index).ok()?,
+        num,
+        sphere,
+        rows,
+        columns,
+    };
+    Some((term, axis))
+}
+
+/// Fills `at_lights` with the lights' sides of every plane (`D'_i − N_i·light_j` at
+/// `j × objects + i`, a sphere's a place holder) and `light_positive`, per light, with
+/// which are positive as bits ([`crate::shade::SideBits`]); no sides where they do not
+/// fit [`MAX_SIDES`] or the format (shadow segments then form them). In place: the
+/// frame is built where the renderer keeps it (a 16 KB chip's stack).
+#[inline(always)]
+fn light_sides<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    terms: &[Term<S>],
+    at_lights: &mut Vec<S, MAX_SIDES>,
+    light_positive: &mut [u8; SIDE_BITS_LIGHTS],
+) -> Option<()> {
+    let sides = terms.len().checked_mul(scene.lights.len());
+    if sides.is_none_or(|n| n > MAX_SIDES) {
+        return Some(());
+    }
+    for (j, light) in scene.lights.iter().enumerate() {
+        let mut positive = 0u8;
+        for (i, term) in terms.iter().enumerate() {
+            if term.sphere {
+                // A sphere's shadow test does not use sides (`meets_segment_with`): a
+                // place holder keeps the list indexed by object.
+                at_lights.push(S::ZERO).ok()?;
+                continue;
+            }
+            let object = scene.objects.get(usize::from(term.index))?;
+            let plane = object.shape.plane()?;
+            let side = S::sub_dot3(
+                plane.offset(),
+                plane.normal().to_array(),
+                light.location.to_array(),
+            );
+            let Some(a1) = side else {
+                at_lights.clear();
+                return Some(());
+            };
+            if a1 > S::ZERO {
+                positive |= 1 << i;
+            }
+            at_lights.push(a1).ok()?;
+        }
+        // Beyond `SIDE_BITS_LIGHTS` lights, those lights have no bits.
+        if let Some(slot) = light_positive.get_mut(j) {
+            *slot = positive;
+        }
+    }
+    Some(())
+}
+
 /// Every sphere's shadow cone from every light that fits ([`ShadowCone`]), up to
 /// [`MAX_CONES`].
 fn shadow_cones<S: Scalar>(
@@ -197,98 +297,20 @@ impl<S: Scalar> Primary<S> {
         let mut still = 0u8;
         let mut sphere_bits = 0u8;
         for (index, object) in scene.objects.iter().enumerate() {
-            let all_rows = (0, scene.camera.height.saturating_sub(1));
-            let all_columns = (0, scene.camera.width.saturating_sub(1));
-            let (num, axis, sphere, rows, columns) = match &object.shape {
-                Shape::Sphere(s) => {
-                    // Only with the eye outside every sphere (the near root is then the
-                    // one, and c/q has no cancellation), and with the sphere code built in.
-                    if !cfg!(feature = "spheres") {
-                        return None;
-                    }
-                    let oc = eye.diff(s.center())?;
-                    let c =
-                        S::sub_dot3(s.radius_sq(), oc.to_array(), oc.to_array())?.checked_neg()?;
-                    if c <= S::ZERO {
-                        return None;
-                    }
-                    spheres = true;
-                    let dz = S::ZERO.checked_sub(eye.z)?;
-                    let rr = s.radius_sq();
-                    let rows = sphere_rows(scene, oc, rr, dz);
-                    (c, oc, true, rows, sphere_columns(scene, oc, rr, dz))
-                }
-                // The kernel has no term for a surface of revolution: the reference path.
-                Shape::Revsurf(_) => return None,
-                shape @ (Shape::Plane(_)
-                | Shape::Tiled { .. }
-                | Shape::Finite(_)
-                | Shape::Textured(_)
-                | Shape::Triangle(_)) => {
-                    let plane = shape.plane()?;
-                    let num =
-                        S::sub_dot3(plane.offset(), plane.normal().to_array(), eye.to_array())?;
-                    (num, plane.normal(), false, all_rows, all_columns)
-                }
-            };
-            let index = u8::try_from(index).ok()?;
-            terms
-                .push(Term {
-                    index,
-                    num,
-                    sphere,
-                    rows,
-                    columns,
-                })
-                .ok()?;
+            let (term, axis) = term_of(scene, index, object)?;
+            spheres |= term.sphere;
+            terms.push(term).ok()?;
             if axis.x == S::ZERO {
                 still |= 1 << (terms.len() - 1);
             }
-            if sphere {
+            if term.sphere {
                 sphere_bits |= 1 << (terms.len() - 1);
             }
             steps.push(S::acc_mul(axis.x, step_x)?).ok()?;
         }
         let mut at_lights = Vec::new();
-        // The lights' positive sides as bits, per light (`SideBits::lights`).
         let mut light_positive = [0u8; SIDE_BITS_LIGHTS];
-        let sides = terms.len().checked_mul(scene.lights.len());
-        if sides.is_some_and(|n| n <= MAX_SIDES) {
-            'lights: for (j, light) in scene.lights.iter().enumerate() {
-                let mut positive = 0u8;
-                for (i, term) in terms.iter().enumerate() {
-                    if term.sphere {
-                        // A sphere's shadow test does not use sides (`meets_segment_with`):
-                        // a place holder keeps the list indexed by object.
-                        at_lights.push(S::ZERO).ok()?;
-                        continue;
-                    }
-                    let object = scene.objects.get(usize::from(term.index))?;
-                    let plane = object.shape.plane()?;
-                    let side = S::sub_dot3(
-                        plane.offset(),
-                        plane.normal().to_array(),
-                        light.location.to_array(),
-                    );
-                    match side {
-                        Some(a1) => {
-                            if a1 > S::ZERO {
-                                positive |= 1 << i;
-                            }
-                            at_lights.push(a1).ok()?;
-                        }
-                        None => {
-                            at_lights.clear();
-                            break 'lights;
-                        }
-                    }
-                }
-                // Beyond `SIDE_BITS_LIGHTS` lights, those lights have no bits.
-                if let Some(slot) = light_positive.get_mut(j) {
-                    *slot = positive;
-                }
-            }
-        }
+        light_sides(scene, &terms, &mut at_lights, &mut light_positive)?;
         let blocks = blocks_for::<S>()
             && scene
                 .objects

@@ -151,75 +151,14 @@ pub(super) fn level<S: Scalar, T: Stages>(
             None => sides.clear(),
         }
     }
-    let lights = scene.lights.len();
-    let mut occluders = heapless::Vec::new();
-    let n = sides.len();
-    if n == scene.objects.len() && lights <= ROW_LIGHTS {
-        for j in 0..lights {
-            let at_light = p.at_lights().get(j * n..)?.get(..n)?;
-            let mut bits = 0u8;
-            // The row's hits lie on the line (x, y, z) for every x: its offsets from the
-            // light in y and z.
-            let light = scene.lights.get(j)?.location;
-            let (wy, wz) = (y.checked_sub(light.y), z.checked_sub(light.z));
-            for (i, ((o, &a0), &a1)) in scene.objects.iter().zip(&sides).zip(at_light).enumerate() {
-                let may = match o.shape {
-                    // A sphere whose shadow cone from this light misses the whole row
-                    // (`crate::geometry::ShadowCone::clears_line`) is left out.
-                    Shape::Sphere(_) => !p.cones().iter().any(|c| {
-                        usize::from(c.light) == j
-                            && usize::from(c.object) == i
-                            && matches!((wy, wz), (Some(wy), Some(wz)) if c.clears_line(wy, wz))
-                    }),
-                    _ => (a0 > S::ZERO) != (a1 > S::ZERO),
-                };
-                if may {
-                    bits |= 1 << i;
-                }
-            }
-            let _ = occluders.push(bits);
-        }
-    }
+    let occluders = row_occluders(scene, p, &sides, (y, z))?;
     let object = scene.objects.get(index)?;
     let materials = match object.shape {
         Shape::Tiled { alt, .. } => [object.material, alt],
         _ => [object.material, object.material],
     };
-    let mut weights = heapless::Vec::new();
-    let mut overflow = 0u16;
-    if lights <= ROW_LIGHTS {
-        for m in materials {
-            let diffuse = scene.materials.get(usize::from(m)).map(|m| m.diffuse);
-            for j in 0..ROW_LIGHTS {
-                let mut w = [S::ZERO; 3];
-                for (c, slot) in w.iter_mut().enumerate() {
-                    let e = scene.lights.get(j).map(|l| l.emissivity[c]);
-                    match e.zip(diffuse).and_then(|(e, d)| e.checked_mul(d[c])) {
-                        Some(v) => *slot = v,
-                        None => overflow |= 1 << (3 * weights.len() + c),
-                    }
-                }
-                let _ = weights.push(w);
-            }
-        }
-    }
-    let mut row_lights = heapless::Vec::new();
-    if lights <= ROW_LIGHTS {
-        for light in scene.lights {
-            let l = light
-                .location
-                .y
-                .checked_sub(y)
-                .zip(light.location.z.checked_sub(z));
-            let yz = l.and_then(|(ly, lz)| S::acc_add(S::acc_mul(ly, ly)?, S::acc_mul(lz, lz)?));
-            // `L·N` has no `L.x` term (`N.x = 0`): any `L.x` gives the row's value.
-            let nl = l
-                .and_then(|(ly, lz)| Vec3::new(S::ZERO, ly, lz).dot_axis(facing))
-                .filter(|c| *c > S::ZERO);
-            let knl = nl.and_then(|nl| nl.checked_mul(channel_max::<S>()));
-            let _ = row_lights.push(RowLight { l, yz, nl, knl });
-        }
-    }
+    let (weights, overflow) = row_weights(scene, materials);
+    let row_lights = row_lights(scene, (y, z), facing);
     let tile_row = match object.shape {
         Shape::Tiled {
             frame,
@@ -243,6 +182,109 @@ pub(super) fn level<S: Scalar, T: Stages>(
         overflow,
         lights: row_lights,
     }))
+}
+
+/// Per light (none with more than [`ROW_LIGHTS`] lights or without every side), the
+/// objects that can stand between the row's hits (on the line `(x, y, z)`, every `x`)
+/// and the light, as bits ([`Level::occluders`]).
+#[inline(always)]
+fn row_occluders<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    sides: &[S],
+    (y, z): (S, S),
+) -> Option<heapless::Vec<u8, ROW_LIGHTS>> {
+    let lights = scene.lights.len();
+    let mut occluders = heapless::Vec::new();
+    let n = sides.len();
+    if n != scene.objects.len() || lights > ROW_LIGHTS {
+        return Some(occluders);
+    }
+    for j in 0..lights {
+        let at_light = p.at_lights().get(j * n..)?.get(..n)?;
+        let mut bits = 0u8;
+        // The row's hits lie on the line (x, y, z) for every x: its offsets from the
+        // light in y and z.
+        let light = scene.lights.get(j)?.location;
+        let (wy, wz) = (y.checked_sub(light.y), z.checked_sub(light.z));
+        for (i, ((o, &a0), &a1)) in scene.objects.iter().zip(sides).zip(at_light).enumerate() {
+            let may = match o.shape {
+                // A sphere whose shadow cone from this light misses the whole row
+                // (`crate::geometry::ShadowCone::clears_line`) is left out.
+                Shape::Sphere(_) => !p.cones().iter().any(|c| {
+                    usize::from(c.light) == j
+                        && usize::from(c.object) == i
+                        && matches!((wy, wz), (Some(wy), Some(wz)) if c.clears_line(wy, wz))
+                }),
+                _ => (a0 > S::ZERO) != (a1 > S::ZERO),
+            };
+            if may {
+                bits |= 1 << i;
+            }
+        }
+        let _ = occluders.push(bits);
+    }
+    Some(occluders)
+}
+
+/// Per material of the row's plane (`materials`: its own, a tiled plane's alternate)
+/// and light, `emissivity × diffuse` per channel, and which did not fit (bit
+/// `3 × entry + channel`) ([`Level::weights`]); none with more than [`ROW_LIGHTS`]
+/// lights.
+#[inline(always)]
+fn row_weights<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    materials: [u8; 2],
+) -> (heapless::Vec<[S; 3], { 2 * ROW_LIGHTS }>, u16) {
+    let mut weights = heapless::Vec::new();
+    let mut overflow = 0u16;
+    if scene.lights.len() > ROW_LIGHTS {
+        return (weights, overflow);
+    }
+    for m in materials {
+        let diffuse = scene.materials.get(usize::from(m)).map(|m| m.diffuse);
+        for j in 0..ROW_LIGHTS {
+            let mut w = [S::ZERO; 3];
+            for (c, slot) in w.iter_mut().enumerate() {
+                let e = scene.lights.get(j).map(|l| l.emissivity[c]);
+                match e.zip(diffuse).and_then(|(e, d)| e.checked_mul(d[c])) {
+                    Some(v) => *slot = v,
+                    None => overflow |= 1 << (3 * weights.len() + c),
+                }
+            }
+            let _ = weights.push(w);
+        }
+    }
+    (weights, overflow)
+}
+
+/// Each light's terms shared by every hit of the row (its `y` and `z`, the normal
+/// `facing` the ray): [`RowLight`]; none with more than [`ROW_LIGHTS`] lights.
+#[inline(always)]
+fn row_lights<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    (y, z): (S, S),
+    facing: Vec3<S>,
+) -> heapless::Vec<RowLight<S>, ROW_LIGHTS> {
+    let mut row_lights = heapless::Vec::new();
+    if scene.lights.len() > ROW_LIGHTS {
+        return row_lights;
+    }
+    for light in scene.lights {
+        let l = light
+            .location
+            .y
+            .checked_sub(y)
+            .zip(light.location.z.checked_sub(z));
+        let yz = l.and_then(|(ly, lz)| S::acc_add(S::acc_mul(ly, ly)?, S::acc_mul(lz, lz)?));
+        // `L·N` has no `L.x` term (`N.x = 0`): any `L.x` gives the row's value.
+        let nl = l
+            .and_then(|(ly, lz)| Vec3::new(S::ZERO, ly, lz).dot_axis(facing))
+            .filter(|c| *c > S::ZERO);
+        let knl = nl.and_then(|nl| nl.checked_mul(channel_max::<S>()));
+        let _ = row_lights.push(RowLight { l, yz, nl, knl });
+    }
+    row_lights
 }
 
 /// The colour of the row's plane at the row's current pixel (the background without
