@@ -13,6 +13,30 @@ use super::*;
 use crate::Scene;
 use crate::shade::stages::DiffuseShadows;
 
+/// A seeded generator (xorshift), so that every run draws the same scenes (the
+/// invariants' tests share it).
+pub(super) struct Rng(pub(super) u64);
+
+impl Rng {
+    pub(super) fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+
+    /// A whole number in `0..n`.
+    pub(super) fn below(&mut self, n: u32) -> u32 {
+        u32::try_from(self.next() % u64::from(n)).unwrap_or(0)
+    }
+
+    /// A real in `[lo, hi)`.
+    pub(super) fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        let u = f64::from(self.below(1 << 24)) / f64::from(1u32 << 24);
+        lo + (hi - lo) * u
+    }
+}
+
 /// A seeded random scene of planes only (plain and tiled, any normal: walls with
 /// `N.x ≠ 0` among them), sometimes lit.
 pub(super) fn random_scene(mut next: impl FnMut() -> u64) -> String {

@@ -15,6 +15,7 @@ use std::vec::Vec;
 
 use fixed::types::{I16F16, I20F12, I32F32};
 
+use super::super::tests::Rng;
 use super::Primary;
 use super::blocks::{Block, block_starts};
 use super::search::sphere_root;
@@ -22,29 +23,6 @@ use super::step::{Row, resync_pixels};
 use crate::kernel::shading::segment_tolerance;
 use crate::shade::occludes_segment;
 use crate::{Scalar, Scene, SceneView};
-
-/// A seeded generator (xorshift), so that every run draws the same scenes.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    /// A whole number in `0..n`.
-    fn below(&mut self, n: u32) -> u32 {
-        u32::try_from(self.next() % u64::from(n)).unwrap_or(0)
-    }
-
-    /// A real in `[lo, hi)`.
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        let u = f64::from(self.below(1 << 24)) / f64::from(1u32 << 24);
-        lo + (hi - lo) * u
-    }
-}
 
 /// A random scene of plain and tiled planes (any normal) under `lights` lights: now and
 /// then a coarse epsilon, and twin planes turned by a hair, whose `t'` cross along whole

@@ -17,6 +17,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 use fixed::types::{I16F16, I20F12, I32F32};
 
 use super::super::fast::{Primary, Row, resync_pixels};
+use super::super::tests::Rng;
 use super::super::{Kernel, select};
 use super::lean::{LeanRow, lean_color, lean_row, quick_step};
 use super::level::{Level, Memo, level, plane_color};
@@ -26,29 +27,6 @@ use crate::shade::color::to_pixel;
 use crate::shade::stages::{DiffuseShadows, Shading, shading_for};
 use crate::stats::Counters;
 use crate::{Scalar, Scene, SceneView};
-
-/// A seeded generator (xorshift), so that every run draws the same scenes.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    /// A whole number in `0..n`.
-    fn below(&mut self, n: u32) -> u32 {
-        u32::try_from(self.next() % u64::from(n)).unwrap_or(0)
-    }
-
-    /// A real in `[lo, hi)`.
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        let u = f64::from(self.below(1 << 24)) / f64::from(1u32 << 24);
-        lo + (hi - lo) * u
-    }
-}
 
 /// A random scene of the level-plane kernel's kind: a tiled floor (its tiles along x,
 /// or turned about y), a back wall (plain or tiled), up to two spheres and one or two
