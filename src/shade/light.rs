@@ -140,12 +140,22 @@ pub(crate) fn diffuse_falloff<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
     .unwrap_or(S::MAX)
 }
 
-/// [`diffuse_falloff`] out of line: the fast kernel's plane hits call it (inlined into
-/// their light loop, its division, in I32F32 a 128-bit one, crowds the loop's
-/// registers), and so does the general light loop in the 64-bit formats (one copy of
-/// their division in flash); the level-plane kernel's pixels inline it.
+/// [`diffuse_falloff`] as a light loop calls it (the general one and the fast kernel's
+/// plane hits): out of line in the 64-bit formats, one copy of their 128-bit division
+/// (inlined into a loop, it crowds the loop's registers), inlined in the others, where
+/// it is short.
+#[inline(always)]
+pub(crate) fn diffuse_falloff_in_loop<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
+    if core::mem::size_of::<S>() > 4 {
+        diffuse_falloff_outlined(nl, knl, ll)
+    } else {
+        diffuse_falloff(nl, knl, ll)
+    }
+}
+
+/// [`diffuse_falloff`] out of line ([`diffuse_falloff_in_loop`]).
 #[inline(never)]
-pub(crate) fn diffuse_falloff_outlined<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
+fn diffuse_falloff_outlined<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
     diffuse_falloff(nl, knl, ll)
 }
 
@@ -215,12 +225,7 @@ fn segment_terms<S: Scalar, R: Tracer>(
             entered = e;
         }
         let k = channel_max::<S>();
-        // (The 64-bit formats' division is a 128-bit one: one copy of it, out of line.)
-        let mut diffuse_falloff = if core::mem::size_of::<S>() > 4 {
-            diffuse_falloff_outlined(nl, nl.checked_mul(k), ll)
-        } else {
-            diffuse_falloff(nl, nl.checked_mul(k), ll)
-        };
+        let mut diffuse_falloff = diffuse_falloff_in_loop(nl, nl.checked_mul(k), ll);
         // Through a translucent sphere (the course's, `Passage::lit`): cos/dist' with
         // dist' = (1 − s)|L| from the entry point nearest the light, s its share of L.
         if let Some(e) = entered {

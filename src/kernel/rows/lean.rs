@@ -147,8 +147,45 @@ pub(super) fn lean_row<S: Scalar>(
         };
         let ((w0, o0), (w1, o1)) = (entry(0)?, entry(1)?);
         let start = cones.len();
-        row_cones(p, (j, bits), rl.l, half, cones)?;
-        let quick = quick_terms(scene, rl.knl, [(w0, o0), (w1, o1)]);
+        for i in (0..fast::FAST_OBJECTS).filter(|i| bits & (1 << i) != 0) {
+            // `RowCone::clears` sums `l·u` in another order than `ShadowCone::clears`:
+            // the same answer only where no partial sum can leave the double width (a
+            // format whose wide type is not double width, `i16f16n`, takes the row the
+            // general way).
+            S::EXACT_PRODUCTS.then_some(())?;
+            let mut matching = p
+                .cones()
+                .iter()
+                .filter(|c| usize::from(c.light) == j && usize::from(c.object) == i);
+            let (Some(cone), None) = (matching.next(), matching.next()) else {
+                return None;
+            };
+            let row_cone = match rl.l {
+                Some((ly, lz)) if ly.abs() <= half && lz.abs() <= half => cone.in_row(ly, lz)?,
+                // No pixel of the row reaches this light's cones.
+                None => continue,
+                Some(_) => return None,
+            };
+            cones.push(row_cone).ok()?;
+        }
+        // The quick terms' numerators and their slack (`lean_color`).
+        // `KernelArith::quick_pixel` maps colours to pixels as the crate's rules do.
+        let mut quick = [None; 2];
+        if let (Some(knl), Rules::Fixray, true) = (rl.knl, scene.rules(), S::QUICK_PIXEL) {
+            for (k, (w, o)) in [(w0, o0), (w1, o1)].into_iter().enumerate() {
+                let products = [0, 1, 2].map(|c| w[c].checked_mul(knl));
+                let top = w[0].max(w[1]).max(w[2]);
+                let extra = top
+                    .floor_to_i32()
+                    .and_then(|n| n.checked_add(3))
+                    .and_then(|n| S::DELTA.checked_mul_int(n));
+                if let ([Some(a), Some(b), Some(c)], Some(extra), 0) = (products, extra, o)
+                    && w.iter().all(|c| *c >= S::ZERO)
+                {
+                    quick[k] = S::quick_term([a, b, c], extra);
+                }
+            }
+        }
         let lean = LeanLight {
             x: light.location.x,
             yz: rl.l.and(rl.yz),
@@ -167,72 +204,6 @@ pub(super) fn lean_row<S: Scalar>(
         _ => false,
     };
     Some(())
-}
-
-/// Pushes onto `cones` the row part ([`RowCone`]) of the shadow cone of each sphere
-/// among light `j`'s occluders (`bits`), from the row's `L.y`, `L.z` (`l`; none: no
-/// pixel of the row reaches the light); `None` where the row is not a lean one (a
-/// sphere without exactly one cone from the light, `|L.y|` or `|L.z|` beyond `half` the
-/// range, products that are not exact).
-#[inline(always)]
-fn row_cones<S: Scalar>(
-    p: &Primary<S>,
-    (j, bits): (usize, u8),
-    l: Option<(S, S)>,
-    half: S,
-    cones: &mut heapless::Vec<RowCone<S>, { fast::MAX_CONES }>,
-) -> Option<()> {
-    for i in (0..fast::FAST_OBJECTS).filter(|i| bits & (1 << i) != 0) {
-        // `RowCone::clears` sums `l·u` in another order than `ShadowCone::clears`: the
-        // same answer only where no partial sum can leave the double width (a format
-        // whose wide type is not double width, `i16f16n`, takes the row the general way).
-        S::EXACT_PRODUCTS.then_some(())?;
-        let mut matching = p
-            .cones()
-            .iter()
-            .filter(|c| usize::from(c.light) == j && usize::from(c.object) == i);
-        let (Some(cone), None) = (matching.next(), matching.next()) else {
-            return None;
-        };
-        let row_cone = match l {
-            Some((ly, lz)) if ly.abs() <= half && lz.abs() <= half => cone.in_row(ly, lz)?,
-            // No pixel of the row reaches this light's cones.
-            None => continue,
-            Some(_) => return None,
-        };
-        cones.push(row_cone).ok()?;
-    }
-    Some(())
-}
-
-/// A light's quick terms per tile parity ([`LeanLight::quick`]): the numerators
-/// `weights × 255·N·L` (`knl`) per channel and their slack `(⌊w_max⌋ + 3)·DELTA`
-/// ([`lean_color`]), where they fit and the weights (`(w, overflow bits)` per parity)
-/// are neither negative nor overflowed. `KernelArith::quick_pixel` maps colours to
-/// pixels as the crate's rules do: none under another rule set.
-#[inline(always)]
-fn quick_terms<S: Scalar>(
-    scene: &SceneView<'_, S>,
-    knl: Option<S>,
-    weights: [([S; 3], u16); 2],
-) -> [Option<S::QuickTerm>; 2] {
-    let mut quick = [None; 2];
-    if let (Some(knl), Rules::Fixray, true) = (knl, scene.rules(), S::QUICK_PIXEL) {
-        for (k, (w, o)) in weights.into_iter().enumerate() {
-            let products = [0, 1, 2].map(|c| w[c].checked_mul(knl));
-            let top = w[0].max(w[1]).max(w[2]);
-            let extra = top
-                .floor_to_i32()
-                .and_then(|n| n.checked_add(3))
-                .and_then(|n| S::DELTA.checked_mul_int(n));
-            if let ([Some(a), Some(b), Some(c)], Some(extra), 0) = (products, extra, o)
-                && w.iter().all(|c| *c >= S::ZERO)
-            {
-                quick[k] = S::quick_term([a, b, c], extra);
-            }
-        }
-    }
-    quick
 }
 
 /// `plane_color` for the rows it draws most (a lean row, [`lean_row`]): the same
