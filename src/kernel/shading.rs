@@ -13,7 +13,8 @@ use crate::geometry::{surface_tolerance, surface_tolerance_fits};
 use crate::shade::color::{add_sat, term};
 use crate::shade::stages::Stages;
 use crate::shade::{
-    PlaneSides, channel_max, diffuse_falloff_in_loop, material_at, occluded_among, occludes_segment,
+    PlaneSides, channel_max, diffuse_falloff_outlined, material_at, occluded_among,
+    occludes_segment,
 };
 use crate::stats::{Counters, count};
 use crate::{Beam, Color, Light, Scalar, SceneView, Shape, Vec3};
@@ -210,7 +211,7 @@ fn lit_plane_with<S: Scalar>(
         diffuse,
         shadows,
         (terms, shadowed, weight, |t: &LightTerms<S>| {
-            diffuse_falloff_in_loop(t.nl, t.nl.checked_mul(k), t.ll)
+            diffuse_falloff_outlined(t.nl, t.nl.checked_mul(k), t.ll)
         }),
         counters,
     )

@@ -140,10 +140,9 @@ pub(crate) fn diffuse_falloff<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
     .unwrap_or(S::MAX)
 }
 
-/// [`diffuse_falloff`] as a light loop calls it (the general one and the fast kernel's
-/// plane hits): out of line in the 64-bit formats, one copy of their 128-bit division
-/// (inlined into a loop, it crowds the loop's registers), inlined in the others, where
-/// it is short.
+/// [`diffuse_falloff`] as the general light loop calls it: out of line in the 64-bit
+/// formats, the fast kernel's copy ([`diffuse_falloff_outlined`]: their 128-bit
+/// division once in flash), inlined in the others, where it is short.
 #[inline(always)]
 pub(crate) fn diffuse_falloff_in_loop<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
     if core::mem::size_of::<S>() > 4 {
@@ -153,9 +152,11 @@ pub(crate) fn diffuse_falloff_in_loop<S: Scalar>(nl: S, knl: Option<S>, ll: S) -
     }
 }
 
-/// [`diffuse_falloff`] out of line ([`diffuse_falloff_in_loop`]).
+/// [`diffuse_falloff`] out of line: what the fast kernel's plane hits call (inlined into
+/// their light loop, the division crowds its registers), and the general light loop in
+/// the 64-bit formats ([`diffuse_falloff_in_loop`]).
 #[inline(never)]
-fn diffuse_falloff_outlined<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
+pub(crate) fn diffuse_falloff_outlined<S: Scalar>(nl: S, knl: Option<S>, ll: S) -> S {
     diffuse_falloff(nl, knl, ll)
 }
 

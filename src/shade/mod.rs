@@ -55,7 +55,7 @@ use rules::{Tracer, with_rules};
 use stages::{Stages, planned, with_stages};
 
 pub(crate) use fixray::{occluded_among, occludes_segment, shade as shade_with};
-pub(crate) use light::{channel_max, diffuse_falloff, diffuse_falloff_in_loop};
+pub(crate) use light::{channel_max, diffuse_falloff, diffuse_falloff_outlined};
 
 /// How deep mirror reflections go: a ray reflected this many times sees no further
 /// reflection (its own colour only).
