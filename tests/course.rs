@@ -132,7 +132,8 @@ macro_rules! course_scenes {
     )*};
 }
 
-// Every public course scene with a reference picture whose entities this crate draws.
+// Every public course scene with a reference picture whose entities this crate draws,
+// but texplane5 (28 % of its pixels beyond 2 levels: `COURSE-RULES.md` §15).
 course_scenes!(
     mp1a,
     mp1c,
@@ -200,7 +201,7 @@ fn every_corpus_file_is_read_or_refused_where_it_says_what_is_missing() {
         .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names.len(), 27, "{names:?}");
+    assert_eq!(names.len(), 28, "{names:?}");
     for name in &names {
         let result = scene::<f64>(name, &text(name));
         match refused.iter().find(|r| r.0 == name) {
