@@ -140,7 +140,7 @@ impl<S: Scalar> PlaneMemo<S> {
     }
 }
 
-/// A stage set's room for a [`PlaneMemo`] (`Stages::Memo`): the memo itself, or `()`
+/// A stage set's room for a [`PlaneMemo`] (`KernelStages::Memo`): the memo itself, or `()`
 /// where the set's plane hits take the general shading.
 pub trait MemoSlot<S>: Default {
     /// The memo, if the set keeps one.

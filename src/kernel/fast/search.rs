@@ -11,7 +11,7 @@ use crate::{Scalar, SceneView, Shape, Vec3};
 /// A scanline's memo of its last still plane's hit ([`Primary::point_in`]): the key
 /// (object, `|N·D|`, `D.y`) and its `t'`, `y` and `z`, and the distance bound for the
 /// last `2|D|∞`. Kept by the stage sets whose scanlines keep a plane memo
-/// (`Stages::Memo`).
+/// (`KernelStages::Memo`).
 #[derive(Debug, Clone)]
 pub(crate) struct HitMemo<S> {
     /// Whether the last hit was a certified block's: every plane then lies out of the
