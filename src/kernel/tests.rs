@@ -11,40 +11,14 @@ use super::scanline::fast_color;
 use super::shading::{lit_plane_color, quiet_hit};
 use super::*;
 use crate::Scene;
+use crate::num::Rng;
 use crate::shade::stages::DiffuseShadows;
-
-/// A seeded generator (xorshift), so that every run draws the same scenes (the
-/// invariants' tests share it).
-pub(super) struct Rng(pub(super) u64);
-
-impl Rng {
-    pub(super) fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    /// A whole number in `0..n`.
-    pub(super) fn below(&mut self, n: u32) -> u32 {
-        u32::try_from(self.next() % u64::from(n)).unwrap_or(0)
-    }
-
-    /// A real in `[lo, hi)`.
-    pub(super) fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        let u = f64::from(self.below(1 << 24)) / f64::from(1u32 << 24);
-        lo + (hi - lo) * u
-    }
-}
 
 /// A seeded random scene of planes only (plain and tiled, any normal: walls with
 /// `N.x ≠ 0` among them), sometimes lit.
-pub(super) fn random_scene(mut next: impl FnMut() -> u64) -> String {
-    // A whole number in `0..n`, and a real in `[lo, hi)`.
-    let mut below = |n: u64| u32::try_from(next() % n).unwrap();
-    let (w, h) = (16 + below(48), 8 + below(24));
-    let mut uniform =
-        |lo: f64, hi: f64| lo + (hi - lo) * f64::from(below(1 << 24)) / f64::from(1u32 << 24);
+pub(super) fn random_scene(rng: &mut Rng) -> String {
+    let (w, h) = (16 + rng.below(48), 8 + rng.below(24));
+    let mut uniform = |lo: f64, hi: f64| rng.uniform(lo, hi);
     let mut text = format!(
         "rules fixray\ncamera c {{ pixeldim {w} {h} worlddim 8 6 viewpoint {:.3} {:.3} {:.3} }}\n",
         uniform(0.0, 8.0),
@@ -112,10 +86,10 @@ pub(super) fn random_scene(mut next: impl FnMut() -> u64) -> String {
 /// the general shading's ([`fast_color`]) bit for bit wherever it draws one.
 /// Returns how many hits it drew.
 fn lit_planes_agree<S: Scalar, T: Stages>(scenes: usize) -> (usize, usize) {
-    let mut next = crate::num::xorshift(0x5EED_2026_1206);
+    let mut rng = Rng(0x5EED_2026_1206);
     let (mut drawn, mut quiet) = (0, 0);
     let texts = (0..scenes)
-        .map(|_| random_scene(&mut next))
+        .map(|_| random_scene(&mut rng))
         .chain([String::from(include_str!("../../scenes/default.scene"))]);
     for (case, text) in texts.enumerate() {
         let Ok(scene) = Scene::<S>::parse(&text) else {

@@ -200,15 +200,37 @@ pub trait Scalar: Series + KernelArith + Copy + PartialOrd + Debug + Send + Sync
 }
 
 /// A seeded xorshift64 generator for the unit tests' cases (the same sequence on every
-/// machine).
+/// machine), with the whole numbers and reals the tests' scenes are drawn from.
 #[cfg(test)]
-pub(crate) fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
-    move || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        x
+pub(crate) struct Rng(pub(crate) u64);
+
+#[cfg(test)]
+impl Rng {
+    /// The next value.
+    pub(crate) fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
     }
+
+    /// A whole number in `0..n`.
+    pub(crate) fn below(&mut self, n: u32) -> u32 {
+        u32::try_from(self.next() % u64::from(n)).unwrap_or(0)
+    }
+
+    /// A real in `[lo, hi)`.
+    pub(crate) fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        let u = f64::from(self.below(1 << 24)) / f64::from(1u32 << 24);
+        lo + (hi - lo) * u
+    }
+}
+
+/// [`Rng`]'s sequence as a closure.
+#[cfg(test)]
+pub(crate) fn xorshift(seed: u64) -> impl FnMut() -> u64 {
+    let mut rng = Rng(seed);
+    move || rng.next()
 }
 
 #[cfg(test)]

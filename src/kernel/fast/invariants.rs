@@ -15,12 +15,12 @@ use std::vec::Vec;
 
 use fixed::types::{I16F16, I20F12, I32F32};
 
-use super::super::tests::Rng;
 use super::Primary;
 use super::blocks::{Block, block_starts};
 use super::search::sphere_root;
 use super::step::{Row, resync_pixels};
 use crate::kernel::shading::segment_tolerance;
+use crate::num::Rng;
 use crate::shade::occludes_segment;
 use crate::{Scalar, Scene, SceneView};
 

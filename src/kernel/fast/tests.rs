@@ -11,6 +11,7 @@ use super::super::scanline;
 use super::super::tests::random_scene;
 use super::*;
 use crate::Scene;
+use crate::num::Rng;
 use crate::shade::stages::DiffuseShadows;
 use crate::stats::Counters;
 
@@ -20,12 +21,12 @@ use crate::stats::Counters;
 /// pixels of whole and partial scanlines with blocks and without. Returns the pixels
 /// the blocks answered.
 fn blocks_agree<S: Scalar>(scenes: usize) -> usize {
-    let mut next = crate::num::xorshift(0x5EED_2026_1205);
+    let mut rng = Rng(0x5EED_2026_1205);
     let mut blocked = 0;
     let mut guessed = 0;
     let mut parsed = 0;
     for case in 0..scenes {
-        let text = random_scene(&mut next);
+        let text = random_scene(&mut rng);
         let scene = match Scene::<S>::parse(&text) {
             Ok(scene) => scene,
             // Only a format's range may refuse a scene.

@@ -17,12 +17,12 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 use fixed::types::{I16F16, I20F12, I32F32};
 
 use super::super::fast::{Primary, Row, resync_pixels};
-use super::super::tests::Rng;
 use super::super::{Kernel, select};
 use super::lean::{LeanRow, lean_color, lean_row, quick_step};
 use super::level::{Level, Memo, level, plane_color};
 use super::{Rows, scanline};
 use crate::anim::Bounce;
+use crate::num::Rng;
 use crate::shade::color::to_pixel;
 use crate::shade::stages::{DiffuseShadows, Shading, shading_for};
 use crate::stats::Counters;
@@ -151,15 +151,7 @@ fn lean_of<S: Scalar>(
 ) -> Option<(Row<S>, Level<S>, LeanRow<S>)> {
     let first = p.row(view, row, 0)?;
     let l = level::<S, DiffuseShadows>(view, p, &first)??;
-    let mut f = LeanRow {
-        tiles: None,
-        ambient: [[S::ZERO; 3]; 2],
-        lit: [false; 2],
-        lights: heapless::Vec::new(),
-        cones: heapless::Vec::new(),
-        half: S::ZERO,
-        runs: false,
-    };
+    let mut f = LeanRow::empty();
     let d = Primary::dir(&first);
     lean_row(view, p, &l, (d.y, d.z), &mut f)?;
     Some((first, l, f))
@@ -226,10 +218,7 @@ fn lean_colors_hold<S: Scalar>(scenes: &[(String, String, Option<u16>)]) -> Answ
             let Some((first, l, f)) = lean_of(&view, p, row) else {
                 continue;
             };
-            let mut memo = Memo {
-                bound: None,
-                tol: None,
-            };
+            let mut memo = Memo::default();
             let y = view.camera.screen_y(row);
             each_column(&view, p, row, &first, |column, _, state| {
                 let lean = lean_color(&view, state, &l, &f, &mut counters);
@@ -303,10 +292,7 @@ fn quick_steps_hold<S: Scalar>(scenes: &[(String, String, Option<u16>)]) -> (usi
             let [light] = f.lights.as_slice() else {
                 continue;
             };
-            let mut memo = Memo {
-                bound: None,
-                tol: None,
-            };
+            let mut memo = Memo::default();
             let (y, dy) = (view.camera.screen_y(row), Primary::dir(&first).y);
             each_column(&view, p, row, &first, |column, before, state| {
                 let Some(mut s) = before.cloned() else {

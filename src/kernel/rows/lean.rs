@@ -321,6 +321,18 @@ pub(super) fn row_ll<S: Scalar>(lx: S, yz: S::Acc) -> Option<S> {
 }
 
 impl<S: Scalar> LeanRow<S> {
+    /// A lean part not built yet ([`lean_row`] fills it).
+    pub(super) fn empty() -> Self {
+        Self {
+            tiles: None,
+            ambient: [[S::ZERO; 3]; 2],
+            lit: [false; 2],
+            lights: heapless::Vec::new(),
+            cones: heapless::Vec::new(),
+            half: S::ZERO,
+            runs: false,
+        }
+    }
     /// The tile parity of the row's hit at `x` (0: the plane's own material, 1: a tiled
     /// plane's odd tiles), as `row_material` chooses it.
     #[inline(always)]
@@ -428,10 +440,7 @@ pub(super) fn exact_shadow<S: Scalar>(
     cone: usize,
 ) -> Option<bool> {
     // The hit's distance bound and the segments' tolerance as `plane_color` finds them.
-    let mut memo = Memo {
-        bound: None,
-        tol: None,
-    };
+    let mut memo = Memo::default();
     let t = hit_bound(l, Vec3::new(dx, dy, p.dz()), &mut memo)?;
     let point = Vec3::new(x, l.y, l.z);
     let tol = segment_tolerance(scene.camera.viewpoint, point, t, Some(&mut memo.tol))?;

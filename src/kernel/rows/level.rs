@@ -80,6 +80,15 @@ pub(super) struct Memo<S> {
     pub(super) tol: Option<(S, S, S)>,
 }
 
+impl<S> Default for Memo<S> {
+    fn default() -> Self {
+        Self {
+            bound: None,
+            tol: None,
+        }
+    }
+}
+
 /// The row's nearest plane and what every pixel of the row shares of its hit: the
 /// object, `t'`, the hit's `y` and `z`, and the normal facing the ray; `Some(None)` when
 /// no plane is accepted, `None` when the row cannot be decided once.

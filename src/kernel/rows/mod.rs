@@ -97,15 +97,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         scene,
         p,
         level,
-        lean: LeanRow {
-            tiles: None,
-            ambient: [[S::ZERO; 3]; 2],
-            lit: [false; 2],
-            lights: heapless::Vec::new(),
-            cones: heapless::Vec::new(),
-            half: S::ZERO,
-            runs: false,
-        },
+        lean: LeanRow::empty(),
         lean_built: None,
         lazy,
         stale: false,
@@ -115,10 +107,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         // kernel's scanline starts its row there.
         valid: columns.start == 0,
         at_hit: heapless::Vec::new(),
-        memo: Memo {
-            bound: None,
-            tol: None,
-        },
+        memo: Memo::default(),
         spheres: p.sphere_columns_on_row(row),
         y: scene.camera.screen_y(row),
         row,
