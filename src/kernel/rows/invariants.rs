@@ -142,6 +142,35 @@ fn frame<S: Scalar>(scene: &Scene<S>) -> Option<(SceneView<'_, S>, Rows<S>)> {
     }
 }
 
+/// Calls `visit` with every lean row of `scenes` in format `S` (the scene's name and
+/// text, its view and fast-kernel frame, the row, and the row's first pixel, plane and
+/// lean part as the scanline forms them: [`lean_of`]).
+#[allow(clippy::type_complexity)]
+fn each_lean_row<S: Scalar>(
+    scenes: &[(String, String, Option<u16>)],
+    mut visit: impl FnMut(
+        (&str, &str),
+        &SceneView<'_, S>,
+        &Primary<S>,
+        u16,
+        (&Row<S>, &Level<S>, &LeanRow<S>),
+    ),
+) {
+    for (name, text, k) in scenes {
+        let Some(scene) = parse::<S>(text, *k) else {
+            continue;
+        };
+        let Some((view, rows)) = frame(&scene) else {
+            continue;
+        };
+        for row in 0..view.camera.height {
+            if let Some((first, l, f)) = lean_of(&view, &rows.primary, row) {
+                visit((name, text), &view, &rows.primary, row, (&first, &l, &f));
+            }
+        }
+    }
+}
+
 /// Scanline `row`'s first pixel, plane ([`level`]) and lean part ([`lean_row`]), as the
 /// scanline forms them, where the row is a lean one.
 fn lean_of<S: Scalar>(
@@ -205,48 +234,36 @@ struct Answers {
 /// where it returns a colour it is that colour, bit for bit.
 fn lean_colors_hold<S: Scalar>(scenes: &[(String, String, Option<u16>)]) -> Answers {
     let mut seen = Answers::default();
-    for (name, text, k) in scenes {
-        let Some(scene) = parse::<S>(text, *k) else {
-            continue;
-        };
-        let Some((view, rows)) = frame(&scene) else {
-            continue;
-        };
-        let p = &rows.primary;
+    each_lean_row(scenes, |(name, text), view, p, row, (first, l, f)| {
         let mut counters = Counters::default();
-        for row in 0..view.camera.height {
-            let Some((first, l, f)) = lean_of(&view, p, row) else {
-                continue;
-            };
-            let mut memo = Memo::default();
-            let y = view.camera.screen_y(row);
-            each_column(&view, p, row, &first, |column, _, state| {
-                let lean = lean_color(&view, state, &l, &f, &mut counters);
-                let want = plane_color::<S, DiffuseShadows>(
-                    &view,
-                    p,
-                    state,
-                    Some(&l),
-                    &mut memo,
-                    y,
-                    column,
-                    &mut counters,
-                );
-                let at = || format!("{} {name} at ({column}, {row})\n{text}", S::NAME);
-                match lean {
-                    Some(Ok(pixel)) => {
-                        seen.quick += 1;
-                        assert_eq!(pixel, to_pixel(view.rules(), want), "{}", at());
-                    }
-                    Some(Err(color)) => {
-                        seen.colors += 1;
-                        assert_eq!(color, want, "{}", at());
-                    }
-                    None => seen.general += 1,
+        let mut memo = Memo::default();
+        let y = view.camera.screen_y(row);
+        each_column(view, p, row, first, |column, _, state| {
+            let lean = lean_color(view, state, l, f, &mut counters);
+            let want = plane_color::<S, DiffuseShadows>(
+                view,
+                p,
+                state,
+                Some(l),
+                &mut memo,
+                y,
+                column,
+                &mut counters,
+            );
+            let at = || format!("{} {name} at ({column}, {row})\n{text}", S::NAME);
+            match lean {
+                Some(Ok(pixel)) => {
+                    seen.quick += 1;
+                    assert_eq!(pixel, to_pixel(view.rules(), want), "{}", at());
                 }
-            });
-        }
-    }
+                Some(Err(color)) => {
+                    seen.colors += 1;
+                    assert_eq!(color, want, "{}", at());
+                }
+                None => seen.general += 1,
+            }
+        });
+    });
     seen
 }
 
@@ -276,52 +293,39 @@ fn a_lean_colour_is_the_general_paths() {
 /// found their pixel shadowed.
 fn quick_steps_hold<S: Scalar>(scenes: &[(String, String, Option<u16>)]) -> (usize, usize) {
     let (mut quick, mut shadowed) = (0, 0);
-    for (name, text, k) in scenes {
-        let Some(scene) = parse::<S>(text, *k) else {
-            continue;
+    each_lean_row(scenes, |(name, text), view, p, row, (first, l, f)| {
+        let [light] = f.lights.as_slice() else {
+            return;
         };
-        let Some((view, rows)) = frame(&scene) else {
-            continue;
-        };
-        let p = &rows.primary;
         let mut counters = Counters::default();
-        for row in 0..view.camera.height {
-            let Some((first, l, f)) = lean_of(&view, p, row) else {
-                continue;
+        let mut memo = Memo::default();
+        let (y, dy) = (view.camera.screen_y(row), Primary::dir(first).y);
+        each_column(view, p, row, first, |column, before, state| {
+            let Some(mut s) = before.cloned() else {
+                return;
             };
-            let [light] = f.lights.as_slice() else {
-                continue;
+            let Some((pixel, lit)) = quick_step(view, p, l, f, light, &mut s, (row, dy), column)
+            else {
+                return;
             };
-            let mut memo = Memo::default();
-            let (y, dy) = (view.camera.screen_y(row), Primary::dir(&first).y);
-            each_column(&view, p, row, &first, |column, before, state| {
-                let Some(mut s) = before.cloned() else {
-                    return;
-                };
-                let Some((pixel, lit)) =
-                    quick_step(&view, p, &l, &f, light, &mut s, (row, dy), column)
-                else {
-                    return;
-                };
-                let want = plane_color::<S, DiffuseShadows>(
-                    &view,
-                    p,
-                    state,
-                    Some(&l),
-                    &mut memo,
-                    y,
-                    column,
-                    &mut counters,
-                );
-                let at = || format!("{} {name} at ({column}, {row})\n{text}", S::NAME);
-                assert_eq!(pixel, to_pixel(view.rules(), want), "{}", at());
-                assert_eq!(Primary::dir(&s), Primary::dir(state), "{}", at());
-                assert_eq!(Primary::column(&s), column, "{}", at());
-                quick += 1;
-                shadowed += usize::from(!lit);
-            });
-        }
-    }
+            let want = plane_color::<S, DiffuseShadows>(
+                view,
+                p,
+                state,
+                Some(l),
+                &mut memo,
+                y,
+                column,
+                &mut counters,
+            );
+            let at = || format!("{} {name} at ({column}, {row})\n{text}", S::NAME);
+            assert_eq!(pixel, to_pixel(view.rules(), want), "{}", at());
+            assert_eq!(Primary::dir(&s), Primary::dir(state), "{}", at());
+            assert_eq!(Primary::column(&s), column, "{}", at());
+            quick += 1;
+            shadowed += usize::from(!lit);
+        });
+    });
     (quick, shadowed)
 }
 
