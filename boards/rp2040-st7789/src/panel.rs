@@ -1,0 +1,183 @@
+//! The ST7789 on SPI0: commands written by the CPU, pixels streamed by DMA.
+//!
+//! A frame is one window (CASET, RASET) and one RAMWR, then its rows as one stream of
+//! big-endian RGB565 bytes with DC high. Each row goes out by DMA from a line buffer
+//! while the CPU draws the next row into another: the CPU waits on the display only when
+//! it has drawn a row before the previous one has left, and at the frame's end.
+
+use embedded_hal::delay::DelayNs;
+use embedded_hal::digital::OutputPin;
+use embedded_hal::spi::SpiBus;
+use rp2040_hal::dma::{CH0, Channel, single_buffer};
+use rp2040_hal::gpio::bank0::{Gpio16, Gpio17, Gpio18, Gpio19, Gpio20};
+use rp2040_hal::gpio::{FunctionSioOutput, FunctionSpi, Pin, PullDown};
+use rp2040_hal::pac;
+use rp2040_hal::spi::{Enabled, Spi};
+
+use crate::{PANEL_HEIGHT, PANEL_WIDTH};
+
+/// One panel row: two bytes a pixel.
+pub const LINE_BYTES: usize = 2 * PANEL_WIDTH as usize;
+/// A line buffer as the DMA reads it.
+pub type Line = [u8; LINE_BYTES];
+
+/// SPI0 with GP19 as TX and GP18 as SCK, 8-bit frames.
+pub type Bus = Spi<
+    Enabled,
+    pac::SPI0,
+    (
+        Pin<Gpio19, FunctionSpi, PullDown>,
+        Pin<Gpio18, FunctionSpi, PullDown>,
+    ),
+    8,
+>;
+type Output<P> = Pin<P, FunctionSioOutput, PullDown>;
+type Sending = single_buffer::Transfer<Channel<CH0>, &'static [u8], Bus>;
+
+/// What the link between the CPU and the panel is doing.
+enum Link {
+    /// Nothing in flight: the channel and the bus are here.
+    Idle(Channel<CH0>, Bus),
+    /// A row in flight from the line buffer `slot`.
+    Sending(Sending, usize),
+}
+
+/// The panel: its pins, the bus and the DMA channel.
+pub struct Panel {
+    link: Option<Link>,
+    dc: Output<Gpio16>,
+    /// Held low: the panel is the bus's only device.
+    _cs: Output<Gpio17>,
+}
+
+// ST7789 commands (its datasheet, section 9.1).
+const SLPOUT: u8 = 0x11;
+const NORON: u8 = 0x13;
+const INVON: u8 = 0x21;
+const DISPON: u8 = 0x29;
+const CASET: u8 = 0x2a;
+const RASET: u8 = 0x2b;
+const RAMWR: u8 = 0x2c;
+const MADCTL: u8 = 0x36;
+const COLMOD: u8 = 0x3a;
+
+impl Panel {
+    /// Resets the controller and wakes it: 16-bit colour, top-left origin, colours
+    /// inverted (the IPS modules' panels need it), display on. The same sequence and
+    /// delays as the `mipidsi` driver's for the ST7789.
+    pub fn init(
+        bus: Bus,
+        channel: Channel<CH0>,
+        dc: Output<Gpio16>,
+        mut cs: Output<Gpio17>,
+        mut reset: Output<Gpio20>,
+        delay: &mut impl DelayNs,
+    ) -> Self {
+        // The RP2040's pins cannot fail (their error type is `Infallible`). CS stays low:
+        // the panel is the bus's only device.
+        let Ok(()) = cs.set_low();
+        let Ok(()) = reset.set_low();
+        delay.delay_us(10);
+        let Ok(()) = reset.set_high();
+        let mut panel = Panel {
+            link: Some(Link::Idle(channel, bus)),
+            dc,
+            _cs: cs,
+        };
+        delay.delay_ms(150);
+        panel.command(SLPOUT, &[]);
+        delay.delay_ms(10);
+        panel.command(MADCTL, &[0x00]);
+        panel.command(INVON, &[]);
+        panel.command(COLMOD, &[0x55]);
+        delay.delay_ms(10);
+        panel.command(NORON, &[]);
+        delay.delay_ms(10);
+        panel.command(DISPON, &[]);
+        delay.delay_ms(120);
+        panel
+    }
+
+    /// Starts a frame on the window `x0..=x1`, `y0..=y1`: the rows sent next fill it.
+    pub fn begin(&mut self, x0: u16, y0: u16, x1: u16, y1: u16) {
+        let [a, b] = x0.to_be_bytes();
+        let [c, d] = x1.to_be_bytes();
+        self.command(CASET, &[a, b, c, d]);
+        let [a, b] = y0.to_be_bytes();
+        let [c, d] = y1.to_be_bytes();
+        self.command(RASET, &[a, b, c, d]);
+        self.command(RAMWR, &[]);
+    }
+
+    /// Sends `row` (from the line buffer `slot`) by DMA once the row before it has gone.
+    /// Returns the slot of that row, whose buffer is free again.
+    pub fn send(&mut self, slot: usize, row: &'static [u8]) -> Option<usize> {
+        let (channel, bus, freed) = self.idle();
+        let sending = single_buffer::Config::new(channel, row, bus).start();
+        self.link = Some(Link::Sending(sending, slot));
+        freed
+    }
+
+    /// Waits until the last row has gone; returns its slot.
+    pub fn finish(&mut self) -> Option<usize> {
+        let (channel, bus, freed) = self.idle();
+        self.link = Some(Link::Idle(channel, bus));
+        freed
+    }
+
+    /// Fills the whole panel with one colour (big-endian RGB565), sent from `line`.
+    pub fn fill(&mut self, colour: u16, line: &'static mut Line) {
+        for pair in line.chunks_exact_mut(2) {
+            pair.copy_from_slice(&colour.to_be_bytes());
+        }
+        let line: &'static [u8] = line;
+        self.begin(0, 0, PANEL_WIDTH - 1, PANEL_HEIGHT - 1);
+        for _ in 0..PANEL_HEIGHT {
+            self.send(0, line);
+        }
+        self.finish();
+    }
+
+    /// The channel and the bus, once nothing is in flight, and the slot that was.
+    fn idle(&mut self) -> (Channel<CH0>, Bus, Option<usize>) {
+        match self.link.take() {
+            Some(Link::Idle(channel, bus)) => (channel, bus, None),
+            Some(Link::Sending(sending, slot)) => {
+                let (channel, _, bus) = sending.wait();
+                (channel, bus, Some(slot))
+            }
+            // `link` is only ever empty inside this function and `send`.
+            None => unreachable!("the panel's link is always put back"),
+        }
+    }
+
+    /// Writes one command and its parameters with the CPU (DC low for the command).
+    fn command(&mut self, command: u8, parameters: &[u8]) {
+        let (channel, mut bus, _) = self.idle();
+        // The bus's last bytes shift out before DC changes; a DMA transfer leaves received
+        // bytes behind, which the blocking writes below must not mistake for theirs.
+        while bus.is_busy() {}
+        drain_received();
+        let Ok(()) = self.dc.set_low();
+        let Ok(()) = bus.write(&[command]);
+        let Ok(()) = bus.flush();
+        let Ok(()) = self.dc.set_high();
+        if !parameters.is_empty() {
+            let Ok(()) = bus.write(parameters);
+            let Ok(()) = bus.flush();
+        }
+        self.link = Some(Link::Idle(channel, bus));
+    }
+}
+
+/// Empties SPI0's receive FIFO and clears its overrun flag (a send-only DMA transfer fills
+/// both).
+fn drain_received() {
+    // SAFETY: reads of SPI0's data and status registers and a write-1-to-clear of its
+    // overrun flag; the bus is idle (the caller waited) and owned by the caller.
+    let spi0 = unsafe { &*pac::SPI0::ptr() };
+    while spi0.sspsr().read().rne().bit_is_set() {
+        let _ = spi0.sspdr().read();
+    }
+    spi0.sspicr().write(|w| w.roric().clear_bit_by_one());
+}
