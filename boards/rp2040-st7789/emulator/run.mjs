@@ -15,8 +15,12 @@
 // from clk_peri), so the CPU waits on the display as it would on the board. --instant-spi
 // completes every byte at once: the difference in cycles is the time spent waiting.
 //
-// A frame ends with the firmware's `frame=K ...` line. For each one the run prints its
-// emulated cycles and the pixels written, and writes the panel (DIR/frame-K.rgb565, the
+// A frame ends with the firmware's `frame=K ...` line. For each one the run prints a line
+// `frame=K cycles=C clk_sys=HZ pixels=P draw_even=E draw_odd=O`: its emulated cycles (from
+// the previous UART line), the pixels written, and the cycles spent drawing its even and
+// its odd rows (from RAMWR or the previous row's first byte to the row's first byte: with
+// the rows streamed as they are drawn, a row's first byte leaves when it is drawn). It
+// also writes the panel (DIR/frame-K.rgb565, the
 // panel's rows top to bottom, two big-endian bytes a pixel, 240 wide). DIR/run.json sums
 // it up. --patch replaces bytes of the flash image (the scene text, say) before the run.
 // --profile attributes the frames' cycles to the ELF's functions (from its symbol table)
@@ -227,9 +231,12 @@ class Panel {
     this.high = null;
     this.pixels = 0;
     this.commands = 0;
+    // Cycles spent drawing the rows, by the row's parity, since the last `take`.
+    this.draw = [0, 0];
+    this.mark = 0;
   }
 
-  byte(dc, value) {
+  byte(dc, value, now) {
     if (!dc) {
       this.command = value;
       this.args = [];
@@ -238,11 +245,16 @@ class Panel {
       if (value === 0x2c) {
         this.x = this.window.x0;
         this.y = this.window.y0;
+        this.mark = now;
       }
       return;
     }
     if (this.command === 0x2c) {
       if (this.high === null) {
+        if (this.x === this.window.x0) {
+          this.draw[(this.y - this.window.y0) & 1] += now - this.mark;
+          this.mark = now;
+        }
         this.high = value;
         return;
       }
@@ -265,6 +277,13 @@ class Panel {
       if (this.command === 0x2a) Object.assign(this.window, { x0: lo, x1: hi });
       else Object.assign(this.window, { y0: lo, y1: hi });
     }
+  }
+
+  /** The drawing cycles by row parity since the last call. */
+  take() {
+    const draw = this.draw;
+    this.draw = [0, 0];
+    return draw;
   }
 
   /** The panel's rows as big-endian RGB565 bytes. */
@@ -290,7 +309,7 @@ function main() {
   const spi = mcu.spi[0];
   const done = mcu.clock.createAlarm(() => spi.completeTransmit(0));
   spi.onTransmit = (value) => {
-    panel.byte(mcu.gpio[DC_PIN].outputValue, value);
+    panel.byte(mcu.gpio[DC_PIN].outputValue, value, cycles);
     if (args.instantSpi) {
       spi.completeTransmit(0);
     } else {
@@ -314,18 +333,28 @@ function main() {
       const pixels = panel.pixels - pixelsAtLine;
       lineStart = cycles;
       pixelsAtLine = panel.pixels;
+      const draw = panel.take();
       process.stdout.write(`uart: ${text}\n`);
       profiling = profile !== null;
       const m = /^frame=(\d+)\b/.exec(text);
       if (m) {
-        const frame = { index: Number(m[1]), cycles: frameCycles, pixels, clk_sys_hz: mcu.clkSys };
+        const [even, odd] = draw;
+        const frame = {
+          index: Number(m[1]),
+          cycles: frameCycles,
+          pixels,
+          clk_sys_hz: mcu.clkSys,
+          draw_even: even,
+          draw_odd: odd,
+        };
         if (args.out) {
           frame.file = `frame-${frames.length}.rgb565`;
           writeFileSync(`${args.out}/${frame.file}`, panel.image(PANEL_ROWS));
         }
         frames.push(frame);
         process.stdout.write(
-          `frame ${frame.index}: ${frameCycles} cycles at ${mcu.clkSys / 1e6} MHz, ${pixels} pixels sent\n`,
+          `frame=${frame.index} cycles=${Math.round(frameCycles)} clk_sys=${mcu.clkSys} pixels=${pixels}` +
+            ` draw_even=${Math.round(even)} draw_odd=${Math.round(odd)}\n`,
         );
         if (frames.length >= args.frames) stop = 'frames';
       } else if (text.startsWith('error:')) {
@@ -386,10 +415,15 @@ function main() {
     clk_peri_hz: mcu.clkPeri,
     panel: { columns: PANEL_COLUMNS, rows: PANEL_ROWS },
     uart,
-    frames: frames.map((f) => ({ ...f, cycles: Math.round(f.cycles) })),
+    frames: frames.map((f) => ({
+      ...f,
+      cycles: Math.round(f.cycles),
+      draw_even: Math.round(f.draw_even),
+      draw_odd: Math.round(f.draw_odd),
+    })),
   };
   if (args.out) writeFileSync(`${args.out}/run.json`, JSON.stringify(summary, null, 2) + '\n');
-  process.stdout.write(`stop: ${stop} after ${Math.round(cycles)} cycles\n`);
+  process.stdout.write(`stop=${stop} cycles=${Math.round(cycles)} spi=${spi.clockFrequency}\n`);
   process.exit(stop === 'frames' || stop === 'error' ? 0 : 1);
 }
 

@@ -125,8 +125,12 @@ pub static BOOT2_FIRMWARE: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
 const XTAL_HZ: u32 = 12_000_000;
 
 /// The system clock: 200 MHz (the RP2040's rated maximum, at 1.15 V: see [`clock`]) or
-/// 125 MHz (its nominal clock).
-pub const SYS_HZ: u32 = 200_000_000;
+/// 125 MHz (its nominal clock; also the `clock-125mhz` feature, for measuring both).
+pub const SYS_HZ: u32 = if cfg!(feature = "clock-125mhz") {
+    125_000_000
+} else {
+    200_000_000
+};
 const _: () = assert!(SYS_HZ == 200_000_000 || SYS_HZ == 125_000_000);
 
 /// The panel's width in pixels.
