@@ -6,6 +6,8 @@
 //! - the reports the firmware tests leave in `target/` (`cargo test --release --test
 //!   firmware -- --ignored`): instructions counted under QEMU's `-icount shift=0`, flash
 //!   and RAM, all deterministic for one toolchain and lock file;
+//! - the RP2040 board's emulated run, `target/board-report.md` (`cargo test --release
+//!   --test board -- --ignored`): cycles counted by rp2040js, deterministic too;
 //! - the Cortex-M0 firmware's own output, `target/firmware-m0.txt` (`cargo run --release
 //!   --example firmware --target thumbv6m-none-eabi > target/firmware-m0.txt`);
 //! - host renders (the share of pixels that differ from f64: deterministic), and the
@@ -25,9 +27,9 @@ fn report(name: &str) -> Result<String, String> {
     let path = crate::root().join("target").join(name);
     std::fs::read_to_string(&path).map_err(|e| {
         format!(
-            "target/{name}: {e} (run `cargo test --release --test firmware -- --ignored` and \
-             `cargo run --release --example firmware --target thumbv6m-none-eabi > \
-             target/firmware-m0.txt` first)"
+            "target/{name}: {e} (run `cargo test --release --test firmware -- --ignored`, \
+             `cargo test --release --test board -- --ignored` and `cargo run --release \
+             --example firmware --target thumbv6m-none-eabi > target/firmware-m0.txt` first)"
         )
     })
 }
@@ -180,16 +182,18 @@ macro_rules! verbatim {
     };
 }
 
-const BLOCKS: [Block; 9] = [
+const BLOCKS: [Block; 11] = [
     ("README.md", "formats", formats),
     ("README.md", "sample", sample),
     ("README.md", "boing", boing),
+    ("README.md", "board", verbatim!("board-report.md")),
     (
         "docs/performance.md",
         "cores",
         verbatim!("firmware-report.md"),
     ),
     ("docs/performance.md", "boing", verbatim!("boing-report.md")),
+    ("docs/performance.md", "board", verbatim!("board-report.md")),
     (
         "docs/performance.md",
         "features",
