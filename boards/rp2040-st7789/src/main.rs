@@ -235,21 +235,22 @@ fn draw_row(frame: &Frame<'_, I16F16, Rgb565>, row: u16, width: u16, line: &mut 
     }
 }
 
-/// Draws `frame` (`width` × `height`) on the panel at `(x, y)`: core 0's rows here, core 1's from the FIFO
-/// (it sends each row's number when the row is in its line buffer, and gets [`FREED`]
-/// back when that buffer has been sent).
+/// Draws `frame` (`width` × `height`) on the panel at `(x, y)` with `cores` cores: core
+/// 0's rows here, core 1's from the FIFO (it sends each row as [`row_drawn`] when the row
+/// is in one of its line buffers, and gets [`FREED`] back when that buffer has been sent).
 fn draw_frame(
     frame: &Frame<'_, I16F16, Rgb565>,
     (width, height): (u16, u16),
     (x, y): (u16, u16),
+    cores: u16,
     panel: &mut Panel,
     fifo: &mut SioFifo,
 ) {
     let bytes = 2 * usize::from(width);
     panel.begin(x, y, x + width - 1, y + height - 1);
-    let (mut own, mut theirs) = (0, 2);
+    let mut own = 0;
     for row in 0..height {
-        let slot = if rows::core_of(row, CORES) == 0 {
+        let slot = if rows::core_of(row, cores) == 0 {
             let slot = own;
             own ^= 1;
             // SAFETY: slot `own` is core 0's, and not in flight: the transfer in flight
@@ -257,11 +258,15 @@ fn draw_frame(
             draw_row(frame, row, width, unsafe { &mut *line(slot) });
             slot
         } else {
-            // Core 1 sends the rows of its slots in turn, in order.
-            let _row = fifo.read_blocking();
+            // Core 1 sends its rows in order, each with its slot: another row or slot
+            // would be a broken protocol, which stops the board rather than draw it.
+            let message = fifo.read_blocking();
             compiler_fence(Ordering::Acquire);
-            let slot = theirs;
-            theirs ^= 1;
+            let slot = (message >> 16) as usize;
+            assert!(
+                message & 0xffff == u32::from(row) && (slot == 2 || slot == 3),
+                "core 1's rows arrive in order, from its slots"
+            );
             slot
         };
         // SAFETY: the slot is drawn and is read by this one transfer until it is freed.
@@ -273,6 +278,11 @@ fn draw_frame(
     if panel.finish().is_some_and(|freed| freed >= 2) {
         fifo.write_blocking(FREED);
     }
+}
+
+/// Core 1's message to core 0: `row` is drawn, in the line buffer `slot`.
+const fn row_drawn(row: u16, slot: usize) -> u32 {
+    (slot as u32) << 16 | row as u32
 }
 
 /// Core 1: its own copy of the scene, moved with core 0's; it draws its rows of each frame
@@ -289,7 +299,6 @@ fn core1() -> ! {
         }
     };
     let mut free = 2;
-    let mut slot = 2;
     loop {
         let k = loop {
             match fifo.read_blocking() {
@@ -297,22 +306,27 @@ fn core1() -> ! {
                 k => break k,
             }
         };
+        // Every slot sent in the last frame was freed before this frame's number (the
+        // FIFO keeps order): each frame starts with both slots free, from slot 2.
+        let mut slot = 2;
         // `load` placed every frame of the loop.
         let _ = bounce.apply(&mut scene, k as u16);
         let (width, height) = (scene.camera.width, scene.camera.height);
         let frame = Frame::new(&scene);
-        for row in rows::rows_of(1, CORES, height) {
+        for row in rows::rows_of(1, 2, height) {
             while free == 0 {
                 if fifo.read_blocking() == FREED {
                     free += 1;
                 }
             }
             free -= 1;
-            // SAFETY: slots 2 and 3 are core 1's; this one was freed by core 0.
+            // SAFETY: slots 2 and 3 are core 1's, used in turn; core 0 sends them in the
+            // order they are drawn, so the one `free` counted is this one.
             draw_row(&frame, row, width, unsafe { &mut *line(slot) });
-            slot ^= 1;
             compiler_fence(Ordering::Release);
-            fifo.write_blocking(u32::from(row));
+            cortex_m::asm::dmb();
+            fifo.write_blocking(row_drawn(row, slot));
+            slot ^= 1;
         }
     }
 }
@@ -332,6 +346,10 @@ fn main() -> ! {
     // only on broken hardware (no crystal), before the serial port exists: that panics,
     // i.e. halts (`panic-halt`).
     let mut pac = pac::Peripherals::take().unwrap();
+    // A debugger's reset restarts core 0 only: hold core 1 until it is launched.
+    if CORES == 2 {
+        pac.PSM.frce_off().modify(|_, w| w.proc1().set_bit());
+    }
     let mut watchdog = Watchdog::new(pac.WATCHDOG);
     let clocks = clock::init(
         XTAL_HZ,
@@ -399,29 +417,33 @@ fn main() -> ! {
         Ok(bounce) => bounce,
         Err(e) => {
             panel.fill(ERROR_COLOUR, blank);
+            panel.on(&mut delay);
             halt(&mut serial, e)
         }
     };
     panel.fill(0x0000, blank);
+    panel.on(&mut delay);
     let (width, height) = (scene.camera.width, scene.camera.height);
     let (x, y) = ((PANEL_WIDTH - width) / 2, (PANEL_HEIGHT - height) / 2);
 
+    // Core 1 draws every other row once it has answered the launch handshake; if it does
+    // not, core 0 draws them all.
+    let mut cores = 1;
     if CORES == 2 {
         let mut multicore = Multicore::new(&mut pac.PSM, &mut pac.PPB, &mut sio.fifo);
-        let cores = multicore.cores();
-        // The stack is taken once; core 1 answers the launch handshake unless the chip
-        // is broken (then core 0 draws on and waits for rows that never come).
-        if let Some(stack) = CORE1_STACK.take() {
-            let _ = cores[1].spawn(stack, || core1());
+        if let Some(stack) = CORE1_STACK.take()
+            && multicore.cores()[1].spawn(stack, || core1()).is_ok()
+        {
+            cores = 2;
         }
     }
-    let cores = if CORES == 1 { "1 core" } else { "2 cores" };
+    let cores_named = if cores == 1 { "1 core" } else { "2 cores" };
     // The serial report is informational: a failed write (the blocking UART does not
     // fail) must not stop the animation, so its result is ignored here and below.
     let _ = write!(
         serial,
         "fixray boing: {width}x{height} at ({x},{y}) on a {PANEL_WIDTH}x{PANEL_HEIGHT} panel, \
-         {} MHz, {cores}, SPI {} kHz\r\n",
+         {} MHz, {cores_named}, SPI {} kHz\r\n",
         SYS_HZ / 1_000_000,
         spi_hz.to_kHz(),
     );
@@ -432,12 +454,19 @@ fn main() -> ! {
             // The sphere moves in the parsed scene (no re-parsing); `load` placed every
             // frame of the loop.
             let _ = bounce.apply(&mut scene, k);
-            if CORES == 2 {
+            if cores == 2 {
                 sio.fifo.write_blocking(u32::from(k));
             }
             // What is constant for the frame is computed once, then line by line.
             let frame = Frame::new(&scene);
-            draw_frame(&frame, (width, height), (x, y), &mut panel, &mut sio.fifo);
+            draw_frame(
+                &frame,
+                (width, height),
+                (x, y),
+                cores,
+                &mut panel,
+                &mut sio.fifo,
+            );
             let us = (timer.get_counter() - start).to_micros();
             let _ = write!(serial, "frame={k} us={us}\r\n");
         }

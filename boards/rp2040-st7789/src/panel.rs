@@ -63,8 +63,8 @@ const COLMOD: u8 = 0x3a;
 
 impl Panel {
     /// Resets the controller and wakes it: 16-bit colour, top-left origin, colours
-    /// inverted (the IPS modules' panels need it), display on. The same sequence and
-    /// delays as the `mipidsi` driver's for the ST7789.
+    /// inverted (the IPS modules' panels need it); [`Panel::on`] turns the display on.
+    /// The same sequence and delays as the `mipidsi` driver's for the ST7789.
     pub fn init(
         bus: Bus,
         channel: Channel<CH0>,
@@ -77,7 +77,8 @@ impl Panel {
         // the panel is the bus's only device.
         let Ok(()) = cs.set_low();
         let Ok(()) = reset.set_low();
-        delay.delay_us(10);
+        // At least the controller's 10 µs (the 1 MHz timer's first tick can come early).
+        delay.delay_us(20);
         let Ok(()) = reset.set_high();
         let mut panel = Panel {
             link: Some(Link::Idle(channel, bus)),
@@ -93,9 +94,14 @@ impl Panel {
         delay.delay_ms(10);
         panel.command(NORON, &[]);
         delay.delay_ms(10);
-        panel.command(DISPON, &[]);
-        delay.delay_ms(120);
         panel
+    }
+
+    /// Turns the display on (after the first fill: the panel never shows its memory's
+    /// power-on contents).
+    pub fn on(&mut self, delay: &mut impl DelayNs) {
+        self.command(DISPON, &[]);
+        delay.delay_ms(120);
     }
 
     /// Starts a frame on the window `x0..=x1`, `y0..=y1`: the rows sent next fill it.
@@ -152,8 +158,10 @@ impl Panel {
     }
 
     /// Writes one command and its parameters with the CPU (DC low for the command).
+    /// Called between frames only: no row is in flight, so no freed slot is lost.
     fn command(&mut self, command: u8, parameters: &[u8]) {
-        let (channel, mut bus, _) = self.idle();
+        let (channel, mut bus, freed) = self.idle();
+        debug_assert!(freed.is_none(), "a command is written between frames");
         // The bus's last bytes shift out before DC changes; a DMA transfer leaves received
         // bytes behind, which the blocking writes below must not mistake for theirs.
         while bus.is_busy() {}
