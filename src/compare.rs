@@ -147,8 +147,8 @@ pub fn compare<S: Scalar, R: Scalar>(
         for column in 0..width {
             let at = usize::from(column) % CHUNK;
             if at == 0 {
-                frame.render_columns(row, column, &mut chunk);
-                ref_frame.render_columns(row, column, &mut ref_chunk);
+                frame.render_chunk(row, column, &mut chunk);
+                ref_frame.render_chunk(row, column, &mut ref_chunk);
             }
             let Traced { hit, .. } = frame.trace_pixel(column, row);
             let Traced { hit: ref_hit, .. } = ref_frame.trace_pixel(column, row);

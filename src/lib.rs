@@ -65,7 +65,7 @@ pub struct ReadmeDoctests;
 pub use kernel::KernelKind;
 pub use kernel::flat::PlaneMode;
 pub use num::{I16F16, I20F12, I32F32, Scalar};
-pub use render::{Frame, render, render_line};
+pub use render::{Changes, Frame, render, render_line};
 pub use scene::{Scene, SceneError};
 
 // Shorthands for the crate's own modules, which name these items from the root; their

@@ -155,6 +155,102 @@ impl<'a, S: Scalar, C> Frame<'a, S, C> {
     pub fn mode(&self) -> PlaneMode {
         self.mode
     }
+
+    /// Which pixels of this frame may differ from `before` (the frame shown before it):
+    /// what an animation redraws on a display that keeps its picture. See [`Changes`].
+    pub fn changes_since<'f, D>(&'f self, before: &'f Frame<'_, S, D>) -> Changes<'f, S> {
+        let moved = kernel::moved_spheres(&before.scene, &self.scene).map(|objects| Moved {
+            objects,
+            before: (&before.scene, &before.drawing),
+            after: (&self.scene, &self.drawing),
+        });
+        Changes {
+            width: self.scene.camera.width,
+            height: self.scene.camera.height,
+            moved,
+        }
+    }
+}
+
+/// Which pixels of a frame may differ from the frame before it ([`Frame::changes_since`]):
+/// what an animation redraws on a display that keeps its picture, such as an SPI panel's
+/// own memory.
+///
+/// When the two scenes differ only in where some spheres are (the frames of an
+/// [`crate::anim::Bounce`]) and the level-plane kernel draws both ([`KernelKind::Rows`]:
+/// lit level planes and spheres, the boing ball's kind), a scanline changes only inside
+/// the moved spheres' boxes on the screen, old and new, unless their shadows can fall on
+/// it (then it changes whole). Two frames of the same scene change nowhere; any other pair
+/// changes everywhere. The columns are certified, not estimated: a pixel outside them is
+/// drawn from nothing that differs between the two frames (the level-plane kernel tests a
+/// sphere only inside its box, and casts its shadow only on the rows its shadow cone
+/// meets), so drawing them over the frame before ([`Frame::render_columns`]) gives the
+/// frame bit for bit.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb565;
+/// use fixray::anim::Bounce;
+/// use fixray::{Frame, Scene, I16F16};
+///
+/// let mut scene = Scene::<I16F16>::parse(include_str!("../scenes/boing.scene"))?;
+/// let mut next = scene.clone();
+/// let bounce = Bounce::boing(&scene.objects)?;
+/// bounce.apply(&mut next, 1)?;
+/// let (before, after) = (Frame::new(&scene), Frame::new(&next));
+/// let changes = after.changes_since(&before);
+/// let mut shown = [[Rgb565::new(0, 0, 0); 128]; 64]; // the display's memory: frame 0
+/// for (row, line) in (0..).zip(shown.iter_mut()) {
+///     before.render_line(row, line);
+/// }
+/// let mut redrawn = 0;
+/// for (row, line) in (0..).zip(shown.iter_mut()) {
+///     if let Some(columns) = changes.columns(row) {
+///         let span = usize::from(columns.start)..usize::from(columns.end);
+///         redrawn += span.len();
+///         after.render_columns(row, columns, &mut line[span]);
+///     }
+/// }
+/// let mut whole = [Rgb565::new(0, 0, 0); 128];
+/// for (row, line) in (0..).zip(shown.iter()) {
+///     after.render_line(row, &mut whole);
+///     assert_eq!(line, &whole); // frame 1, bit for bit
+/// }
+/// assert!(redrawn < 128 * 64 / 2);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone, Copy)]
+pub struct Changes<'f, S: Scalar> {
+    width: u16,
+    height: u16,
+    /// The moved spheres and both frames (`None`: the scenes differ in more).
+    moved: Option<Moved<'f, S>>,
+}
+
+/// Two frames whose scenes differ only in the centres of the spheres `objects`.
+#[derive(Debug, Clone, Copy)]
+struct Moved<'f, S: Scalar> {
+    objects: u8,
+    before: (&'f SceneView<'f, S>, &'f Drawing<S>),
+    after: (&'f SceneView<'f, S>, &'f Drawing<S>),
+}
+
+impl<S: Scalar> Changes<'_, S> {
+    /// The columns of scanline `row` to redraw; `None`: the row is the frame before's.
+    pub fn columns(&self, row: u16) -> Option<core::ops::Range<u16>> {
+        if row >= self.height {
+            return None;
+        }
+        match &self.moved {
+            None => Some(0..self.width),
+            Some(m) if m.objects == 0 => None,
+            Some(m) => kernel::changed_columns(m.before, m.after, m.objects, row),
+        }
+    }
+
+    /// Whether every pixel may differ (the scenes differ in more than where spheres are).
+    pub fn everywhere(&self) -> bool {
+        self.moved.is_none()
+    }
 }
 
 impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
@@ -191,6 +287,63 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
             kernel::line::<S, C>(&self.scene, &self.drawing, self.mode, row, line, counters)
         );
     }
+}
+
+impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
+    /// Columns `columns` of scanline `row` into `out` (`out[i]` is column
+    /// `columns.start + i`): the pixels [`Frame::render_line`] draws there, for redrawing
+    /// part of a scanline ([`Changes`]). Columns beyond the camera's width or beyond `out`
+    /// are left untouched. The scanline is drawn from the multiple of 64 at or before
+    /// `columns.start`, where its pixels are the whole scanline's.
+    pub fn render_columns(&self, row: u16, columns: core::ops::Range<u16>, out: &mut [C]) {
+        let end = columns.end.min(self.scene.camera.width);
+        if row >= self.scene.camera.height || columns.start >= end {
+            return;
+        }
+        let from = columns.start / kernel::RESUME * kernel::RESUME;
+        let mut sink = Skip {
+            skip: usize::from(columns.start - from),
+            out,
+        };
+        with_stages!(
+            self.shading,
+            stream_into::<S, C>(self, row, from..end, &mut sink)
+        );
+    }
+}
+
+/// Writes a streamed scanline into a slice of colours, after its first `skip` pixels.
+struct Skip<'o, C> {
+    skip: usize,
+    out: &'o mut [C],
+}
+
+impl<C: From<Rgb888>> RowSink<Rgb888> for Skip<'_, C> {
+    type Error = core::convert::Infallible;
+
+    fn fill(&mut self, pixels: impl Iterator<Item = Rgb888>) -> Result<(), Self::Error> {
+        for (slot, c) in self.out.iter_mut().zip(pixels.skip(self.skip)) {
+            *slot = C::from(c);
+        }
+        Ok(())
+    }
+}
+
+fn stream_into<S: Scalar, T: KernelStages, C: From<Rgb888>>(
+    frame: &Frame<'_, S, C>,
+    row: u16,
+    columns: core::ops::Range<u16>,
+    sink: &mut Skip<'_, C>,
+) {
+    let _ = kernel::stream::<S, T, Rgb888, _>(
+        &frame.scene,
+        &frame.drawing,
+        frame.mode,
+        row,
+        columns,
+        &mut Counters::default(),
+        sink,
+    );
 }
 
 impl<S: Scalar, C: PixelColor + From<Rgb888>> Frame<'_, S, C> {
@@ -246,7 +399,7 @@ impl<S: Scalar, C> Frame<'_, S, C> {
     /// (no line buffer of the frame's width: a tool compares two frames chunk by chunk).
     /// Chunks that start at multiples of 64 give exactly the pixels of
     /// [`Frame::render_line`] (its block and resync points).
-    pub(crate) fn render_columns(&self, row: u16, start: u16, out: &mut [Rgb888]) {
+    pub(crate) fn render_chunk(&self, row: u16, start: u16, out: &mut [Rgb888]) {
         let end = u16::try_from(out.len())
             .ok()
             .and_then(|n| start.checked_add(n))
@@ -440,5 +593,5 @@ pub fn render_columns_with<S: Scalar>(
     if fast {
         frame.drawing = kernel::fast_only(&frame.scene);
     }
-    frame.render_columns(row, start, out);
+    frame.render_chunk(row, start, out);
 }

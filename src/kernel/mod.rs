@@ -41,6 +41,7 @@ use flat::{Flat, PlaneMode};
 use rows::Rows;
 
 pub(crate) use memo::KernelStages;
+pub(crate) use rows::{RESUME, moved_spheres};
 pub(crate) use scanline::scanline;
 
 /// Whether this build has the kernels (cargo feature `kernels`). Without them every frame
@@ -134,6 +135,24 @@ impl<S: Scalar> Drawing<S> {
             Kernel::Rows(r) if !rows::decides(scene, r, row) => KernelKind::Fast,
             _ => self.kind(),
         }
+    }
+}
+
+/// The columns of scanline `row` whose pixels may differ between `before` and `after`,
+/// frames of two scenes whose objects `moved` alone differ, in their centres (a sphere in
+/// both: [`moved_spheres`]); `None`: the row is the same. Only the level-plane kernel
+/// tells which (`rows/changes.rs`); a frame of another kernel may change anywhere.
+pub(crate) fn changed_columns<S: Scalar>(
+    before: (&SceneView<'_, S>, &Drawing<S>),
+    after: (&SceneView<'_, S>, &Drawing<S>),
+    moved: u8,
+    row: u16,
+) -> Option<core::ops::Range<u16>> {
+    match (&before.1.kernel, &after.1.kernel) {
+        (Kernel::Rows(a), Kernel::Rows(b)) => {
+            rows::changed_columns((before.0, a), (after.0, b), moved, row)
+        }
+        _ => Some(0..after.0.camera.width),
     }
 }
 

@@ -122,9 +122,21 @@ impl<S: Scalar> Primary<S> {
     /// of [`sphere_rows`] and [`sphere_columns`] of the spheres on the row; `(1, 0)`:
     /// none).
     pub(crate) fn sphere_columns_on_row(&self, row: u16) -> (u16, u16) {
+        self.sphere_columns_on_row_of(row, u8::MAX)
+    }
+
+    /// [`Primary::sphere_columns_on_row`] for the spheres among the objects `objects`
+    /// (bit `i`: object `i`).
+    pub(crate) fn sphere_columns_on_row_of(&self, row: u16, objects: u8) -> (u16, u16) {
         self.terms
             .iter()
-            .filter(|t| t.sphere && row >= t.rows.0 && row <= t.rows.1)
+            .filter(|t| {
+                t.sphere
+                    && objects
+                        .checked_shr(u32::from(t.index))
+                        .is_some_and(|b| b & 1 == 1)
+            })
+            .filter(|t| row >= t.rows.0 && row <= t.rows.1)
             .filter(|t| t.columns.0 <= t.columns.1)
             .fold((1, 0), |(a, b), t| {
                 if a > b {

@@ -28,12 +28,16 @@
 //! Its files: this one, the scanline ([`scanline`], [`Pixels`]); `level.rs`, the row's
 //! plane and its per-row terms (`level`) and the colour of a pixel on it
 //! ([`plane_color`]); `lean.rs`, lean rows ([`lean_row`]): the commonest pixels'
-//! colours and quick runs.
+//! colours and quick runs; `changes.rs`, what a frame must redraw of the frame before it
+//! when spheres move ([`changed_columns`]).
 
+mod changes;
 #[cfg(test)]
 mod invariants;
 mod lean;
 mod level;
+
+pub(crate) use changes::{RESUME, changed_columns, moved_spheres};
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 

@@ -1,0 +1,156 @@
+//! What a frame must redraw of the frame before it (`Frame::changes_since`): every frame of
+//! the boing ball drawn over the frame before from its changed columns alone is the frame,
+//! bit for bit, in every format; frames the certificate does not cover change everywhere.
+
+use embedded_graphics::pixelcolor::Rgb888;
+use fixray::anim::Bounce;
+use fixray::{Frame, KernelKind, Scalar, Scene};
+
+/// The whole frame, row by row.
+fn whole<S: Scalar>(frame: &Frame<'_, S>, width: u16, height: u16) -> Vec<Vec<Rgb888>> {
+    (0..height)
+        .map(|row| {
+            let mut line = vec![Rgb888::new(0, 0, 0); usize::from(width)];
+            frame.render_line(row, &mut line);
+            line
+        })
+        .collect()
+}
+
+/// Every frame of `text`'s bounce drawn over the frame before from its changes: checks it
+/// is the frame, and returns the share of pixels redrawn, per frame.
+fn bounce_over_the_frame_before<S: Scalar>(text: &str) -> Vec<f64> {
+    let scene = Scene::<S>::parse(text).unwrap();
+    let bounce = Bounce::boing(&scene.objects).unwrap();
+    let (width, height) = (scene.camera.width, scene.camera.height);
+    let mut shares = Vec::new();
+    for k in 0..bounce.frames() {
+        let (mut a, mut b) = (scene.clone(), scene.clone());
+        bounce.apply(&mut a, k).unwrap();
+        bounce.apply(&mut b, k + 1).unwrap();
+        let (before, after) = (Frame::new(&a), Frame::new(&b));
+        assert_eq!(
+            after.kernel(),
+            KernelKind::Rows,
+            "the level-plane kernel draws it"
+        );
+        let changes = after.changes_since(&before);
+        assert!(!changes.everywhere());
+        let mut shown = whole(&before, width, height);
+        let expected = whole(&after, width, height);
+        let mut redrawn = 0;
+        for (row, line) in (0..height).zip(shown.iter_mut()) {
+            if let Some(columns) = changes.columns(row) {
+                assert!(columns.end <= width && columns.start < columns.end);
+                redrawn += columns.len();
+                let span = usize::from(columns.start)..usize::from(columns.end);
+                after.render_columns(row, columns, &mut line[span]);
+            }
+        }
+        for (row, (got, want)) in shown.iter().zip(&expected).enumerate() {
+            assert_eq!(got, want, "frame {} over frame {k}: row {row}", k + 1);
+        }
+        shares.push(redrawn as f64 / (f64::from(width) * f64::from(height)));
+    }
+    shares
+}
+
+#[test]
+fn the_boing_balls_frames_redrawn_where_they_change_are_the_frames_in_every_format() {
+    for format in fixray::num::formats::FORMATS {
+        let shares = fixray::with_format!(
+            format,
+            bounce_over_the_frame_before(include_str!("../scenes/boing.scene"))
+        )
+        .unwrap();
+        let mean = shares.iter().sum::<f64>() / shares.len() as f64;
+        println!(
+            "boing 128x64, {format}: {:.1} % of pixels redrawn a frame",
+            100.0 * mean
+        );
+        // The ball's box (from a multiple of 64) and its shadow's rows: under 60 % of a
+        // picture this narrow.
+        assert!(mean < 0.6, "{format}: {mean}");
+    }
+}
+
+#[test]
+fn the_whole_panels_frames_redrawn_where_they_change_are_the_frames() {
+    for format in ["i16f16", "i32f32", "f32"] {
+        let shares = fixray::with_format!(
+            format,
+            bounce_over_the_frame_before(include_str!("../scenes/boing-240x240.scene"))
+        )
+        .unwrap();
+        let mean = shares.iter().sum::<f64>() / shares.len() as f64;
+        println!(
+            "boing 240x240, {format}: {:.1} % of pixels redrawn a frame",
+            100.0 * mean
+        );
+        assert!(mean < 0.35, "{format}: {mean}");
+    }
+}
+
+#[test]
+fn the_same_scene_changes_nowhere_and_another_scene_everywhere() {
+    let text = include_str!("../scenes/boing.scene");
+    let scene = Scene::<fixray::I16F16>::parse(text).unwrap();
+    let (a, b) = (Frame::<_>::new(&scene), Frame::<_>::new(&scene));
+    let same = a.changes_since(&b);
+    assert!(!same.everywhere());
+    assert!((0..64).all(|row| same.columns(row).is_none()));
+    // A light moved: the certificate covers moved spheres only.
+    let mut lit = scene.clone();
+    lit.lights[0].location.x += fixray::I16F16::from_num(1);
+    let other = Frame::<_>::new(&lit);
+    let changes = other.changes_since(&a);
+    assert!(changes.everywhere());
+    assert!((0..64).all(|row| changes.columns(row) == Some(0..128)));
+    assert_eq!(changes.columns(64), None, "no row below the picture");
+}
+
+#[test]
+fn a_moved_sphere_another_kernel_draws_changes_whole_rows() {
+    // A mirror sees the sphere anywhere: the fast kernel draws the scene, and its frames
+    // are redrawn whole.
+    let text = include_str!("../scenes/mirror.scene");
+    let scene = Scene::<fixray::I16F16>::parse(text).unwrap();
+    let bounce = Bounce::boing(&scene.objects).unwrap();
+    let mut next = scene.clone();
+    bounce.apply(&mut next, 3).unwrap();
+    let (a, b) = (Frame::<_>::new(&scene), Frame::<_>::new(&next));
+    assert_ne!(b.kernel(), KernelKind::Rows);
+    let changes = b.changes_since(&a);
+    assert!(!changes.everywhere());
+    let width = scene.camera.width;
+    assert!((0..scene.camera.height).all(|row| changes.columns(row) == Some(0..width)));
+}
+
+#[test]
+fn a_part_of_a_scanline_is_the_whole_scanlines_pixels_from_any_column() {
+    let scene = Scene::<fixray::I16F16>::parse(include_str!("../scenes/boing.scene")).unwrap();
+    let frame = Frame::<_>::new(&scene);
+    for row in [0, 20, 40, 63] {
+        let mut line = [Rgb888::new(0, 0, 0); 128];
+        frame.render_line(row, &mut line);
+        for (start, end) in [
+            (0, 128),
+            (1, 2),
+            (37, 100),
+            (64, 128),
+            (100, 200),
+            (127, 128),
+        ] {
+            let mut part = [Rgb888::new(1, 2, 3); 128];
+            frame.render_columns(row, start..end, &mut part);
+            let end = end.min(128);
+            let n = usize::from(end - start);
+            assert_eq!(
+                &part[..n],
+                &line[usize::from(start)..usize::from(end)],
+                "{row}: {start}..{end}"
+            );
+            assert!(part[n..].iter().all(|&c| c == Rgb888::new(1, 2, 3)));
+        }
+    }
+}
