@@ -10,10 +10,10 @@
 //! They build the board's `emulated` firmware, run it on rp2040js
 //! (`boards/rp2040-st7789/emulator/run.mjs`, installed with `npm ci` when missing), and
 //! check every frame the panel receives against the host's render of the same animation
-//! frame, bit for bit in RGB565; the UART lines as the board's docs give them; the whole
-//! panel drawn; and a bad scene turning the panel red with `error: …` on the UART. They
-//! print the emulated cycles and write `target/board-report.md` (frame rates from cycles,
-//! for `cargo xtask figures`).
+//! frame, bit for bit in RGB565, whether it sends every pixel or only those that changed;
+//! the UART lines as the board's docs give them; the whole panel drawn; and a bad scene
+//! turning the panel red with `error: …` on the UART. They print the emulated cycles and
+//! write `target/board-report.md` (frame rates from cycles, for `cargo xtask figures`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -141,6 +141,7 @@ struct EmulatedFrame {
     pixels: usize,
     draw_even: f64,
     draw_odd: f64,
+    windows: f64,
 }
 
 impl EmulatedFrame {
@@ -201,6 +202,7 @@ fn emulate(elf: &Path, frames: usize, out: &str, options: &[&str]) -> EmulatedRu
                 pixels: field(line, "pixels") as usize,
                 draw_even: field(line, "draw_even"),
                 draw_odd: field(line, "draw_odd"),
+                windows: field(line, "windows"),
             });
         } else if let Some(rest) = line.strip_prefix("stop=") {
             run.stop = rest.split_whitespace().next().unwrap_or("").to_string();
@@ -219,19 +221,36 @@ fn panel(run: &EmulatedRun, file: &str) -> Vec<u16> {
         .collect()
 }
 
+/// What a run's frames after the first cost, on average (the first is whole in every run).
+struct Means {
+    /// Cycles per frame with one core.
+    one: f64,
+    /// With two, each drawing every other row.
+    two: f64,
+    /// Pixels sent a frame.
+    pixels: f64,
+    /// Windows opened a frame.
+    windows: f64,
+}
+
 /// Checks the run's frames against the host's, bit for bit, and the UART lines; returns
-/// the mean cycles per frame with one core and with two.
-fn check_frames(run: &EmulatedRun, clock_mhz: u32, spi_khz: u32) -> (f64, f64) {
+/// what the frames after the first cost.
+fn check_frames(run: &EmulatedRun, clock_mhz: u32, spi_khz: u32, whole: bool) -> Means {
     assert_eq!(run.stop, "frames", "{:?}", run.uart);
+    let sent = if whole {
+        "whole frames"
+    } else {
+        "changes only"
+    };
     let start = format!(
-        "fixray boing: 240x240 at (0,0) on a 240x240 panel, {clock_mhz} MHz, 1 core, SPI {spi_khz} kHz"
+        "fixray boing: 240x240 at (0,0) on a 240x240 panel, {clock_mhz} MHz, 1 core, SPI {spi_khz} kHz, {sent}"
     );
     assert_eq!(run.uart[0], start);
     for (n, frame) in run.frames.iter().enumerate() {
-        // The UART says `frame=K us=T`, K the animation's frame.
+        // The UART says `frame=K us=T pixels=P`, K the animation's frame.
         let line = &run.uart[n + 1];
         let words: Vec<&str> = line.split_whitespace().collect();
-        assert_eq!(words.len(), 2, "{line}");
+        assert_eq!(words.len(), 3, "{line}");
         assert_eq!(words[0], format!("frame={}", n % 16));
         let us: u64 = words[1].strip_prefix("us=").unwrap().parse().unwrap();
         // The board's own timer agrees with the emulated cycles within 1 %.
@@ -241,8 +260,20 @@ fn check_frames(run: &EmulatedRun, clock_mhz: u32, spi_khz: u32) -> (f64, f64) {
             "{line}: {from_cycles} us from cycles"
         );
         assert_eq!(usize::from(frame.index), n % 16);
-        // The whole panel, every pixel once a frame.
-        assert_eq!(frame.pixels, PANEL.0 * PANEL.1, "frame {n}");
+        // The pixels the board says it sent are those the panel received: every one in
+        // the first frame (and with whole frames), fewer after it.
+        let said: usize = words[2].strip_prefix("pixels=").unwrap().parse().unwrap();
+        assert_eq!(frame.pixels, said, "{line}");
+        if whole || n == 0 {
+            assert_eq!(frame.pixels, PANEL.0 * PANEL.1, "frame {n}");
+        } else {
+            assert!(
+                frame.pixels < PANEL.0 * PANEL.1 / 2,
+                "frame {n}: {}",
+                frame.pixels
+            );
+        }
+        // The panel shows the frame, bit for bit.
         let memory = panel(run, &format!("frame-{n}.rgb565"));
         let host = host_frame(frame.index);
         for (y, line) in host.iter().enumerate() {
@@ -255,67 +286,104 @@ fn check_frames(run: &EmulatedRun, clock_mhz: u32, spi_khz: u32) -> (f64, f64) {
             }
         }
     }
-    let count = run.frames.len() as f64;
-    let one = run.frames.iter().map(|f| f.cycles).sum::<f64>() / count;
-    let two = run
-        .frames
-        .iter()
-        .map(EmulatedFrame::two_core_cycles)
-        .sum::<f64>()
-        / count;
-    (one, two)
+    let after_first = &run.frames[1..];
+    let mean = |f: &dyn Fn(&EmulatedFrame) -> f64| {
+        after_first.iter().map(f).sum::<f64>() / after_first.len() as f64
+    };
+    Means {
+        one: mean(&|f| f.cycles),
+        two: mean(&EmulatedFrame::two_core_cycles),
+        pixels: mean(&|f| f.pixels as f64),
+        windows: mean(&|f| f.windows),
+    }
 }
 
 #[test]
 #[ignore = "needs Node and builds the board: cargo test --release --test board -- --ignored"]
 fn the_emulated_board_draws_the_hosts_frames_on_the_whole_panel() {
-    let pixels = (PANEL.0 * PANEL.1) as f64;
-    let frames = 16;
-    let elf = build("emulated");
-    let timed = emulate(&elf, frames, "board-200", &[]);
-    let (one_200, two_200) = check_frames(&timed, 200, 50_000);
-    // With every SPI byte sent at once: the difference is the time spent waiting on the
-    // display.
-    let instant = emulate(&elf, frames, "board-200-instant", &["--instant-spi"]);
-    let (instant_200, _) = check_frames(&instant, 200, 50_000);
-    let waiting = (one_200 - instant_200) / one_200;
-    let elf = build("emulated,clock-125mhz");
-    let slow = emulate(&elf, frames, "board-125", &[]);
-    let (one_125, two_125) = check_frames(&slow, 125, 62_500);
-
-    let mut report = String::from(
-        "| clock | cores | cycles per pixel | ms per frame | frames per second |\n|---|---|---|---|---|\n",
-    );
-    for (mhz, cores, cycles) in [
-        (125.0, 1, one_125),
-        (125.0, 2, two_125),
-        (200.0, 1, one_200),
-        (200.0, 2, two_200),
+    let displayed = (PANEL.0 * PANEL.1) as f64;
+    // 17 frames: the first, whole, then the loop's 16.
+    let frames = 17;
+    let mut costs = Vec::new();
+    for (features, mhz, spi_khz, whole) in [
+        ("emulated,whole-frames,clock-125mhz", 125, 62_500, true),
+        ("emulated,whole-frames", 200, 50_000, true),
+        ("emulated,clock-125mhz", 125, 62_500, false),
+        ("emulated", 200, 50_000, false),
     ] {
-        let ms = cycles / (mhz * 1e3);
-        report += &format!(
-            "| {mhz} MHz | {cores} | {:.1} | {ms:.1} | {:.2} |\n",
-            cycles / pixels,
-            1e3 / ms
+        let elf = build(features);
+        let out = format!("board-{}", features.replace(',', "-"));
+        let run = emulate(&elf, frames, &out, &[]);
+        let means = check_frames(&run, mhz, spi_khz, whole);
+        let (one, two, pixels) = (means.one, means.two, means.pixels);
+        // With every SPI byte sent at once: the difference is the time spent waiting on
+        // the display.
+        let instant = emulate(&elf, frames, &format!("{out}-instant"), &["--instant-spi"]);
+        let waiting = one - check_frames(&instant, mhz, spi_khz, whole).one;
+        println!(
+            "{features}: waiting on the display {waiting:.0} cycles a frame ({:.3} %), {:.1} windows",
+            100.0 * waiting / one,
+            means.windows
         );
+        // The transfer overlaps the drawing: the CPU waits for the last row's transfer
+        // (at most 480 bytes) and the windows' commands (11 bytes each, written by the
+        // CPU), and no more: a byte is 8 SPI clocks, `8 × clk / spi` cycles.
+        let byte = 8.0 * f64::from(mhz) * 1e3 / f64::from(spi_khz);
+        let bound = (480.0 + 11.0 * means.windows) * byte * 1.5;
+        assert!(
+            waiting < bound,
+            "{features}: {waiting} cycles waiting, bound {bound}"
+        );
+        for (cores, cycles) in [(1, one), (2, two)] {
+            costs.push((whole, mhz, cores, pixels, cycles / displayed));
+        }
+    }
+    // One row per kind of frame and core count, both clocks side by side.
+    let mut report = String::from(
+        "| frames sent | cores | pixels sent a frame | 125 MHz: cycles per displayed pixel | fps | \
+         200 MHz: cycles per displayed pixel | fps |\n|---|---|---|---|---|---|---|\n",
+    );
+    for whole in [true, false] {
+        for cores in [1, 2] {
+            let at = |mhz| {
+                costs
+                    .iter()
+                    .find(|c| c.0 == whole && c.1 == mhz && c.2 == cores)
+                    .copied()
+                    .unwrap()
+            };
+            let (slow, fast) = (at(125), at(200));
+            let fps = |c: (bool, u32, u16, f64, f64)| f64::from(c.1) * 1e6 / (c.4 * displayed);
+            report += &format!(
+                "| {} | {cores} | {:.0} | {:.1} | {:.2} | {:.1} | {:.2} |\n",
+                if whole { "whole" } else { "changes only" },
+                fast.3,
+                slow.4,
+                fps(slow),
+                fast.4,
+                fps(fast)
+            );
+        }
     }
     println!(
-        "the boing ball at 240x240, the mean of {frames} frames on the emulated RP2040:\n{report}"
-    );
-    println!(
-        "waiting on the display: {:.3} % of a frame at 200 MHz ({:.0} cycles a frame)",
-        100.0 * waiting,
-        one_200 - instant_200
+        "the boing ball at 240x240, the mean of the loop's 16 frames on the emulated RP2040:\n{report}"
     );
     let target = Path::new(env!("CARGO_MANIFEST_DIR")).join("target");
     std::fs::write(target.join("board-report.md"), report).unwrap();
-    // The transfer overlaps the drawing: no more waiting than the last row's transfer
-    // (480 bytes at 50 MHz, 15,360 cycles at 200 MHz) and a row's worth of FIFO slack.
-    assert!(
-        one_200 - instant_200 < 2.0 * 15_360.0,
-        "{} cycles waiting",
-        one_200 - instant_200
-    );
+    // Sending only what changed costs less than every pixel, at each clock and core count.
+    for &(whole, mhz, cores, _, cost) in &costs {
+        if !whole {
+            let full = costs
+                .iter()
+                .find(|c| c.0 && c.1 == mhz && c.2 == cores)
+                .map(|c| c.4)
+                .unwrap();
+            assert!(
+                cost < full,
+                "{mhz} MHz, {cores} cores: {cost} against {full}"
+            );
+        }
+    }
 }
 
 #[test]

@@ -16,10 +16,11 @@
 // completes every byte at once: the difference in cycles is the time spent waiting.
 //
 // A frame ends with the firmware's `frame=K ...` line. For each one the run prints a line
-// `frame=K cycles=C clk_sys=HZ pixels=P draw_even=E draw_odd=O`: its emulated cycles (from
-// the previous UART line), the pixels written, and the cycles spent drawing its even and
-// its odd rows (from RAMWR or the previous row's first byte to the row's first byte: with
-// the rows streamed as they are drawn, a row's first byte leaves when it is drawn). It
+// `frame=K cycles=C clk_sys=HZ pixels=P draw_even=E draw_odd=O windows=W`: its emulated cycles (from
+// the previous UART line), the pixels written, and the cycles spent drawing its rows on
+// even and on odd panel rows (from the previous UART line or the previous row's first
+// pixel to the row's first pixel: with the rows sent as they are drawn, a row's first
+// pixel leaves when it is drawn), and the windows it opened (RAMWR commands). It
 // also writes the panel (DIR/frame-K.rgb565, the
 // panel's rows top to bottom, two big-endian bytes a pixel, 240 wide). DIR/run.json sums
 // it up. --patch replaces bytes of the flash image (the scene text, say) before the run.
@@ -234,6 +235,8 @@ class Panel {
     // Cycles spent drawing the rows, by the row's parity, since the last `take`.
     this.draw = [0, 0];
     this.mark = 0;
+    // RAMWR commands since the last `take`.
+    this.windows = 0;
   }
 
   byte(dc, value, now) {
@@ -245,14 +248,14 @@ class Panel {
       if (value === 0x2c) {
         this.x = this.window.x0;
         this.y = this.window.y0;
-        this.mark = now;
+        this.windows++;
       }
       return;
     }
     if (this.command === 0x2c) {
       if (this.high === null) {
         if (this.x === this.window.x0) {
-          this.draw[(this.y - this.window.y0) & 1] += now - this.mark;
+          this.draw[this.y & 1] += now - this.mark;
           this.mark = now;
         }
         this.high = value;
@@ -279,10 +282,12 @@ class Panel {
     }
   }
 
-  /** The drawing cycles by row parity since the last call. */
-  take() {
-    const draw = this.draw;
+  /** The drawing cycles by row parity since the last call (at `now`). */
+  take(now) {
+    const draw = [...this.draw, this.windows];
     this.draw = [0, 0];
+    this.windows = 0;
+    this.mark = now;
     return draw;
   }
 
@@ -333,12 +338,12 @@ function main() {
       const pixels = panel.pixels - pixelsAtLine;
       lineStart = cycles;
       pixelsAtLine = panel.pixels;
-      const draw = panel.take();
+      const draw = panel.take(cycles);
       process.stdout.write(`uart: ${text}\n`);
       profiling = profile !== null;
       const m = /^frame=(\d+)\b/.exec(text);
       if (m) {
-        const [even, odd] = draw;
+        const [even, odd, windows] = draw;
         const frame = {
           index: Number(m[1]),
           cycles: frameCycles,
@@ -346,6 +351,7 @@ function main() {
           clk_sys_hz: mcu.clkSys,
           draw_even: even,
           draw_odd: odd,
+          windows,
         };
         if (args.out) {
           frame.file = `frame-${frames.length}.rgb565`;
@@ -354,7 +360,7 @@ function main() {
         frames.push(frame);
         process.stdout.write(
           `frame=${frame.index} cycles=${Math.round(frameCycles)} clk_sys=${mcu.clkSys} pixels=${pixels}` +
-            ` draw_even=${Math.round(even)} draw_odd=${Math.round(odd)}\n`,
+            ` draw_even=${Math.round(even)} draw_odd=${Math.round(odd)} windows=${windows}\n`,
         );
         if (frames.length >= args.frames) stop = 'frames';
       } else if (text.startsWith('error:')) {

@@ -5,10 +5,12 @@
 //! At run time the program parses `scenes/boing-240x240.scene` (a red, lit sphere over a
 //! checkered floor and back wall at the panel's resolution) with fixray's parser, in the
 //! `I16F16` fixed-point format, then loops forever over the ball's 16-frame bounce
-//! ([`fixray::anim::Bounce::boing`]). Each frame is ray-cast one scanline at a time: the
-//! rows are dealt out between the two cores ([`rows`]), and each finished row goes to the
-//! panel by DMA while the next one is drawn ([`panel`]). There is no framebuffer and no
-//! allocator: four line buffers of 480 bytes, the parsed scene on each core's stack.
+//! ([`fixray::anim::Bounce::boing`]). Each frame is ray-cast one scanline at a time,
+//! only where it differs from the frame before: the rows are dealt out between the two
+//! cores ([`rows`]), and each finished row goes to the panel by DMA while the next one is
+//! drawn ([`panel`]). There is no framebuffer and no
+//! allocator: four line buffers of 480 bytes, two copies of the parsed scene (the frame and
+//! the frame before) on each core's stack.
 //!
 //! # Wiring
 //!
@@ -64,13 +66,17 @@
 //! `picocom -b 115200 /dev/ttyUSB0`) a start line and then one line per frame:
 //!
 //! ```text
-//! fixray boing: 240x240 at (0,0) on a 240x240 panel, 200 MHz, 2 cores, SPI 50000 kHz
-//! frame=0 us=…
-//! frame=1 us=…
+//! fixray boing: 240x240 at (0,0) on a 240x240 panel, 200 MHz, 2 cores, SPI 50000 kHz, changes only
+//! frame=0 us=… pixels=57600
+//! frame=1 us=… pixels=…
 //! ```
 //!
 //! `us` is the frame's time from the RP2040's 1 MHz timer: ray casting its pixels, with
-//! the display transfer overlapped, up to the last row's transfer.
+//! the display transfer overlapped, up to the last row's transfer. `pixels` are the
+//! pixels sent: the first frame whole, then only those that may differ from the frame
+//! before ([`fixray::Changes`]: the ball's box, old and new, and the rows its shadow can
+//! reach), while the panel keeps the rest; the panel shows each frame bit for bit as if
+//! it were sent whole ([`CHANGES_ONLY`] sends every frame whole).
 //!
 //! If the scene cannot be parsed or does not fit the panel, the panel turns red and the
 //! error is printed on the serial port (`error: …`); the program then halts. If the
@@ -95,6 +101,7 @@ mod panel;
 mod rows;
 
 use core::fmt::{self, Write};
+use core::ops::Range;
 use core::sync::atomic::{Ordering, compiler_fence};
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
@@ -161,6 +168,11 @@ const BAUD: u32 = 115_200;
 /// The cores that draw: both, or core 0 alone in the emulator (which runs one core).
 const CORES: u16 = if cfg!(feature = "emulated") { 1 } else { 2 };
 
+/// Whether a frame sends only the pixels that may differ from the frame before it (the
+/// panel keeps the rest: [`fixray::Changes`], bit for bit the whole frame) or every
+/// pixel (also the `whole-frames` feature, for measuring both).
+const CHANGES_ONLY: bool = !cfg!(feature = "whole-frames");
+
 /// The panel's colour after an error: red (RGB565).
 const ERROR_COLOUR: u16 = 0xf800;
 
@@ -224,39 +236,73 @@ fn load(scene: &mut Scene<I16F16>) -> Result<Bounce<I16F16>, Failure> {
     Ok(bounce)
 }
 
-/// Draws `row` of `frame` (`width` pixels) into `line` as big-endian RGB565 (the panel's
-/// byte order).
-fn draw_row(frame: &Frame<'_, I16F16, Rgb565>, row: u16, width: u16, line: &mut Line) {
+/// Draws `columns` of row `row` of `frame` into `line` as big-endian RGB565 (the panel's
+/// byte order); returns the bytes written.
+fn draw_row(
+    frame: &Frame<'_, I16F16, Rgb565>,
+    row: u16,
+    columns: Range<u16>,
+    line: &mut Line,
+) -> usize {
     let mut pixels = [Rgb565::BLACK; PANEL_WIDTH as usize];
-    let width = usize::from(width);
-    frame.render_line(row, &mut pixels[..width]);
-    for (pair, pixel) in line.chunks_exact_mut(2).zip(&pixels[..width]) {
+    let n = usize::from(columns.end - columns.start);
+    if columns.start == 0 {
+        frame.render_line(row, &mut pixels[..n]);
+    } else {
+        frame.render_columns(row, columns, &mut pixels[..n]);
+    }
+    for (pair, pixel) in line.chunks_exact_mut(2).zip(&pixels[..n]) {
         pair.copy_from_slice(&pixel.into_storage().to_be_bytes());
+    }
+    2 * n
+}
+
+/// The columns of `row` a frame sends: every one, or with the frame shown before it
+/// (`before`) and [`CHANGES_ONLY`], those that may differ ([`fixray::Changes`]).
+fn columns_to_send<'f>(
+    frame: &'f Frame<'_, I16F16, Rgb565>,
+    before: Option<&'f Frame<'_, I16F16, Rgb565>>,
+    width: u16,
+) -> impl Fn(u16) -> Option<Range<u16>> + 'f {
+    let changes = before
+        .filter(|_| CHANGES_ONLY)
+        .map(|b| frame.changes_since(b));
+    move |row| match &changes {
+        Some(changes) => changes.columns(row),
+        None => Some(0..width),
     }
 }
 
-/// Draws `frame` (`width` × `height`) on the panel at `(x, y)` with `cores` cores: core
-/// 0's rows here, core 1's from the FIFO (it sends each row as [`row_drawn`] when the row
-/// is in one of its line buffers, and gets [`FREED`] back when that buffer has been sent).
+/// Draws `frame` (`width` × `height`) on the panel at `(x, y)` with `cores` cores, the
+/// columns [`columns_to_send`] gives: core 0's rows here, core 1's from the FIFO (it
+/// sends each row as [`row_drawn`] when the row is in one of its line buffers, and gets
+/// [`FREED`] back when that buffer has been sent). Returns the pixels sent.
 fn draw_frame(
     frame: &Frame<'_, I16F16, Rgb565>,
+    before: Option<&Frame<'_, I16F16, Rgb565>>,
     (width, height): (u16, u16),
     (x, y): (u16, u16),
     cores: u16,
     panel: &mut Panel,
     fifo: &mut SioFifo,
-) {
-    let bytes = 2 * usize::from(width);
-    panel.begin(x, y, x + width - 1, y + height - 1);
+) -> u32 {
+    let send = columns_to_send(frame, before, width);
     let mut own = 0;
+    let mut pixels = 0;
     for row in 0..height {
-        let slot = if rows::core_of(row, cores) == 0 {
+        let Some(columns) = send(row) else {
+            continue;
+        };
+        let start = columns.start;
+        let (slot, bytes) = if rows::core_of(row, cores) == 0 {
             let slot = own;
             own ^= 1;
             // SAFETY: slot `own` is core 0's, and not in flight: the transfer in flight
             // is the previous row's, from the other slot.
-            draw_row(frame, row, width, unsafe { &mut *line(slot) });
-            slot
+            (
+                slot,
+                draw_row(frame, row, columns, unsafe { &mut *line(slot) }),
+            )
         } else {
             // Core 1 sends its rows in order, each with its slot: another row or slot
             // would be a broken protocol, which stops the board rather than draw it.
@@ -267,17 +313,22 @@ fn draw_frame(
                 message & 0xffff == u32::from(row) && (slot == 2 || slot == 3),
                 "core 1's rows arrive in order, from its slots"
             );
-            slot
+            (slot, 2 * columns.len())
         };
+        pixels += (bytes / 2) as u32;
         // SAFETY: the slot is drawn and is read by this one transfer until it is freed.
         let sent: &'static [u8] = unsafe { &(&*line(slot))[..bytes] };
-        if panel.send(slot, sent).is_some_and(|freed| freed >= 2) {
+        if panel
+            .send((x + start, y + row), slot, sent)
+            .is_some_and(|freed| freed >= 2)
+        {
             fifo.write_blocking(FREED);
         }
     }
     if panel.finish().is_some_and(|freed| freed >= 2) {
         fifo.write_blocking(FREED);
     }
+    pixels
 }
 
 /// Core 1's message to core 0: `row` is drawn, in the line buffer `slot`.
@@ -285,35 +336,48 @@ const fn row_drawn(row: u16, slot: usize) -> u32 {
     (slot as u32) << 16 | row as u32
 }
 
-/// Core 1: its own copy of the scene, moved with core 0's; it draws its rows of each frame
-/// whose number it is sent.
+/// Core 0's message to core 1 that starts frame `k` (`whole`: with no frame shown before
+/// it, every column).
+const fn frame_start(k: u16, whole: bool) -> u32 {
+    (whole as u32) << 16 | k as u32
+}
+
+/// Core 1: its own copies of the scene (the frame and the frame shown before it), moved
+/// with core 0's; it draws its rows of each frame whose number it is sent.
 fn core1() -> ! {
     // SAFETY: core 1 uses only its own side of the SIO (the FIFO); core 0 set up the rest.
     let pac = unsafe { pac::Peripherals::steal() };
     let mut fifo = Sio::new(pac.SIO).fifo;
-    let mut scene = Scene::<I16F16>::empty();
+    let (mut scene, mut shown) = (Scene::<I16F16>::empty(), Scene::<I16F16>::empty());
     // Core 0 loaded the same text without error before it started this core.
-    let Ok(bounce) = load(&mut scene) else {
+    let (Ok(bounce), Ok(_)) = (load(&mut scene), load(&mut shown)) else {
         loop {
             cortex_m::asm::wfi();
         }
     };
     let mut free = 2;
     loop {
-        let k = loop {
+        let message = loop {
             match fifo.read_blocking() {
                 FREED => free += 1,
-                k => break k,
+                message => break message,
             }
         };
+        let (k, whole) = ((message & 0xffff) as u16, message >> 16 != 0);
         // Every slot sent in the last frame was freed before this frame's number (the
         // FIFO keeps order): each frame starts with both slots free, from slot 2.
         let mut slot = 2;
         // `load` placed every frame of the loop.
-        let _ = bounce.apply(&mut scene, k as u16);
-        let (width, height) = (scene.camera.width, scene.camera.height);
+        let _ = bounce.apply(&mut scene, k);
+        let _ = bounce.apply(&mut shown, k.checked_sub(1).unwrap_or(bounce.frames() - 1));
         let frame = Frame::new(&scene);
+        let before = (CHANGES_ONLY && !whole).then(|| Frame::new(&shown));
+        let (width, height) = (scene.camera.width, scene.camera.height);
+        let send = columns_to_send(&frame, before.as_ref(), width);
         for row in rows::rows_of(1, 2, height) {
+            let Some(columns) = send(row) else {
+                continue;
+            };
             while free == 0 {
                 if fifo.read_blocking() == FREED {
                     free += 1;
@@ -322,7 +386,7 @@ fn core1() -> ! {
             free -= 1;
             // SAFETY: slots 2 and 3 are core 1's, used in turn; core 0 sends them in the
             // order they are drawn, so the one `free` counted is this one.
-            draw_row(&frame, row, width, unsafe { &mut *line(slot) });
+            draw_row(&frame, row, columns, unsafe { &mut *line(slot) });
             compiler_fence(Ordering::Release);
             cortex_m::asm::dmb();
             fifo.write_blocking(row_drawn(row, slot));
@@ -443,32 +507,45 @@ fn main() -> ! {
     let _ = write!(
         serial,
         "fixray boing: {width}x{height} at ({x},{y}) on a {PANEL_WIDTH}x{PANEL_HEIGHT} panel, \
-         {} MHz, {cores_named}, SPI {} kHz\r\n",
+         {} MHz, {cores_named}, SPI {} kHz, {}\r\n",
         SYS_HZ / 1_000_000,
         spi_hz.to_kHz(),
+        if CHANGES_ONLY {
+            "changes only"
+        } else {
+            "whole frames"
+        },
     );
 
+    // The frame shown before: its scene, moved with `scene` one frame behind.
+    let mut shown = Scene::<I16F16>::empty();
+    let _ = load(&mut shown);
+    let mut first = true;
     loop {
         for k in 0..bounce.frames() {
             let start = timer.get_counter();
             // The sphere moves in the parsed scene (no re-parsing); `load` placed every
             // frame of the loop.
             let _ = bounce.apply(&mut scene, k);
+            let _ = bounce.apply(&mut shown, k.checked_sub(1).unwrap_or(bounce.frames() - 1));
             if cores == 2 {
-                sio.fifo.write_blocking(u32::from(k));
+                sio.fifo.write_blocking(frame_start(k, first));
             }
             // What is constant for the frame is computed once, then line by line.
             let frame = Frame::new(&scene);
-            draw_frame(
+            let before = (CHANGES_ONLY && !first).then(|| Frame::new(&shown));
+            let pixels = draw_frame(
                 &frame,
+                before.as_ref(),
                 (width, height),
                 (x, y),
                 cores,
                 &mut panel,
                 &mut sio.fifo,
             );
+            first = false;
             let us = (timer.get_counter() - start).to_micros();
-            let _ = write!(serial, "frame={k} us={us}\r\n");
+            let _ = write!(serial, "frame={k} us={us} pixels={pixels}\r\n");
         }
     }
 }

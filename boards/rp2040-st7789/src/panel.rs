@@ -1,9 +1,10 @@
 //! The ST7789 on SPI0: commands written by the CPU, pixels streamed by DMA.
 //!
-//! A frame is one window (CASET, RASET) and one RAMWR, then its rows as one stream of
-//! big-endian RGB565 bytes with DC high. Each row goes out by DMA from a line buffer
-//! while the CPU draws the next row into another: the CPU waits on the display only when
-//! it has drawn a row before the previous one has left, and at the frame's end.
+//! Each row (or the part of it that changed) is a window (CASET, RASET) and a RAMWR
+//! written by the CPU, then its pixels as big-endian RGB565 bytes with DC high, sent by
+//! DMA from a line buffer while the CPU draws the next row into another: the CPU waits on
+//! the display only when it has drawn a row before the previous one has left, and at the
+//! frame's end. The panel keeps what it was sent: rows that did not change are not sent.
 
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::OutputPin;
@@ -48,6 +49,8 @@ pub struct Panel {
     dc: Output<Gpio16>,
     /// Held low: the panel is the bus's only device.
     _cs: Output<Gpio17>,
+    /// The window being filled: its columns and the row the next pixels go to.
+    open: Option<(u16, u16, u16)>,
 }
 
 // ST7789 commands (its datasheet, section 9.1).
@@ -84,6 +87,7 @@ impl Panel {
             link: Some(Link::Idle(channel, bus)),
             dc,
             _cs: cs,
+            open: None,
         };
         delay.delay_ms(150);
         panel.command(SLPOUT, &[]);
@@ -104,8 +108,9 @@ impl Panel {
         delay.delay_ms(120);
     }
 
-    /// Starts a frame on the window `x0..=x1`, `y0..=y1`: the rows sent next fill it.
-    pub fn begin(&mut self, x0: u16, y0: u16, x1: u16, y1: u16) {
+    /// Opens the window `x0..=x1`, `y0..=y1`: the pixels sent next fill it.
+    fn window(&mut self, x0: u16, y0: u16, x1: u16, y1: u16) {
+        self.open = None;
         let [a, b] = x0.to_be_bytes();
         let [c, d] = x1.to_be_bytes();
         self.command(CASET, &[a, b, c, d]);
@@ -115,11 +120,25 @@ impl Panel {
         self.command(RAMWR, &[]);
     }
 
-    /// Sends `row` (from the line buffer `slot`) by DMA once the row before it has gone.
-    /// Returns the slot of that row, whose buffer is free again.
-    pub fn send(&mut self, slot: usize, row: &'static [u8]) -> Option<usize> {
-        let (channel, bus, freed) = self.idle();
-        let sending = single_buffer::Config::new(channel, row, bus).start();
+    /// Sends `pixels` (from the line buffer `slot`) by DMA to columns `x0..` of row `y`,
+    /// once the row before it has gone. A row that continues the open window (the same
+    /// columns, the next row) follows the one before in the same RAMWR; another opens a
+    /// window from its row to the panel's last (CASET, RASET, RAMWR: 11 bytes). Returns
+    /// the slot of the row before, whose buffer is free again.
+    pub fn send(
+        &mut self,
+        (x0, y): (u16, u16),
+        slot: usize,
+        pixels: &'static [u8],
+    ) -> Option<usize> {
+        let freed = self.finish();
+        let x1 = x0 + (pixels.len() / 2) as u16 - 1;
+        if self.open != Some((x0, x1, y)) {
+            self.window(x0, y, x1, PANEL_HEIGHT - 1);
+        }
+        self.open = Some((x0, x1, y + 1));
+        let (channel, bus, _) = self.idle();
+        let sending = single_buffer::Config::new(channel, pixels, bus).start();
         self.link = Some(Link::Sending(sending, slot));
         freed
     }
@@ -137,9 +156,8 @@ impl Panel {
             pair.copy_from_slice(&colour.to_be_bytes());
         }
         let line: &'static [u8] = line;
-        self.begin(0, 0, PANEL_WIDTH - 1, PANEL_HEIGHT - 1);
-        for _ in 0..PANEL_HEIGHT {
-            self.send(0, line);
+        for y in 0..PANEL_HEIGHT {
+            self.send((0, y), 0, line);
         }
         self.finish();
     }
