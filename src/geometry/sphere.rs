@@ -417,6 +417,60 @@ impl<S: Scalar> ShadowCone<S> {
         check() == Some(true)
     }
 
+    /// Where on the line `P = light + (s, wy, wz)` (every `s`, as in
+    /// [`ShadowCone::clears_line`]) a point may be one whose exact segment test meets the
+    /// sphere: an interval of `s` holding every such point. `Some(None)`: no point of the
+    /// line; `None`: the interval is unbounded or a quantity leaves the format.
+    ///
+    /// The interval holds the points whose line to the light passes within `r·√(3/2)` of
+    /// the centre (wider than the `r·√(9/8)` outside which [`ShadowCone::clears`]
+    /// certifies a point clear) and those nearer the light than half the centre's
+    /// distance, which take the exact test. With `B = wy·u.y + wz·u.z`, `m = wy² + wz²`
+    /// and `K = |u|² − (3/2)r²`, the first are `(s·u.x + B)² ≥ K(s² + m)`: with
+    /// `A = u.x² − K < 0`, between the roots `s = (−u.x·B ± √K·√(B² + A·m))/A`; the
+    /// second are `s² < |u|²/4 − m`. Their hull is widened by `(|s| + 1)/64` at each end,
+    /// far more than this computation's roundings (a few `DELTA` on quantities of the
+    /// scene's size); `A` must be below `−r²/4`, so that the cone of `r·√(9/8)`, whose `A`
+    /// is `3r²/8` lower, is bounded on the line by a clear margin.
+    pub(crate) fn shadow_span(&self, wy: S, wz: S) -> Option<Option<(S, S)>> {
+        let u = self.u;
+        let uu = u.dot(u)?;
+        let rr = self.rr;
+        let k = uu.checked_sub(rr.mul_ratio(3, 2)?)?;
+        let a = u.x.checked_mul(u.x)?.checked_sub(k)?;
+        if k <= S::ZERO || a >= rr.mul_ratio(-1, 4)? {
+            return None;
+        }
+        let b = wy.checked_mul(u.y)?.checked_add(wz.checked_mul(u.z)?)?;
+        let m = wy.checked_mul(wy)?.checked_add(wz.checked_mul(wz)?)?;
+        let q = b.checked_mul(b)?.checked_add(a.checked_mul(m)?)?;
+        let mut span: Option<(S, S)> = None;
+        let mut add = |lo: S, hi: S| {
+            span = Some(span.map_or((lo, hi), |(l, h)| (l.min(lo), h.max(hi))));
+        };
+        if q >= S::ZERO {
+            let root = k.checked_sqrt()?.checked_mul(q.checked_sqrt()?)?;
+            let uxb = u.x.checked_mul(b)?.checked_neg()?;
+            // `a < 0`: the root with `+ root` is the smaller.
+            let lo = uxb.checked_add(root)?.checked_div(a)?;
+            let hi = uxb.checked_sub(root)?.checked_div(a)?;
+            add(lo, hi);
+        }
+        let near = uu.mul_ratio(1, 4)?.checked_sub(m)?;
+        if near > S::ZERO {
+            let s = near.checked_sqrt()?;
+            add(s.checked_neg()?, s);
+        }
+        let Some((lo, hi)) = span else {
+            return Some(None);
+        };
+        let widen = |v: S| v.abs().checked_add(S::ONE)?.mul_ratio(1, 64);
+        Some(Some((
+            lo.checked_sub(widen(lo)?)?,
+            hi.checked_add(widen(hi)?)?,
+        )))
+    }
+
     /// Whether the segment from a point to the light (`l = light − point`, `ll = l·l`)
     /// clearly misses the sphere: the point lies outside its shadow cone. A point
     /// nearer to the light than half the centre's distance (`ll < |u|²/4`) takes the

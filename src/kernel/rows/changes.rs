@@ -9,12 +9,19 @@
 //! objects the row's shadow tests consider; a sphere whose shadow cone clears the row's
 //! whole line is not among them, and its position is then read by no pixel of the row).
 //! So a row whose plane keeps the moved spheres out of its occluders in both frames
-//! changes only inside their boxes, old and new; any other row may change anywhere.
+//! changes only inside their boxes, old and new. In a row that keeps them, a pixel can
+//! change only where their shadow can fall: where the exact segment test of its hit can
+//! meet a sphere, in one frame or the other. A hit outside the sphere's shadow cone
+//! widened to `r·√(9/8)` is one the exact test finds clear (`ShadowCone::clears`), and
+//! the row's hits lie on one line: `ShadowCone::shadow_span` bounds the part of the line
+//! within an even wider cone, `r·√(3/2)`, and its columns are found from the row's `t'`,
+//! two more on each side for the hits' roundings. Any other row may change anywhere.
 
 use core::ops::Range;
 
+use super::super::fast::Primary;
 use super::Rows;
-use super::level::level;
+use super::level::{Level, level};
 use crate::shade::stages::DiffuseShadows;
 use crate::{Scalar, SceneView, Shape};
 
@@ -34,31 +41,127 @@ pub(crate) fn changed_columns<S: Scalar>(
 ) -> Option<Range<u16>> {
     let width = after.0.camera.width;
     let mut columns: Option<(u16, u16)> = None;
-    for (scene, rows) in [before, after] {
-        let p = &rows.primary;
-        // A row this kernel does not decide once is drawn by the fast kernel, whose
-        // shadow tests take every object.
-        let Some(first) = p.row(scene, row, 0) else {
-            return Some(0..width);
-        };
-        let Some(plane) = level::<S, DiffuseShadows>(scene, p, &first) else {
-            return Some(0..width);
-        };
-        if let Some(plane) = plane {
-            // Without per-row occluders every light takes the general test: every
-            // object, at every pixel.
-            let general = plane.occluders.is_empty() && !scene.lights.is_empty();
-            if general || plane.occluders.iter().any(|bits| bits & moved != 0) {
-                return Some(0..width);
-            }
-        }
-        let (a, b) = p.sphere_columns_on_row_of(row, moved);
+    let mut add = |(a, b): (u16, u16)| {
         if a <= b {
             columns = Some(columns.map_or((a, b), |(c, d)| (c.min(a), d.max(b))));
         }
+    };
+    for (scene, rows) in [before, after] {
+        let p = &rows.primary;
+        // A row this kernel does not decide once (`None` from `level`: the fast kernel
+        // draws it), or one whose shadows it cannot bound, may change anywhere.
+        let Some(plane) = p
+            .row(scene, row, 0)
+            .and_then(|first| level::<S, DiffuseShadows>(scene, p, &first))
+        else {
+            return Some(0..width);
+        };
+        if let Some(plane) = plane {
+            match shadows(scene, p, &plane, moved) {
+                Some(Some(span)) => add(span),
+                Some(None) => {}
+                None => return Some(0..width),
+            }
+        }
+        add(p.sphere_columns_on_row_of(row, moved));
     }
     let (a, b) = columns?;
     Some(a / RESUME * RESUME..b.saturating_add(1).min(width))
+}
+
+/// The columns of a row on `plane` where the spheres `moved` may shadow a hit, for
+/// any light: `Some(None)`, nowhere; `None`, anywhere (no per-row occluders, no shadow
+/// cone, or a bound out of the format).
+fn shadows<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    plane: &Level<S>,
+    moved: u8,
+) -> Option<Option<(u16, u16)>> {
+    // Without per-row occluders every light takes the general test: every object, at
+    // every pixel.
+    if plane.occluders.is_empty() && !scene.lights.is_empty() {
+        return None;
+    }
+    let mut columns: Option<(u16, u16)> = None;
+    for (j, &bits) in plane.occluders.iter().enumerate() {
+        for i in 0..8u8 {
+            if bits & moved & (1 << i) == 0 {
+                continue;
+            }
+            let cone = p
+                .cones()
+                .iter()
+                .find(|c| usize::from(c.light) == j && c.object == i)?;
+            let light = scene.lights.get(j)?.location;
+            let wy = plane.y.checked_sub(light.y)?;
+            let wz = plane.z.checked_sub(light.z)?;
+            let Some((lo, hi)) = cone.shadow_span(wy, wz)? else {
+                continue;
+            };
+            // A pixel's hit is `eye + t'·D`, `D.x` its screen `x` less the eye's: the
+            // hit `x = light.x + s` is seen at screen `x` `eye.x + (x − eye.x)/t'`.
+            let eye = scene.camera.viewpoint.x;
+            let t = plane.t;
+            if t <= S::ZERO {
+                return None;
+            }
+            let screen = |s: S| {
+                light
+                    .x
+                    .checked_add(s)?
+                    .checked_sub(eye)?
+                    .checked_div(t)?
+                    .checked_add(eye)
+            };
+            let span = screen_columns(scene, screen(lo)?, screen(hi)?)?;
+            if let Some((a, b)) = span {
+                columns = Some(columns.map_or((a, b), |(c, d)| (c.min(a), d.max(b))));
+            }
+        }
+    }
+    Some(columns)
+}
+
+/// The columns whose screen `x` lies in `lo..=hi`, and two more on each side (the hits'
+/// own roundings); `Some(None)`: none.
+fn screen_columns<S: Scalar>(scene: &SceneView<'_, S>, lo: S, hi: S) -> Option<Option<(u16, u16)>> {
+    let camera = &scene.camera;
+    let width = camera.width;
+    // The first column at or right of `x` (`width`: none): the screen's `x` grows with
+    // the column.
+    let first_from = |x: S| -> Option<u16> {
+        let (mut a, mut b) = (0u16, width);
+        while a < b {
+            let mid = a + (b - a) / 2;
+            if camera.screen_x(mid)? < x {
+                a = mid + 1;
+            } else {
+                b = mid;
+            }
+        }
+        Some(a)
+    };
+    let first = first_from(lo)?;
+    // The first column right of `hi`, less one: the last at or left of it.
+    let (mut a, mut b) = (0u16, width);
+    while a < b {
+        let mid = a + (b - a) / 2;
+        if camera.screen_x(mid)? <= hi {
+            a = mid + 1;
+        } else {
+            b = mid;
+        }
+    }
+    let (lo, hi) = (i32::from(first) - 2, i32::from(a) - 1 + 2);
+    let last = i32::from(width) - 1;
+    if hi < 0 || lo > last || lo > hi {
+        return Some(None);
+    }
+    Some(Some((
+        u16::try_from(lo.max(0)).ok()?,
+        u16::try_from(hi.min(last)).ok()?,
+    )))
 }
 
 /// The objects whose centres alone differ between `before` and `after` (bit `i`: object
