@@ -307,7 +307,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
         };
         with_stages!(
             self.shading,
-            stream_into::<S, C>(self, row, from..end, &mut sink)
+            columns_with::<S, C, Skip<'_, C>>(self, row, from..end, &mut sink)
         );
     }
 }
@@ -327,23 +327,6 @@ impl<C: From<Rgb888>> RowSink<Rgb888> for Skip<'_, C> {
         }
         Ok(())
     }
-}
-
-fn stream_into<S: Scalar, T: KernelStages, C: From<Rgb888>>(
-    frame: &Frame<'_, S, C>,
-    row: u16,
-    columns: core::ops::Range<u16>,
-    sink: &mut Skip<'_, C>,
-) {
-    let _ = kernel::stream::<S, T, Rgb888, _>(
-        &frame.scene,
-        &frame.drawing,
-        frame.mode,
-        row,
-        columns,
-        &mut Counters::default(),
-        sink,
-    );
 }
 
 impl<S: Scalar, C: PixelColor + From<Rgb888>> Frame<'_, S, C> {
@@ -410,7 +393,7 @@ impl<S: Scalar, C> Frame<'_, S, C> {
         }
         with_stages!(
             self.shading,
-            columns_with::<S, C>(self, row, start..end, out)
+            columns_with::<S, C, Slice<'_>>(self, row, start..end, &mut Slice(out))
         );
     }
 }
@@ -429,11 +412,12 @@ impl RowSink<Rgb888> for Slice<'_> {
     }
 }
 
-fn columns_with<S: Scalar, T: KernelStages, C>(
+/// Streams columns `columns` of scanline `row` of `frame` to `sink`.
+fn columns_with<S: Scalar, T: KernelStages, C, K: RowSink<Rgb888>>(
     frame: &Frame<'_, S, C>,
     row: u16,
     columns: core::ops::Range<u16>,
-    out: &mut [Rgb888],
+    sink: &mut K,
 ) {
     let _ = kernel::stream::<S, T, Rgb888, _>(
         &frame.scene,
@@ -442,7 +426,7 @@ fn columns_with<S: Scalar, T: KernelStages, C>(
         row,
         columns,
         &mut Counters::default(),
-        &mut Slice(out),
+        sink,
     );
 }
 
