@@ -300,6 +300,12 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
         if row >= self.scene.camera.height || columns.start >= end {
             return;
         }
+        if columns.start == 0 {
+            // From the row's start: the whole scanline's path, cut at `end`.
+            let n = usize::from(end).min(out.len());
+            self.render_line(row, &mut out[..n]);
+            return;
+        }
         let from = columns.start / kernel::RESUME * kernel::RESUME;
         let mut sink = Skip {
             skip: usize::from(columns.start - from),
@@ -393,22 +399,13 @@ impl<S: Scalar, C> Frame<'_, S, C> {
         }
         with_stages!(
             self.shading,
-            columns_with::<S, C, Slice<'_>>(self, row, start..end, &mut Slice(out))
+            columns_with::<S, C, Skip<'_, Rgb888>>(
+                self,
+                row,
+                start..end,
+                &mut Skip { skip: 0, out }
+            )
         );
-    }
-}
-
-/// Writes a streamed scanline into a slice.
-struct Slice<'o>(&'o mut [Rgb888]);
-
-impl RowSink<Rgb888> for Slice<'_> {
-    type Error = core::convert::Infallible;
-
-    fn fill(&mut self, pixels: impl Iterator<Item = Rgb888>) -> Result<(), Self::Error> {
-        for (slot, c) in self.0.iter_mut().zip(pixels) {
-            *slot = c;
-        }
-        Ok(())
     }
 }
 

@@ -41,7 +41,11 @@ use flat::{Flat, PlaneMode};
 use rows::Rows;
 
 pub(crate) use memo::KernelStages;
-pub(crate) use rows::{RESUME, moved_spheres};
+pub(crate) use rows::moved_spheres;
+
+/// A scanline drawn from a column that is a multiple of this has the pixels of the whole
+/// scanline (its restarts fall there: the fast kernel's blocks and resyncs).
+pub(crate) const RESUME: u16 = 64;
 pub(crate) use scanline::scanline;
 
 /// Whether this build has the kernels (cargo feature `kernels`). Without them every frame

@@ -246,11 +246,7 @@ fn draw_row(
 ) -> usize {
     let mut pixels = [Rgb565::BLACK; PANEL_WIDTH as usize];
     let n = usize::from(columns.end - columns.start);
-    if columns.start == 0 {
-        frame.render_line(row, &mut pixels[..n]);
-    } else {
-        frame.render_columns(row, columns, &mut pixels[..n]);
-    }
+    frame.render_columns(row, columns, &mut pixels[..n]);
     for (pair, pixel) in line.chunks_exact_mut(2).zip(&pixels[..n]) {
         pair.copy_from_slice(&pixel.into_storage().to_be_bytes());
     }

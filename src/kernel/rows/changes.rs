@@ -25,14 +25,10 @@ use super::level::{Level, level};
 use crate::shade::stages::DiffuseShadows;
 use crate::{Scalar, SceneView, Shape};
 
-/// A scanline drawn from a column that is a multiple of this has the pixels of the whole
-/// scanline (its restarts fall there: the fast kernel's blocks and resyncs).
-pub(crate) const RESUME: u16 = 64;
-
 /// The columns of scanline `row` whose pixels may differ between `before` and `after`,
 /// frames of two scenes that differ only in the centres of the objects in `moved` (bit
 /// `i`: object `i`, a sphere in both), both drawn by this kernel. `None`: the row's pixels
-/// are the same; a range starts at a multiple of [`RESUME`].
+/// are the same.
 pub(crate) fn changed_columns<S: Scalar>(
     before: (&SceneView<'_, S>, &Rows<S>),
     after: (&SceneView<'_, S>, &Rows<S>),
@@ -41,11 +37,6 @@ pub(crate) fn changed_columns<S: Scalar>(
 ) -> Option<Range<u16>> {
     let width = after.0.camera.width;
     let mut columns: Option<(u16, u16)> = None;
-    let mut add = |(a, b): (u16, u16)| {
-        if a <= b {
-            columns = Some(columns.map_or((a, b), |(c, d)| (c.min(a), d.max(b))));
-        }
-    };
     for (scene, rows) in [before, after] {
         let p = &rows.primary;
         // A row this kernel does not decide once (`None` from `level`: the fast kernel
@@ -58,15 +49,15 @@ pub(crate) fn changed_columns<S: Scalar>(
         };
         if let Some(plane) = plane {
             match shadows(scene, p, &plane, moved) {
-                Some(Some(span)) => add(span),
+                Some(Some(span)) => hull(&mut columns, span),
                 Some(None) => {}
                 None => return Some(0..width),
             }
         }
-        add(p.sphere_columns_on_row_of(row, moved));
+        hull(&mut columns, p.sphere_columns_on_row_of(row, moved));
     }
     let (a, b) = columns?;
-    Some(a / RESUME * RESUME..b.saturating_add(1).min(width))
+    Some(a..b.saturating_add(1).min(width))
 }
 
 /// The columns of a row on `plane` where the spheres `moved` may shadow a hit, for
@@ -81,6 +72,12 @@ fn shadows<S: Scalar>(
     // Without per-row occluders every light takes the general test: every object, at
     // every pixel.
     if plane.occluders.is_empty() && !scene.lights.is_empty() {
+        return None;
+    }
+    // A pixel's hit is `eye + t'·D`, `D.x` its screen `x` less the eye's: the hit
+    // `x = light.x + s` is seen at screen `x` `eye.x + (x − eye.x)/t'`.
+    let (eye, t) = (scene.camera.viewpoint.x, plane.t);
+    if t <= S::ZERO {
         return None;
     }
     let mut columns: Option<(u16, u16)> = None;
@@ -99,13 +96,6 @@ fn shadows<S: Scalar>(
             let Some((lo, hi)) = cone.shadow_span(wy, wz)? else {
                 continue;
             };
-            // A pixel's hit is `eye + t'·D`, `D.x` its screen `x` less the eye's: the
-            // hit `x = light.x + s` is seen at screen `x` `eye.x + (x − eye.x)/t'`.
-            let eye = scene.camera.viewpoint.x;
-            let t = plane.t;
-            if t <= S::ZERO {
-                return None;
-            }
             let screen = |s: S| {
                 light
                     .x
@@ -114,13 +104,19 @@ fn shadows<S: Scalar>(
                     .checked_div(t)?
                     .checked_add(eye)
             };
-            let span = screen_columns(scene, screen(lo)?, screen(hi)?)?;
-            if let Some((a, b)) = span {
-                columns = Some(columns.map_or((a, b), |(c, d)| (c.min(a), d.max(b))));
+            if let Some(span) = screen_columns(scene, screen(lo)?, screen(hi)?)? {
+                hull(&mut columns, span);
             }
         }
     }
     Some(columns)
+}
+
+/// `hull` widened to hold the columns `a..=b` (none when `a > b`).
+fn hull(hull: &mut Option<(u16, u16)>, (a, b): (u16, u16)) {
+    if a <= b {
+        *hull = Some(hull.map_or((a, b), |(c, d)| (c.min(a), d.max(b))));
+    }
 }
 
 /// The columns whose screen `x` lies in `lo..=hi`, and two more on each side (the hits'
@@ -128,13 +124,13 @@ fn shadows<S: Scalar>(
 fn screen_columns<S: Scalar>(scene: &SceneView<'_, S>, lo: S, hi: S) -> Option<Option<(u16, u16)>> {
     let camera = &scene.camera;
     let width = camera.width;
-    // The first column at or right of `x` (`width`: none): the screen's `x` grows with
-    // the column.
-    let first_from = |x: S| -> Option<u16> {
+    // The first column whose screen `x` is not `before` (`width`: none); the screen's `x`
+    // grows with the column.
+    let first_not = |before: &dyn Fn(S) -> bool| -> Option<u16> {
         let (mut a, mut b) = (0u16, width);
         while a < b {
             let mid = a + (b - a) / 2;
-            if camera.screen_x(mid)? < x {
+            if before(camera.screen_x(mid)?) {
                 a = mid + 1;
             } else {
                 b = mid;
@@ -142,18 +138,9 @@ fn screen_columns<S: Scalar>(scene: &SceneView<'_, S>, lo: S, hi: S) -> Option<O
         }
         Some(a)
     };
-    let first = first_from(lo)?;
-    // The first column right of `hi`, less one: the last at or left of it.
-    let (mut a, mut b) = (0u16, width);
-    while a < b {
-        let mid = a + (b - a) / 2;
-        if camera.screen_x(mid)? <= hi {
-            a = mid + 1;
-        } else {
-            b = mid;
-        }
-    }
-    let (lo, hi) = (i32::from(first) - 2, i32::from(a) - 1 + 2);
+    let first = first_not(&|x| x < lo)?;
+    let past = first_not(&|x| x <= hi)?;
+    let (lo, hi) = (i32::from(first) - 2, i32::from(past) - 1 + 2);
     let last = i32::from(width) - 1;
     if hi < 0 || lo > last || lo > hi {
         return Some(None);
@@ -193,9 +180,7 @@ pub(crate) fn moved_spheres<S: Scalar>(
         }
         match (&a.shape, &b.shape) {
             (Shape::Sphere(s), Shape::Sphere(t))
-                if a.material == b.material
-                    && s.radius_sq() == t.radius_sq()
-                    && s.radius() == t.radius() =>
+                if a.material == b.material && s.radius() == t.radius() =>
             {
                 moved |= 1 << i;
             }

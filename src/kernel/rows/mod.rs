@@ -37,7 +37,7 @@ mod invariants;
 mod lean;
 mod level;
 
-pub(crate) use changes::{RESUME, changed_columns, moved_spheres};
+pub(crate) use changes::{changed_columns, moved_spheres};
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 
