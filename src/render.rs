@@ -28,6 +28,7 @@ use embedded_graphics_core::primitives::Rectangle;
 
 use crate::kernel::KernelStages;
 use crate::kernel::flat::PlaneMode;
+use crate::kernel::sampling::{Sampler, Sampling, sampled_rows, sampler};
 use crate::kernel::{self, Drawing, KernelKind, RowSink};
 use crate::shade::stages::{Shading, shading_for, stage, with_stages};
 use crate::stats::Counters;
@@ -84,6 +85,9 @@ pub struct Frame<'a, S: Scalar, C = Rgb888> {
     shading: Shading,
     drawing: Drawing<S>,
     mode: PlaneMode,
+    sampling: Sampling,
+    /// The blocks' per-frame part, for a frame sampled in blocks (`None`: exact).
+    sampler: Option<Sampler<S>>,
     /// The colour drawn in (no value: `fn() -> C` keeps the frame `Send` and `Sync`
     /// whatever `C` is).
     color: PhantomData<fn() -> C>,
@@ -110,8 +114,57 @@ impl<'a, S: Scalar, C> Frame<'a, S, C> {
             shading,
             drawing,
             mode,
+            sampling: Sampling::Exact,
+            sampler: None,
             color: PhantomData,
         }
+    }
+
+    /// The frame drawn with `sampling` ([`Sampling::Exact`], every pixel traced, is the
+    /// default): in [`Sampling::Blocks`], blocks traced at their corners on the reference
+    /// path and filled between them where a certificate holds (the same surface and tile,
+    /// the same shadow state, no sphere's box, the colour's spread at most the bound),
+    /// every other block drawn as the exact frame draws it. Every entry point draws the
+    /// same pixels; [`Frame::render_rows`] traces each band of blocks' corners once, the
+    /// others once per scanline. Frames of a kind the certificates do not cover are drawn
+    /// exact ([`Frame::sampled`]).
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb888;
+    /// use fixray::{BlockSize, Frame, Sampling, Scene, I16F16};
+    ///
+    /// let scene = Scene::<I16F16>::parse(include_str!("../scenes/boing.scene"))?;
+    /// let exact = Frame::new(&scene);
+    /// let zero = Frame::new(&scene).with_sampling(Sampling::blocks(BlockSize::Eight, 0));
+    /// let loose = Frame::new(&scene).with_sampling(Sampling::blocks(BlockSize::Eight, 3));
+    /// let black = Rgb888::new(0, 0, 0);
+    /// let (mut a, mut b, mut c) = ([black; 128 * 64], [black; 128 * 64], [black; 128 * 64]);
+    /// exact.render_rows(0..64, &mut a);
+    /// zero.render_rows(0..64, &mut b);
+    /// loose.render_rows(0..64, &mut c);
+    /// assert_eq!(a, b); // a zero bound fills only blocks of one colour: the exact frame
+    /// let off = a.iter().zip(&c).filter(|(x, y)| x != y).count();
+    /// assert!(off > 0 && off < 128 * 64 / 4);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_sampling(mut self, sampling: Sampling) -> Self {
+        let plan = self.scene.plan();
+        self.sampler = sampler(&self.scene, &plan, &self.drawing, sampling);
+        self.sampling = sampling;
+        self
+    }
+
+    /// How this frame samples its pixels ([`Frame::with_sampling`]).
+    pub fn sampling(&self) -> Sampling {
+        self.sampling
+    }
+
+    /// Whether this frame is drawn in blocks: its sampling is [`Sampling::Blocks`] and
+    /// the scene is of the kind the blocks' certificates cover (the crate's rules,
+    /// infinite planes and spheres, point lights without glints, mirrors, translucency or
+    /// a light on a surface); `false`: every pixel is traced.
+    pub fn sampled(&self) -> bool {
+        self.sampler.is_some()
     }
 
     /// Which primary-ray kernel draws this frame, chosen once in [`Frame::new`] (the
@@ -282,10 +335,63 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
         if row >= self.scene.camera.height {
             return;
         }
+        if let Some(sampler) = &self.sampler {
+            let n = u16::try_from(line.len()).unwrap_or(u16::MAX);
+            let stride = line.len();
+            sampled_rows(
+                &self.scene,
+                self.shading,
+                sampler,
+                (row..row + 1, 0..n),
+                (line, stride),
+                &mut |r, columns, out: &mut [C]| self.exact_columns(r, columns, out),
+            );
+            return;
+        }
+        self.exact_line(row, line, counters);
+    }
+
+    /// [`Frame::render_line_counted`] as the exact frame draws it.
+    fn exact_line(&self, row: u16, line: &mut [C], counters: &mut Counters) {
         with_stages!(
             self.shading,
             kernel::line::<S, C>(&self.scene, &self.drawing, self.mode, row, line, counters)
         );
+    }
+
+    /// Rows `rows` into `out`, row after row, each the camera's width (`out[(r −
+    /// rows.start)·width + x]` is pixel (`x`, `r`)); rows beyond the camera's height or
+    /// beyond `out` are left untouched. The pixels of [`Frame::render_line`]; a frame
+    /// sampled in blocks traces each band of blocks' corners once here (once per
+    /// scanline there): its RAM is the caller's `out`, a band being the block's side in
+    /// scanlines.
+    pub fn render_rows(&self, rows: core::ops::Range<u16>, out: &mut [C]) {
+        let width = usize::from(self.scene.camera.width);
+        let end = rows.end.min(self.scene.camera.height);
+        let band = self.sampler.as_ref().map_or(1, Sampler::size);
+        let mut row = rows.start;
+        while row < end {
+            let next = (row / band + 1).saturating_mul(band).min(end);
+            let at = usize::from(row - rows.start) * width;
+            let Some(slice) = out.get_mut(at..) else {
+                return;
+            };
+            match &self.sampler {
+                Some(sampler) => sampled_rows(
+                    &self.scene,
+                    self.shading,
+                    sampler,
+                    (row..next, 0..self.scene.camera.width),
+                    (slice, width),
+                    &mut |r, columns, out: &mut [C]| self.exact_columns(r, columns, out),
+                ),
+                None => {
+                    let n = width.min(slice.len());
+                    self.render_line(row, &mut slice[..n]);
+                }
+            }
+            row = next;
+        }
     }
 }
 
@@ -296,6 +402,25 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     /// are left untouched. The scanline is drawn from the multiple of 64 at or before
     /// `columns.start`, where its pixels are the whole scanline's.
     pub fn render_columns(&self, row: u16, columns: core::ops::Range<u16>, out: &mut [C]) {
+        match &self.sampler {
+            Some(sampler) if row < self.scene.camera.height => {
+                let stride = out.len();
+                sampled_rows(
+                    &self.scene,
+                    self.shading,
+                    sampler,
+                    (row..row + 1, columns),
+                    (out, stride),
+                    &mut |r, columns, out: &mut [C]| self.exact_columns(r, columns, out),
+                );
+            }
+            Some(_) => {}
+            None => self.exact_columns(row, columns, out),
+        }
+    }
+
+    /// [`Frame::render_columns`] as the exact frame draws them.
+    fn exact_columns(&self, row: u16, columns: core::ops::Range<u16>, out: &mut [C]) {
         let end = columns.end.min(self.scene.camera.width);
         if row >= self.scene.camera.height || columns.start >= end {
             return;
@@ -303,7 +428,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
         if columns.start == 0 {
             // From the row's start: the whole scanline's path, cut at `end`.
             let n = usize::from(end).min(out.len());
-            self.render_line(row, &mut out[..n]);
+            self.exact_line(row, &mut out[..n], &mut Counters::default());
             return;
         }
         let from = columns.start / kernel::RESUME * kernel::RESUME;
@@ -362,6 +487,9 @@ impl<S: Scalar, C: PixelColor + From<Rgb888>> Frame<'_, S, C> {
     where
         D: DrawTarget<Color = C>,
     {
+        if self.sampler.is_some() {
+            return draw_sampled(self, target);
+        }
         with_stages!(self.shading, draw_with::<S, D>(self, target, counters))
     }
 }
@@ -467,6 +595,46 @@ where
     }
     Ok(())
 }
+
+/// A frame sampled in blocks drawn into `target`: each scanline in pieces of
+/// [`SAMPLED_PIECE`] pixels (a buffer on the stack), one `fill_contiguous` call each.
+fn draw_sampled<S, D>(frame: &Frame<'_, S, D::Color>, target: &mut D) -> Result<(), D::Error>
+where
+    S: Scalar,
+    D: DrawTarget,
+    D::Color: From<Rgb888>,
+{
+    let camera = &frame.scene.camera;
+    let full = Rectangle::new(
+        Point::zero(),
+        Size::new(u32::from(camera.width), u32::from(camera.height)),
+    );
+    let area = full.intersection(&target.bounding_box());
+    let Some(bottom_right) = area.bottom_right() else {
+        return Ok(());
+    };
+    let to_u16 = |v: i32| u16::try_from(v).unwrap_or(0);
+    let (x0, x1) = (to_u16(area.top_left.x), to_u16(bottom_right.x));
+    let mut piece = [D::Color::from(Rgb888::new(0, 0, 0)); SAMPLED_PIECE];
+    for row in to_u16(area.top_left.y)..=to_u16(bottom_right.y) {
+        let mut x = x0;
+        while x <= x1 {
+            let n = (x1 - x + 1).min(u16::try_from(SAMPLED_PIECE).unwrap_or(1));
+            let out = &mut piece[..usize::from(n)];
+            frame.render_columns(row, x..x + n, out);
+            let at = Rectangle::new(
+                Point::new(i32::from(x), i32::from(row)),
+                Size::new(u32::from(n), 1),
+            );
+            target.fill_contiguous(&at, out.iter().copied())?;
+            x += n;
+        }
+    }
+    Ok(())
+}
+
+/// The pixels a sampled frame hands a target at once ([`Frame::draw_counted`]).
+const SAMPLED_PIECE: usize = 64;
 
 /// One row of a target, as the kernels stream into it.
 struct Row<'t, D> {

@@ -136,10 +136,14 @@ impl<S: Scalar> PlaneFrame<S> {
     /// Whether a point lies on the checkerboard's odd squares:
     /// `floor(a / W) + floor(b / H)` odd.
     pub fn odd_tile(&self, p: Vec3<S>) -> Option<bool> {
-        let (a, b) = self.coords(p)?;
-        let i = tile_index(a, self.size[0])?;
-        let j = tile_index(b, self.size[1])?;
+        let (i, j) = self.tile(p)?;
         Some((i.wrapping_add(j)) & 1 == 1)
+    }
+
+    /// The tile `(floor(a / W), floor(b / H))` a point lies on ([`PlaneFrame::odd_tile`]'s).
+    pub(crate) fn tile(&self, p: Vec3<S>) -> Option<(i32, i32)> {
+        let (a, b) = self.coords(p)?;
+        Some((tile_index(a, self.size[0])?, tile_index(b, self.size[1])?))
     }
 
     /// The tile row `floor(b / H)` of every point of the line `(x, y, z)`, any `x` (a
@@ -202,10 +206,16 @@ impl<S: Scalar> PlaneFrame<S> {
     /// `trunc((x + 10000) / W) + trunc((z + 10000) / H)` odd (the same as `floor` for
     /// x, z > −10000, where it is used).
     pub fn odd_tile_world_xz(&self, p: Vec3<S>) -> Option<bool> {
+        let (i, j) = self.tile_world_xz(p)?;
+        Some((i.wrapping_add(j)) & 1 == 1)
+    }
+
+    /// The tile of [`PlaneFrame::odd_tile_world_xz`]'s checkerboard a point lies on.
+    pub(crate) fn tile_world_xz(&self, p: Vec3<S>) -> Option<(i32, i32)> {
         let shift = S::from_i32(10_000)?;
         let i = tile_index(p.x.checked_add(shift)?, self.size[0])?;
         let j = tile_index(p.z.checked_add(shift)?, self.size[1])?;
-        Some((i.wrapping_add(j)) & 1 == 1)
+        Some((i, j))
     }
 
     /// Whether a point lies inside the rectangle `0 <= a <= W`, `0 <= b <= H`.

@@ -26,6 +26,7 @@ pub(crate) mod fast;
 pub(crate) mod flat;
 mod memo;
 mod rows;
+pub(crate) mod sampling;
 mod scanline;
 mod shading;
 #[cfg(test)]

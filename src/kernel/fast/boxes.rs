@@ -125,6 +125,15 @@ impl<S: Scalar> Primary<S> {
         self.sphere_columns_on_row_of(row, u8::MAX)
     }
 
+    /// Every sphere's box on the screen, `(rows, columns)`, first and last inclusive
+    /// ([`sphere_rows`], [`sphere_columns`]): outside it no primary ray meets the sphere.
+    pub(crate) fn sphere_boxes(&self) -> impl Iterator<Item = ((u16, u16), (u16, u16))> + '_ {
+        self.terms
+            .iter()
+            .filter(|t| t.sphere)
+            .map(|t| (t.rows, t.columns))
+    }
+
     /// [`Primary::sphere_columns_on_row`] for the spheres among the objects `objects`
     /// (bit `i`: object `i`).
     pub(crate) fn sphere_columns_on_row_of(&self, row: u16, objects: u8) -> (u16, u16) {
