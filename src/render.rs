@@ -364,8 +364,10 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     /// beyond `out` are left untouched. The pixels of [`Frame::render_line`]; a frame
     /// sampled in blocks traces each band of blocks' corners once here (once per
     /// scanline there): its RAM is the caller's `out`, a band being the block's side in
-    /// scanlines.
-    pub fn render_rows(&self, rows: core::ops::Range<u16>, out: &mut [C]) {
+    /// scanlines. Returns how many of the pixels were filled from blocks' corners rather
+    /// than traced (0 in an exact frame).
+    pub fn render_rows(&self, rows: core::ops::Range<u16>, out: &mut [C]) -> usize {
+        let mut filled = 0;
         let width = usize::from(self.scene.camera.width);
         let end = rows.end.min(self.scene.camera.height);
         let band = self.sampler.as_ref().map_or(1, Sampler::size);
@@ -374,17 +376,19 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
             let next = (row / band + 1).saturating_mul(band).min(end);
             let at = usize::from(row - rows.start) * width;
             let Some(slice) = out.get_mut(at..) else {
-                return;
+                return filled;
             };
             match &self.sampler {
-                Some(sampler) => sampled_rows(
-                    &self.scene,
-                    self.shading,
-                    sampler,
-                    (row..next, 0..self.scene.camera.width),
-                    (slice, width),
-                    &mut |r, columns, out: &mut [C]| self.exact_columns(r, columns, out),
-                ),
+                Some(sampler) => {
+                    filled += sampled_rows(
+                        &self.scene,
+                        self.shading,
+                        sampler,
+                        (row..next, 0..self.scene.camera.width),
+                        (slice, width),
+                        &mut |r, columns, out: &mut [C]| self.exact_columns(r, columns, out),
+                    )
+                }
                 None => {
                     let n = width.min(slice.len());
                     self.render_line(row, &mut slice[..n]);
@@ -392,6 +396,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
             }
             row = next;
         }
+        filled
     }
 }
 
@@ -399,8 +404,10 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     /// Columns `columns` of scanline `row` into `out` (`out[i]` is column
     /// `columns.start + i`): the pixels [`Frame::render_line`] draws there, for redrawing
     /// part of a scanline ([`Changes`]). Columns beyond the camera's width or beyond `out`
-    /// are left untouched. The scanline is drawn from the multiple of 64 at or before
-    /// `columns.start`, where its pixels are the whole scanline's.
+    /// are left untouched. The kernels resume a scanline at any column with the whole
+    /// scanline's pixels (from the last column where it restarts its stepping, at most 15
+    /// pixels before; a pure-geometry scanline from the multiple of 64 at or before the
+    /// first column): the cost is that of the columns asked for.
     pub fn render_columns(&self, row: u16, columns: core::ops::Range<u16>, out: &mut [C]) {
         match &self.sampler {
             Some(sampler) if row < self.scene.camera.height => {
@@ -431,7 +438,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
             self.exact_line(row, &mut out[..n], &mut Counters::default());
             return;
         }
-        let from = columns.start / kernel::RESUME * kernel::RESUME;
+        let from = kernel::resume_from(&self.drawing, columns.start);
         let mut sink = Skip {
             skip: usize::from(columns.start - from),
             out,
@@ -515,7 +522,8 @@ impl<S: Scalar, C> Frame<'_, S, C> {
     /// colours, whatever the frame's `C`), streamed as [`Frame::draw_counted`] computes them
     /// (no line buffer of the frame's width: a tool compares two frames chunk by chunk).
     /// Chunks that start at multiples of 64 give exactly the pixels of
-    /// [`Frame::render_line`] (its block and resync points).
+    /// [`Frame::render_line`] (the pure-geometry kernel's blocks; the other kernels resume
+    /// exactly anywhere).
     pub(crate) fn render_chunk(&self, row: u16, start: u16, out: &mut [Rgb888]) {
         let end = u16::try_from(out.len())
             .ok()

@@ -90,6 +90,24 @@ fn agree<S: Scalar>(name: &str, text: &str, mode: PlaneMode) -> (Vec<Rgb888>, us
         lines.extend_from_slice(&framed);
     }
     let drawn: Vec<Rgb888> = streamed.pixels.iter().map(|p| p.unwrap()).collect();
+    // Part of a scanline from any column (`Frame::render_columns`, what a display's
+    // changed columns are drawn with) is the whole scanline's pixels there.
+    for row in (0..h).step_by(usize::from(h / 5).max(1)) {
+        for start in [1, 5, 15, 16, 17, 31, 63, 65, 100, w - 1] {
+            if start >= w {
+                continue;
+            }
+            let mut part = vec![Rgb888::new(1, 2, 3); usize::from(w - start)];
+            frame.render_columns(row, start..w, &mut part);
+            let at = usize::from(row) * usize::from(w);
+            assert_eq!(
+                part,
+                lines[at + usize::from(start)..at + usize::from(w)],
+                "{name} {} {mode:?}: row {row} from column {start}",
+                S::NAME
+            );
+        }
+    }
     if mode == PlaneMode::PerPixel {
         // The frame's reference path is the free function's, with the plan worked out once.
         for row in [0, h / 2, h - 1] {

@@ -29,8 +29,8 @@ fn agree<S: Scalar>(name: &str, scene: &Scene<S>, expect_rows: bool) -> usize {
             assert_eq!(p, q, "{name} {} at ({x}, {row})", S::NAME);
         }
     }
-    // Streamed from other columns (`Frame::draw` onto an area that starts there): the
-    // scanline starts its row at that column, as the fast kernel's does.
+    // Streamed from other columns (`Frame::draw` onto an area that starts there): both
+    // kernels resume the whole scanline's stepping there.
     for start in [1, 3, 7, 8, 13] {
         let Some(n) = w.checked_sub(start) else {
             continue;

@@ -44,9 +44,22 @@ use rows::Rows;
 pub(crate) use memo::KernelStages;
 pub(crate) use rows::moved_spheres;
 
-/// A scanline drawn from a column that is a multiple of this has the pixels of the whole
-/// scanline (its restarts fall there: the fast kernel's blocks and resyncs).
-pub(crate) const RESUME: u16 = 64;
+/// Where a scanline of a frame drawn with `drawing` must start for its pixels from
+/// column `column` on to be the whole scanline's: the fast and level-plane kernels
+/// resume at any column (`Primary::row_resumed`: their stepping from the last resync
+/// column), the reference path has no state from pixel to pixel, the pure-geometry
+/// kernel starts at its block before it.
+pub(crate) fn resume_from<S: Scalar>(drawing: &Drawing<S>, column: u16) -> u16 {
+    match drawing.kernel {
+        Kernel::Flat(_) => column / FLAT_RESUME * FLAT_RESUME,
+        Kernel::Fast(_) | Kernel::Rows(_) | Kernel::Reference => column,
+    }
+}
+
+/// A pure-geometry scanline drawn from a multiple of this has the whole scanline's pixels
+/// (its blocks start there, and in the float formats each plane's weight is summed along
+/// a block, its roundings from the block's start).
+const FLAT_RESUME: u16 = 64;
 pub(crate) use scanline::scanline;
 
 /// Whether this build has the kernels (cargo feature `kernels`). Without them every frame

@@ -14,13 +14,13 @@
 //!   the whole block in it;
 //! - **the same shadow state** for every light: either one occluder shadows all four
 //!   corners (a sphere's or a plane's shadow on a plane is convex, so it covers the
-//!   block), or none shadows any corner and no sphere's shadow box on the plane meets the
-//!   block's box (a plane's shadow is a half-plane: four corners outside it put the block
-//!   outside it);
+//!   block), or none shadows any corner and every sphere stands clear of the segments
+//!   from the light to the block (a plane's shadow is a half-plane: four corners outside
+//!   it put the block outside it);
 //! - **the colour's range is bounded**: on a plane a diffuse point light gives
 //!   `255·(N·L)/|L|²` with `N·L` the light's height above the plane, the same at every
 //!   point, so over the block the term lies between its values at the largest distance
-//!   (a corner) and the smallest (no nearer than the block's box); the sum over the lit
+//!   (a corner) and a bound on the smallest; the sum over the lit
 //!   lights of `emissivity · diffuse ·` that spread, per channel, must be at most the
 //!   mode's `bound` in levels.
 //!
@@ -111,23 +111,16 @@ const LIGHTS: usize = 4;
 const OBJECTS: usize = 30;
 /// A shadow state's bit for a light the surface faces away from (no occluder's index).
 const FACES_AWAY: u32 = 1 << 31;
-/// The most sphere boxes and shadow boxes a sampled frame keeps.
-const BOXES: usize = 48;
+/// The most spheres a sampled frame has.
+const BOXES: usize = 16;
 
-/// A box of world space, `(low, high)` corners.
-type Aabb<S> = (Vec3<S>, Vec3<S>);
-
-/// What a sampled frame computes once: the spheres' screen boxes and their shadows'
-/// boxes on every plane.
+/// What a sampled frame computes once: the spheres' boxes on the screen.
 #[derive(Debug, Clone)]
 pub(crate) struct Sampler<S> {
     size: u16,
     bound: S,
     /// `(rows, columns)` of every sphere, first and last inclusive.
     spheres: Vec<((u16, u16), (u16, u16)), BOXES>,
-    /// `(sphere, light, plane)` and the box that holds the sphere's shadow from the
-    /// light on the plane (`None`: it may fall anywhere on it).
-    shadows: Vec<((u8, u8, u8), Option<Aabb<S>>), BOXES>,
 }
 
 /// The sampler of a frame of `scene` drawn with `drawing` (`None`: the frame is drawn
@@ -173,78 +166,11 @@ pub(crate) fn sampler<S: Scalar>(
         Kernel::Flat(_) if !plan.spheres => {}
         Kernel::Flat(_) | Kernel::Reference => return None,
     }
-    let mut shadows = Vec::new();
-    for (k, sphere) in scene.objects.iter().enumerate() {
-        let Shape::Sphere(sphere) = &sphere.shape else {
-            continue;
-        };
-        for (j, light) in scene.lights.iter().enumerate() {
-            for (i, plane) in scene.objects.iter().enumerate() {
-                let Some(plane) = plane.shape.plane() else {
-                    continue;
-                };
-                let b = shadow_box(plane, sphere, light.location);
-                let key = (
-                    u8::try_from(k).ok()?,
-                    u8::try_from(j).ok()?,
-                    u8::try_from(i).ok()?,
-                );
-                shadows.push((key, b)).ok()?;
-            }
-        }
-    }
     Some(Sampler {
         size: size.pixels(),
         bound: S::from_i32(i32::from(bound))?,
         spheres,
-        shadows,
     })
-}
-
-/// A box holding the shadow of `sphere` from a light at `light` on `plane`: the central
-/// projection from the light onto the plane of the corners of a cube a quarter wider
-/// than the sphere (the projection of a convex set lies in the hull of its corners'
-/// projections while every corner is nearer the plane than the light is). `None` where
-/// the shadow is not bounded (a corner level with the light or beyond it, or the light
-/// in the plane) or a quantity leaves the format.
-fn shadow_box<S: Scalar>(
-    plane: &crate::geometry::Plane<S>,
-    sphere: &crate::geometry::Sphere<S>,
-    light: Vec3<S>,
-) -> Option<Aabb<S>> {
-    let (mut n, mut d) = (plane.normal(), plane.offset());
-    let mut h = n.dot(light)?.checked_sub(d)?;
-    if h < S::ZERO {
-        (n, d, h) = (n.checked_neg()?, d.checked_neg()?, h.checked_neg()?);
-    }
-    if h <= S::ZERO {
-        return None;
-    }
-    let nl = d.checked_add(h)?;
-    let half = sphere.radius().mul_ratio(5, 4)?;
-    let c = sphere.center();
-    let mut lo = Vec3::new(S::MAX, S::MAX, S::MAX);
-    let low = S::MAX.checked_neg()?;
-    let mut hi = Vec3::new(low, low, low);
-    for corner in 0..8u8 {
-        let pick = |bit: u8, v: S| -> Option<S> {
-            if corner & bit == 0 {
-                v.checked_sub(half)
-            } else {
-                v.checked_add(half)
-            }
-        };
-        let v = Vec3::new(pick(1, c.x)?, pick(2, c.y)?, pick(4, c.z)?);
-        let den = nl.checked_sub(n.dot(v)?)?;
-        if den <= S::ZERO {
-            return None;
-        }
-        let s = h.checked_div(den)?;
-        let x = light.sum(v.diff(light)?.scale(s)?)?;
-        lo = Vec3::new(lo.x.min(x.x), lo.y.min(x.y), lo.z.min(x.z));
-        hi = Vec3::new(hi.x.max(x.x), hi.y.max(x.y), hi.z.max(x.z));
-    }
-    Some((lo, hi))
 }
 
 /// What a block's corner sees.
@@ -410,6 +336,14 @@ impl<S: Scalar> Sampler<S> {
     /// corners hit it at `points`, given each light's occluders common to all corners
     /// (`all`) and found at any (`any`); `None` where the shadow state may change inside
     /// the block or a quantity leaves the format.
+    ///
+    /// The block's points lie within `ρ` of the corners' centroid `m` (the largest
+    /// distance from it to a corner: the block is their convex hull). A segment from the
+    /// light to such a point lies within `ρ` of the segment to `m` (point for point), so
+    /// a sphere farther than `r·17/16 + ρ` from that segment shadows none of them (the
+    /// sixteenth: the shadow test's rounding at its edge). The distance to the light
+    /// lies between `|L − m| − ρ` and the largest at a corner (a convex function on a
+    /// convex set peaks at a vertex).
     fn spread(
         &self,
         scene: &SceneView<'_, S>,
@@ -419,13 +353,24 @@ impl<S: Scalar> Sampler<S> {
         any: [u32; LIGHTS],
     ) -> Option<[S; 3]> {
         let o = scene.objects.get(usize::from(object))?;
-        let material = scene.materials.get(usize::from(o.material));
         let n = o.shape.plane()?.normal();
-        let (mut lo, mut hi) = (points[0], points[0]);
+        let mut m = points[0];
         for p in &points[1..] {
-            lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
-            hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+            m = m.sum(*p)?;
         }
+        let m = Vec3::new(
+            m.x.mul_ratio(1, 4)?,
+            m.y.mul_ratio(1, 4)?,
+            m.z.mul_ratio(1, 4)?,
+        );
+        let mut rho_sq = S::ZERO;
+        for p in points {
+            let d = p.diff(m)?;
+            rho_sq = rho_sq.max(d.dot(d)?);
+        }
+        let rho = rho_sq.checked_sqrt()?.checked_add(S::DELTA)?;
+        let diffuse = diffuse_bound(scene, o)?;
+        let k = S::from_i32(255)?;
         let mut spread = [S::ZERO; 3];
         for (j, light) in scene.lights.iter().enumerate() {
             if all[j] != 0 {
@@ -434,17 +379,17 @@ impl<S: Scalar> Sampler<S> {
             if any[j] != 0 {
                 return None; // shadowed at some corners only
             }
-            let clear = self.shadows.iter().all(|&((_, l, plane), b)| {
-                usize::from(l) != j
-                    || plane != object
-                    || b.is_some_and(|(slo, shi)| !boxes_meet((lo, hi), (slo, shi)))
-            });
-            if !clear {
-                return None;
+            let to_m = m.diff(light.location)?;
+            for sphere in scene.objects.iter().filter_map(|o| match &o.shape {
+                Shape::Sphere(s) => Some(s),
+                _ => None,
+            }) {
+                let margin = sphere.radius().mul_ratio(17, 16)?.checked_add(rho)?;
+                let d = distance_sq_to_segment(sphere.center(), light.location, to_m)?;
+                if d <= margin.checked_mul(margin)? {
+                    return None;
+                }
             }
-            // Which of a tiled plane's two materials the block's tile has is not
-            // kept: the larger diffuse of the two bounds it.
-            let diffuse = diffuse_bound(scene, o, material)?;
             let (mut nl_lo, mut nl_hi, mut ll_hi) = (S::MAX, S::ZERO, S::ZERO);
             for p in points {
                 let l = light.location.diff(*p)?;
@@ -453,8 +398,11 @@ impl<S: Scalar> Sampler<S> {
                 nl_hi = nl_hi.max(nl);
                 ll_hi = ll_hi.max(l.dot(l)?);
             }
-            let ll_lo = distance_sq_to_box(light.location, (lo, hi))?;
-            let k = S::from_i32(255)?;
+            let near = to_m.dot(to_m)?.checked_sqrt()?.checked_sub(rho)?;
+            if near <= S::ZERO {
+                return None;
+            }
+            let ll_lo = near.checked_mul(near)?;
             let top = nl_hi.checked_mul(k)?.checked_div(ll_lo)?;
             let bottom = nl_lo.checked_mul(k)?.checked_div(ll_hi)?;
             let range = top.checked_sub(bottom)?;
@@ -466,13 +414,14 @@ impl<S: Scalar> Sampler<S> {
     }
 }
 
-/// The larger per-channel diffuse of an object's materials (a tiled plane has two).
-fn diffuse_bound<S: Scalar>(
-    scene: &SceneView<'_, S>,
-    o: &crate::Object<S>,
-    material: Option<&crate::Material<S>>,
-) -> Option<[S; 3]> {
-    let mut d = material?.diffuse.map(S::abs);
+/// The larger per-channel diffuse of an object's materials (a tiled plane has two, and
+/// which one a block's tile has is not kept).
+fn diffuse_bound<S: Scalar>(scene: &SceneView<'_, S>, o: &crate::Object<S>) -> Option<[S; 3]> {
+    let mut d = scene
+        .materials
+        .get(usize::from(o.material))?
+        .diffuse
+        .map(S::abs);
     if let Shape::Tiled { alt, .. } = o.shape {
         let a = scene.materials.get(usize::from(alt))?;
         for (x, y) in d.iter_mut().zip(a.diffuse) {
@@ -482,42 +431,26 @@ fn diffuse_bound<S: Scalar>(
     Some(d)
 }
 
-/// Whether two boxes share a point.
-fn boxes_meet<S: Scalar>(a: Aabb<S>, b: Aabb<S>) -> bool {
-    let axes = |v: Vec3<S>| [v.x, v.y, v.z];
-    let (alo, ahi, blo, bhi) = (axes(a.0), axes(a.1), axes(b.0), axes(b.1));
-    (0..3).all(|i| alo[i] <= bhi[i] && blo[i] <= ahi[i])
-}
-
-/// The squared distance from `p` to a box (0 inside it), no larger than the squared
-/// distance to any point of the box; `None` when it is 0 (no bound on `1/|L|²`) or out of
-/// range.
-fn distance_sq_to_box<S: Scalar>(p: Vec3<S>, (lo, hi): Aabb<S>) -> Option<S> {
-    let gap = |v: S, a: S, b: S| -> Option<S> {
-        if v < a {
-            a.checked_sub(v)
-        } else if v > b {
-            v.checked_sub(b)
-        } else {
-            Some(S::ZERO)
-        }
+/// The squared distance from `c` to the segment from `a` to `a + v`.
+fn distance_sq_to_segment<S: Scalar>(c: Vec3<S>, a: Vec3<S>, v: Vec3<S>) -> Option<S> {
+    let w = c.diff(a)?;
+    let wv = w.dot(v)?;
+    let vv = v.dot(v)?;
+    let s = if wv <= S::ZERO || vv <= S::ZERO {
+        S::ZERO
+    } else if wv >= vv {
+        S::ONE
+    } else {
+        wv.checked_div(vv)?
     };
-    let g = [
-        gap(p.x, lo.x, hi.x)?,
-        gap(p.y, lo.y, hi.y)?,
-        gap(p.z, lo.z, hi.z)?,
-    ];
-    let mut sum = S::ZERO;
-    for g in g {
-        sum = sum.checked_add(g.checked_mul(g)?)?;
-    }
-    (sum > S::ZERO).then_some(sum)
+    let d = w.diff(v.scale(s)?)?;
+    d.dot(d)
 }
 
 /// Draws rows `rows` (inside one band of the sampler's blocks) over columns `columns` of
 /// a sampled frame into `out` (`out[(r − rows.start)·stride + (x − columns.start)]`):
 /// certified blocks filled from their corners, the others by `exact` (the frame's
-/// kernel: row, columns, the slice they go to).
+/// kernel: row, columns, the slice they go to). Returns how many pixels were filled.
 pub(crate) fn sampled_rows<S: Scalar, C: From<Rgb888>>(
     scene: &SceneView<'_, S>,
     shading: Shading,
@@ -525,13 +458,14 @@ pub(crate) fn sampled_rows<S: Scalar, C: From<Rgb888>>(
     (rows, columns): (Range<u16>, Range<u16>),
     (out, stride): (&mut [C], usize),
     exact: &mut impl FnMut(u16, Range<u16>, &mut [C]),
-) {
+) -> usize {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let b = sampler.size;
     let end = columns.end.min(w);
     if rows.start >= rows.end || columns.start >= end {
-        return;
+        return 0;
     }
+    let mut filled = 0;
     let top = rows.start / b * b;
     let bottom = top.saturating_add(b).min(h - 1);
     let band = top..top.saturating_add(b).min(h);
@@ -561,9 +495,11 @@ pub(crate) fn sampled_rows<S: Scalar, C: From<Rgb888>>(
             if let Some(from) = pending.take() {
                 flush(from, x0, out);
             }
+            let span = x0.max(columns.start)..next.min(end);
+            filled += rows.len() * span.len();
             fill(
                 (corners.map(|c| c.color), (x0, x1), (top, bottom)),
-                (rows.clone(), x0.max(columns.start)..next.min(end)),
+                (rows.clone(), span),
                 (out, stride, (rows.start, columns.start)),
             );
         } else if pending.is_none() {
@@ -575,6 +511,7 @@ pub(crate) fn sampled_rows<S: Scalar, C: From<Rgb888>>(
     if let Some(from) = pending {
         flush(from, end, out);
     }
+    filled
 }
 
 /// Fills the pixels `rows × columns` of a block by bilinear interpolation of its corner

@@ -121,7 +121,7 @@ impl<S: Scalar> Primary<S> {
                 if let Some(m) = stepping {
                     *m = Stepping::default();
                 }
-                *state = Some(self.row(scene, row, column)?);
+                *state = Some(self.row_resumed(scene, row, column)?);
             }
         }
         state.as_ref()
@@ -162,6 +162,27 @@ impl<S: Scalar> Primary<S> {
             dx_limit: S::ZERO,
         };
         self.restart(scene, row, column, &mut r)?;
+        Some(r)
+    }
+
+    /// Scanline `row` at column `column` as a scanline started at column 0 reaches it:
+    /// restarted at the last [`resync_pixels`] column at or before it and stepped from
+    /// there, so that a scanline drawn from any column has the whole scanline's pixels
+    /// (where a step out of range made the whole scanline restart between the two, it
+    /// restarts at `column` itself, as a whole scanline restarts after a failed step).
+    pub(crate) fn row_resumed(
+        &self,
+        scene: &SceneView<'_, S>,
+        row: u16,
+        column: u16,
+    ) -> Option<Row<S>> {
+        let anchor = column - column % resync_pixels::<S>();
+        let mut r = self.row(scene, row, anchor)?;
+        for _ in anchor..column {
+            if self.advance(&mut r).is_none() {
+                return self.row(scene, row, column);
+            }
+        }
         Some(r)
     }
 

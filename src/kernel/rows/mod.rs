@@ -97,6 +97,15 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         return Err(counters);
     };
     let lazy = S::EXACT_PRODUCTS && p.terms_fit_row(scene, &first, scene.camera.width);
+    // From another column than 0 the first pixel is where a whole scanline's stepping
+    // reaches it ([`Primary::row_resumed`]): the same pixels from any column.
+    let (state, valid) = match columns.start {
+        0 => (first, true),
+        c => match p.row_resumed(scene, row, c) {
+            Some(r) => (r, true),
+            None => (first, false),
+        },
+    };
     Ok(Pixels {
         scene,
         p,
@@ -105,11 +114,9 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         lean_built: None,
         lazy,
         stale: false,
-        state: first,
+        state,
         fresh: true,
-        // From another column than 0 the first pixel restarts there, as the fast
-        // kernel's scanline starts its row there.
-        valid: columns.start == 0,
+        valid,
         at_hit: heapless::Vec::new(),
         memo: Memo::default(),
         spheres: p.sphere_columns_on_row(row),
