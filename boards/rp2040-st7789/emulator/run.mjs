@@ -4,7 +4,7 @@
 // GP16: CASET, RASET and RAMWR into a 240x320 controller memory).
 //
 //   node run.mjs ELF [--frames N] [--out DIR] [--instant-spi] [--patch OLD=NEW]...
-//                    [--max-mcycles M] [--profile]
+//                    [--max-mcycles M] [--profile] [--profile-after K]
 //
 // The ELF's loadable segments go into the flash at their load addresses and the core starts
 // at the second-stage bootloader (0x1000_0000) with LR = 0, as the boot ROM leaves it: boot2
@@ -25,7 +25,8 @@
 // panel's rows top to bottom, two big-endian bytes a pixel, 240 wide). DIR/run.json sums
 // it up. --patch replaces bytes of the flash image (the scene text, say) before the run.
 // --profile attributes the frames' cycles to the ELF's functions (from its symbol table)
-// and prints the costliest.
+// and prints the costliest; --profile-after K counts only the frames after frame K (the
+// frames a loop repeats, without the first whole one).
 
 import { readFileSync, writeFileSync, mkdirSync } from 'node:fs';
 import { RP2040 } from 'rp2040js';
@@ -38,7 +39,7 @@ const DC_PIN = 16;
 function usage(message) {
   process.stderr.write(`error: ${message}\n`);
   process.stderr.write(
-    'usage: node run.mjs ELF [--frames N] [--out DIR] [--instant-spi] [--patch OLD=NEW]... [--max-mcycles M] [--profile]\n',
+    'usage: node run.mjs ELF [--frames N] [--out DIR] [--instant-spi] [--patch OLD=NEW]... [--max-mcycles M] [--profile] [--profile-after K]\n',
   );
   process.exit(2);
 }
@@ -51,6 +52,7 @@ function parseArgs(argv) {
     patches: [],
     maxCycles: 4e9,
     profile: false,
+    profileAfter: -1,
     elf: null,
   };
   for (let i = 0; i < argv.length; i++) {
@@ -69,6 +71,7 @@ function parseArgs(argv) {
       args.patches.push([p.slice(0, eq), p.slice(eq + 1)]);
     } else if (a === '--max-mcycles') args.maxCycles = Number(value()) * 1e6;
     else if (a === '--profile') args.profile = true;
+    else if (a === '--profile-after') args.profileAfter = Number(argv[++i]);
     else if (a.startsWith('--')) usage(`unknown option ${a}`);
     else if (args.elf === null) args.elf = a;
     else usage(`one ELF file, not ${a}`);
@@ -340,8 +343,8 @@ function main() {
       pixelsAtLine = panel.pixels;
       const draw = panel.take(cycles);
       process.stdout.write(`uart: ${text}\n`);
-      profiling = profile !== null;
       const m = /^frame=(\d+)\b/.exec(text);
+      profiling = profile !== null && (m ? Number(m[1]) >= args.profileAfter : args.profileAfter < 0);
       if (m) {
         const [even, odd, windows] = draw;
         const frame = {
