@@ -20,6 +20,7 @@
 //! pixels (O(width), the caller's RAM), for drivers that want whole lines.
 
 use core::marker::PhantomData;
+use core::ops::Range;
 
 use embedded_graphics_core::Drawable;
 use embedded_graphics_core::pixelcolor::{PixelColor, Rgb888};
@@ -344,7 +345,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                 sampler,
                 (row..row + 1, 0..n),
                 (line, stride),
-                &mut |r, columns, out: &mut [C]| self.exact_columns(r, columns, out),
+                &mut |r, runs: &[Range<u16>], line: &mut [C]| self.exact_runs(r, runs, line, 0),
             );
             return;
         }
@@ -386,7 +387,9 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                         sampler,
                         (row..next, 0..self.scene.camera.width),
                         (slice, width),
-                        &mut |r, columns, out: &mut [C]| self.exact_columns(r, columns, out),
+                        &mut |r, runs: &[Range<u16>], line: &mut [C]| {
+                            self.exact_runs(r, runs, line, 0)
+                        },
                     )
                 }
                 None => {
@@ -416,14 +419,38 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                     &self.scene,
                     self.shading,
                     sampler,
-                    (row..row + 1, columns),
+                    (row..row + 1, columns.clone()),
                     (out, stride),
-                    &mut |r, columns, out: &mut [C]| self.exact_columns(r, columns, out),
+                    &mut |r, runs: &[Range<u16>], line: &mut [C]| {
+                        self.exact_runs(r, runs, line, columns.start)
+                    },
                 );
             }
             Some(_) => {}
             None => self.exact_columns(row, columns, out),
         }
+    }
+
+    /// Columns `runs` of scanline `row` as the exact frame draws them, into `line`
+    /// (`line[i]` is column `origin + i`).
+    fn exact_runs(&self, row: u16, runs: &[Range<u16>], line: &mut [C], origin: u16) {
+        let mut put = |column: u16, c: C| {
+            if let Some(slot) = line.get_mut(usize::from(column - origin)) {
+                *slot = c;
+            }
+        };
+        with_stages!(
+            self.shading,
+            kernel::runs::<S, C>(
+                &self.scene,
+                &self.drawing,
+                self.mode,
+                row,
+                runs,
+                &mut Counters::default(),
+                &mut put
+            )
+        );
     }
 
     /// [`Frame::render_columns`] as the exact frame draws them.

@@ -376,6 +376,100 @@ where
     sink.fill(scanline::<S, T, C>(scene, primary, row, columns, counters))
 }
 
+/// Columns `runs` (increasing and disjoint) of scanline `row` drawn by the frame's
+/// kernel, each pixel handed to `put` with its column: the pixels of [`line`] there, with
+/// one set-up of the scanline for all the runs (a sampled frame's blocks that are traced).
+pub(crate) fn runs<S, T, C>(
+    scene: &SceneView<'_, S>,
+    drawing: &Drawing<S>,
+    mode: PlaneMode,
+    row: u16,
+    runs: &[core::ops::Range<u16>],
+    counters: &mut Counters,
+    put: &mut impl FnMut(u16, C),
+) where
+    S: Scalar,
+    T: KernelStages,
+    C: From<Rgb888>,
+{
+    let last = runs.last().map_or(0, |r| r.end.saturating_sub(1));
+    let columns = || runs.iter().flat_map(Clone::clone);
+    let fallback;
+    let (primary, counters) = match &drawing.kernel {
+        _ if !KERNELS => (None, counters),
+        Kernel::Flat(flat) => match flat.row(scene, row) {
+            Some(r) => {
+                for run in runs {
+                    let from = resume_from(drawing, run.start);
+                    let skip = usize::from(run.start - from);
+                    let pixels: &mut dyn Iterator<Item = Rgb888> = match mode {
+                        PlaneMode::PerPixel => &mut r.blocks(from..run.end),
+                        PlaneMode::Spans => &mut r
+                            .spans(from, run.end)
+                            .flat_map(|(n, c)| core::iter::repeat_n(c, n.into())),
+                    };
+                    for (column, c) in run.clone().zip(pixels.skip(skip)) {
+                        put(column, C::from(c));
+                    }
+                }
+                return;
+            }
+            None => {
+                fallback = drawing.handed_back(scene);
+                (fallback.as_ref(), counters)
+            }
+        },
+        Kernel::Fast(p) => (Some(p), counters),
+        Kernel::Rows(r) if !rows::draws_with::<T>() => (Some(&r.primary), counters),
+        Kernel::Rows(r) => match rows_runs::<S, T, C>(scene, r, row, runs, counters, put) {
+            Ok(()) => return,
+            Err(counters) => (Some(&r.primary), counters),
+        },
+        Kernel::Reference => (None, counters),
+    };
+    let pixels =
+        scanline::scanline_over::<S, T, C>(scene, primary, (row, last), columns(), counters);
+    for (column, c) in columns().zip(pixels) {
+        put(column, c);
+    }
+}
+
+/// [`runs`] on the level-plane kernel; `Err` (the counters handed back) when it cannot
+/// decide the row once.
+#[inline(never)]
+fn rows_runs<'a, S, T, C>(
+    scene: &'a SceneView<'a, S>,
+    rows: &'a Rows<S>,
+    row: u16,
+    runs: &[core::ops::Range<u16>],
+    counters: &'a mut Counters,
+    put: &mut impl FnMut(u16, C),
+) -> Result<(), &'a mut Counters>
+where
+    S: Scalar,
+    T: KernelStages,
+    C: From<Rgb888>,
+{
+    let Some(first) = runs.first() else {
+        return Ok(());
+    };
+    let mut pixels = rows::scanline::<S, T>(scene, rows, row, first.clone(), counters);
+    match &mut pixels {
+        Ok(pixels) => {
+            for (i, run) in runs.iter().enumerate() {
+                if i > 0 {
+                    pixels.resume_at(run.clone());
+                }
+                for (column, c) in run.clone().zip(pixels.by_ref()) {
+                    put(column, C::from(c));
+                }
+            }
+            Ok(())
+        }
+        Err(_) => pixels.map(|_| ()),
+    }
+}
+
 /// Streams a scanline of the level-plane kernel to `sink`; `Err` (the counters handed
 /// back) when the kernel cannot decide the row once. Not inlined: its per-row data are
 /// on the stack only while it draws (the caller's frame is under every other path).

@@ -198,6 +198,32 @@ struct Corner<S> {
     sees: Sees<S>,
 }
 
+/// How a certified block is filled.
+#[derive(Debug, Clone, Copy)]
+enum Fill<S> {
+    /// From its corners' colours (top left, top right, bottom left, bottom right).
+    Smooth([Rgb888; 4]),
+    /// A tiled plane across one tile edge or two: each pixel's tile from the edges'
+    /// lines located on the screen, its colour interpolated from the corners' colours in
+    /// that tile's material.
+    Tiles(Tiles<S>),
+}
+
+/// A block of a tiled plane that crosses a tile edge along `u`, along `v`, or both.
+#[derive(Debug, Clone, Copy)]
+struct Tiles<S> {
+    /// The corners' colours in the plane's material and in its alternate.
+    colors: [[Rgb888; 4]; 2],
+    /// Per axis: the corners' `(a − A)·β` for the edge `a = A` between the block's two
+    /// tiles (`β = N·D`, so that it is affine on the screen), or `None` where the block
+    /// lies in one tile along that axis.
+    edges: [Option<[S; 4]>; 2],
+    /// The lower tile along each axis.
+    first: (i32, i32),
+    /// Whether `β` is negative over the block (the sides are then swapped).
+    negative: bool,
+}
+
 /// Traces pixel (`column`, `row`) on the reference path and says what it sees.
 fn corner<S: Scalar>(
     scene: &SceneView<'_, S>,
@@ -269,91 +295,104 @@ impl<S: Scalar> Sampler<S> {
         self.size
     }
 
-    /// Whether a block with these corners (top left, top right, bottom left, bottom
-    /// right) over columns `x` and rows `y` (first and last, inclusive) may be filled.
+    /// How a block with these corners (top left, top right, bottom left, bottom right)
+    /// over columns `x` and rows `y` (first and last, inclusive) may be filled; `None`:
+    /// it is traced.
     fn certifies(
         &self,
         scene: &SceneView<'_, S>,
         corners: [&Corner<S>; 4],
         x: (u16, u16),
         y: (u16, u16),
-    ) -> bool {
+    ) -> Option<Fill<S>> {
         let meets = |(a, b): (u16, u16), (c, d): (u16, u16)| a <= d && c <= b;
         if self
             .spheres
             .iter()
             .any(|&(rows, columns)| meets(rows, y) && meets(columns, x))
         {
-            return false;
+            return None;
         }
-        match corners.map(|c| c.sees) {
-            [
-                Sees::Background,
-                Sees::Background,
-                Sees::Background,
-                Sees::Background,
-            ] => true,
-            [
-                Sees::Plane {
-                    object,
-                    tile,
-                    point: p0,
-                    shadows: s0,
-                },
-                b,
-                c,
-                d,
-            ] => {
-                let mut points = [p0; 4];
-                let (mut all, mut any) = (s0, s0);
-                for (slot, seen) in points[1..].iter_mut().zip([b, c, d]) {
-                    let Sees::Plane {
-                        object: o,
-                        tile: t,
-                        point,
-                        shadows,
-                    } = seen
-                    else {
-                        return false;
-                    };
-                    if o != object || t != tile {
-                        return false;
-                    }
-                    *slot = point;
-                    for ((a, n), s) in all.iter_mut().zip(any.iter_mut()).zip(shadows) {
-                        *a &= s;
-                        *n |= s;
-                    }
-                }
-                self.spread(scene, object, &points, all, any)
-                    .is_some_and(|spread| spread.iter().all(|c| *c <= self.bound))
+        let colors = corners.map(|c| c.color);
+        let seen = corners.map(|c| c.sees);
+        if seen.iter().all(|s| matches!(s, Sees::Background)) {
+            return Some(Fill::Smooth(colors));
+        }
+        let Sees::Plane { object, .. } = seen[0] else {
+            return None;
+        };
+        let mut points = [Vec3::new(S::ZERO, S::ZERO, S::ZERO); 4];
+        let mut tiles = [(0, 0); 4];
+        let (mut all, mut any) = ([u32::MAX; LIGHTS], [0; LIGHTS]);
+        for ((slot, tile), seen) in points.iter_mut().zip(tiles.iter_mut()).zip(seen) {
+            let Sees::Plane {
+                object: o,
+                tile: t,
+                point,
+                shadows,
+            } = seen
+            else {
+                return None;
+            };
+            if o != object {
+                return None;
             }
-            _ => false,
+            (*slot, *tile) = (point, t);
+            for ((a, n), s) in all.iter_mut().zip(any.iter_mut()).zip(shadows) {
+                *a &= s;
+                *n |= s;
+            }
+        }
+        let size = (x.1 - x.0, y.1 - y.0);
+        let error = self.interpolation_error(scene, object, &points, (all, any), size)?;
+        if error.iter().any(|c| *c > self.bound) {
+            return None;
+        }
+        if tiles.iter().all(|t| *t == tiles[0]) {
+            return Some(Fill::Smooth(colors));
+        }
+        // Across a tile's edge: only with a bound (the colours are this module's own).
+        let lit = core::array::from_fn(|j| all[j] == 0);
+        if self.bound > S::ZERO {
+            tiles_fill(scene, object, (&points, &tiles), lit, (x, y))
+        } else {
+            None
         }
     }
 
-    /// The most the colour of plane `object` can vary, per channel, over the block whose
-    /// corners hit it at `points`, given each light's occluders common to all corners
-    /// (`all`) and found at any (`any`); `None` where the shadow state may change inside
-    /// the block or a quantity leaves the format.
+    /// A bound, per channel, on how far the colour of plane `object` strays from the
+    /// bilinear interpolation of its values at the corners over a block of `size` pixels
+    /// whose corners hit it at `points`, given each light's occluders common to all
+    /// corners (`all`) and found at any (`any`); `None` where the shadow state may change
+    /// inside the block, a channel may reach 255 (where it is clamped, the colour is not
+    /// smooth) or a quantity leaves the format.
     ///
-    /// The block's points lie within `ρ` of the corners' centroid `m` (the largest
-    /// distance from it to a corner: the block is their convex hull). A segment from the
-    /// light to such a point lies within `ρ` of the segment to `m` (point for point), so
-    /// a sphere farther than `r·17/16 + ρ` from that segment shadows none of them (the
-    /// sixteenth: the shadow test's rounding at its edge). The distance to the light
-    /// lies between `|L − m| − ρ` and the largest at a corner (a convex function on a
-    /// convex set peaks at a vertex).
-    fn spread(
+    /// **Shadows.** The block's points lie within `ρ` of the corners' centroid `m` (the
+    /// largest distance from it to a corner: the block is their convex hull). A segment
+    /// from the light to such a point lies within `ρ` of the segment to `m` (point for
+    /// point), so a sphere farther than `r·17/16 + ρ` from that segment shadows none of
+    /// them (the sixteenth: the shadow test's rounding at its edge).
+    ///
+    /// **Colour.** A light's term is `f = K/ρ²` with `K = 255·(N·L)`, the same at every
+    /// point of a plane, and `ρ = |L − P|`. Along a scanline the ray's `β = N·D` and
+    /// `A = β·(L − P) = β·(L − e) − (N·P − N·e)·D` are affine in the column (and likewise
+    /// down a column), so with `a = |A'|/|β|`, `b = |β'|/|β|` (per pixel), the relative
+    /// derivatives of `ρ²` obey `|(ρ²)'|/ρ² ≤ 2a/ρ + 2b` and `|(ρ²)''|/ρ² ≤ 2a²/ρ² +
+    /// 8ab/ρ + 6b²`, and `|f''| ≤ f·(2p² + q)` for those two bounds `p`, `q`. Bilinear
+    /// interpolation over `w × h` pixels strays by at most `w²/8·|f_xx| + h²/8·|f_yy|`.
+    /// The bounds take `|β|` at its smallest (a corner: `β` is affine and does not
+    /// change sign over the block) and `ρ` at its smallest (`|L − m| − ρ`).
+    fn interpolation_error(
         &self,
         scene: &SceneView<'_, S>,
         object: u8,
         points: &[Vec3<S>; 4],
-        all: [u32; LIGHTS],
-        any: [u32; LIGHTS],
+        (all, any): ([u32; LIGHTS], [u32; LIGHTS]),
+        (w, h): (u16, u16),
     ) -> Option<[S; 3]> {
         let o = scene.objects.get(usize::from(object))?;
-        let n = o.shape.plane()?.normal();
+        let plane = o.shape.plane()?;
+        let n = plane.normal();
         let mut m = points[0];
         for p in &points[1..] {
             m = m.sum(*p)?;
@@ -369,9 +408,38 @@ impl<S: Scalar> Sampler<S> {
             rho_sq = rho_sq.max(d.dot(d)?);
         }
         let rho = rho_sq.checked_sqrt()?.checked_add(S::DELTA)?;
-        let diffuse = diffuse_bound(scene, o)?;
+        let (diffuse, ambient) = materials_bound(scene, o)?;
+        let camera = &scene.camera;
+        let eye = camera.viewpoint;
+        // What a pixel's step moves `D` by, across and down.
+        let (sx, sy) = (
+            camera
+                .world_width
+                .checked_div(S::from_i32(i32::from(camera.width))?)?,
+            camera
+                .world_height
+                .checked_div(S::from_i32(i32::from(camera.height))?)?,
+        );
+        let steps = [
+            Vec3::new(sx, S::ZERO, S::ZERO),
+            Vec3::new(S::ZERO, sy, S::ZERO),
+        ];
+        let c0 = plane.offset().checked_sub(n.dot(eye)?)?;
+        let mut beta = S::MAX;
+        for p in points {
+            beta = beta.min(n.dot(p.diff(eye)?)?.abs());
+        }
+        if beta <= S::ZERO {
+            return None;
+        }
         let k = S::from_i32(255)?;
-        let mut spread = [S::ZERO; 3];
+        let (w, h) = (S::from_i32(i32::from(w))?, S::from_i32(i32::from(h))?);
+        let sizes = [
+            w.checked_mul(w)?.mul_ratio(1, 8)?,
+            h.checked_mul(h)?.mul_ratio(1, 8)?,
+        ];
+        let mut error = [S::ZERO; 3];
+        let mut top = ambient;
         for (j, light) in scene.lights.iter().enumerate() {
             if all[j] != 0 {
                 continue; // shadowed (or facing away) everywhere in the block
@@ -390,45 +458,166 @@ impl<S: Scalar> Sampler<S> {
                     return None;
                 }
             }
-            let (mut nl_lo, mut nl_hi, mut ll_hi) = (S::MAX, S::ZERO, S::ZERO);
-            for p in points {
-                let l = light.location.diff(*p)?;
-                let nl = n.dot(l)?.abs();
-                nl_lo = nl_lo.min(nl);
-                nl_hi = nl_hi.max(nl);
-                ll_hi = ll_hi.max(l.dot(l)?);
-            }
             let near = to_m.dot(to_m)?.checked_sqrt()?.checked_sub(rho)?;
             if near <= S::ZERO {
                 return None;
             }
-            let ll_lo = near.checked_mul(near)?;
-            let top = nl_hi.checked_mul(k)?.checked_div(ll_lo)?;
-            let bottom = nl_lo.checked_mul(k)?.checked_div(ll_hi)?;
-            let range = top.checked_sub(bottom)?;
-            for ((s, e), d) in spread.iter_mut().zip(light.emissivity).zip(diffuse) {
-                *s = s.checked_add(e.abs().checked_mul(d)?.checked_mul(range)?)?;
+            let mut nl = S::ZERO;
+            for p in points {
+                nl = nl.max(n.dot(light.location.diff(*p)?)?.abs());
+            }
+            // The term at its largest.
+            let f = nl.checked_mul(k)?.checked_div(near.checked_mul(near)?)?;
+            let le = light.location.diff(eye)?;
+            let mut curvature = S::ZERO;
+            for (step, size) in steps.iter().zip(sizes) {
+                let beta1 = n.dot(*step)?;
+                let a1 = le.scale(beta1)?.diff(step.scale(c0)?)?;
+                let a = a1.dot(a1)?.checked_sqrt()?.checked_div(beta)?;
+                let b = beta1.abs().checked_div(beta)?;
+                let an = a.checked_div(near)?;
+                let p = an.checked_add(b)?.checked_mul_int(2)?;
+                let q = an
+                    .checked_mul(an)?
+                    .checked_mul_int(2)?
+                    .checked_add(an.checked_mul(b)?.checked_mul_int(8)?)?
+                    .checked_add(b.checked_mul(b)?.checked_mul_int(6)?)?;
+                let second = p.checked_mul(p)?.checked_mul_int(2)?.checked_add(q)?;
+                // Each rounding above is at most a DELTA: a few more keep the bound one.
+                let second = second.checked_add(S::DELTA.checked_mul_int(4)?)?;
+                curvature = curvature.checked_add(size.checked_mul(second)?)?;
+            }
+            let stray = f.checked_mul(curvature)?;
+            for (((e, t), c), d) in error
+                .iter_mut()
+                .zip(top.iter_mut())
+                .zip(light.emissivity)
+                .zip(diffuse)
+            {
+                let weight = c.abs().checked_mul(d)?;
+                *e = e.checked_add(weight.checked_mul(stray)?)?;
+                *t = t.checked_add(weight.checked_mul(f)?)?;
             }
         }
-        Some(spread)
+        if top.iter().any(|t| *t >= k) {
+            return None;
+        }
+        Some(error)
     }
 }
 
-/// The larger per-channel diffuse of an object's materials (a tiled plane has two, and
-/// which one a block's tile has is not kept).
-fn diffuse_bound<S: Scalar>(scene: &SceneView<'_, S>, o: &crate::Object<S>) -> Option<[S; 3]> {
-    let mut d = scene
-        .materials
-        .get(usize::from(o.material))?
-        .diffuse
-        .map(S::abs);
+/// The fill of a block of tiled plane `object` whose corners (at `points`, in `tiles`)
+/// lie in at most two tiles along each axis, under the lights `lit` (lit everywhere in
+/// the block; the others light none of it), over columns `x` and rows `y`.
+fn tiles_fill<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    object: u8,
+    (points, tiles): (&[Vec3<S>; 4], &[(i32, i32); 4]),
+    lit: [bool; LIGHTS],
+    (x, y): ((u16, u16), (u16, u16)),
+) -> Option<Fill<S>> {
+    let o = scene.objects.get(usize::from(object))?;
+    let Shape::Tiled {
+        frame,
+        alt,
+        tiling: Tiling::Frame,
+    } = &o.shape
+    else {
+        return None;
+    };
+    let first = (
+        tiles.iter().map(|t| t.0).min()?,
+        tiles.iter().map(|t| t.1).min()?,
+    );
+    let last = (
+        tiles.iter().map(|t| t.0).max()?,
+        tiles.iter().map(|t| t.1).max()?,
+    );
+    if last.0 - first.0 > 1 || last.1 - first.1 > 1 {
+        return None;
+    }
+    let camera = &scene.camera;
+    let eye = camera.viewpoint;
+    let n = frame.plane().normal();
+    let at = [(x.0, y.0), (x.1, y.0), (x.0, y.1), (x.1, y.1)];
+    let mut beta = [S::ZERO; 4];
+    for (b, (c, r)) in beta.iter_mut().zip(at) {
+        let d = Vec3::new(camera.screen_x(c)?, camera.screen_y(r)?, S::ZERO).diff(eye)?;
+        *b = n.dot(d)?;
+    }
+    let negative = beta[0] < S::ZERO;
+    if beta
+        .iter()
+        .any(|b| (*b < S::ZERO) != negative || *b == S::ZERO)
+    {
+        return None;
+    }
+    let size = frame.size();
+    let mut edges = [None; 2];
+    for (axis, edge) in edges.iter_mut().enumerate() {
+        let (lo, hi) = if axis == 0 {
+            (first.0, last.0)
+        } else {
+            (first.1, last.1)
+        };
+        if lo == hi {
+            continue;
+        }
+        let bound = size[axis].checked_mul(S::from_i32(hi)?)?;
+        let mut values = [S::ZERO; 4];
+        for ((v, p), b) in values.iter_mut().zip(points).zip(beta) {
+            let (a, c) = frame.coords(*p)?;
+            let coord = if axis == 0 { a } else { c };
+            *v = coord.checked_sub(bound)?.checked_mul(b)?;
+        }
+        *edge = Some(values);
+    }
+    let own = scene.materials.get(usize::from(o.material))?;
+    let other = scene.materials.get(usize::from(*alt))?;
+    let mut colors = [[Rgb888::new(0, 0, 0); 4]; 2];
+    for (material, out) in [own, other].into_iter().zip(colors.iter_mut()) {
+        for (slot, p) in out.iter_mut().zip(points) {
+            let mut c = material.ambient;
+            for (light, _) in scene.lights.iter().zip(lit).filter(|(_, l)| *l) {
+                let l = light.location.diff(*p)?;
+                let f = n
+                    .dot(l)?
+                    .abs()
+                    .checked_mul(S::from_i32(255)?)?
+                    .checked_div(l.dot(l)?)?;
+                for ((c, e), d) in c.iter_mut().zip(light.emissivity).zip(material.diffuse) {
+                    *c = c.checked_add(e.checked_mul(d)?.checked_mul(f)?)?;
+                }
+            }
+            *slot = to_pixel(scene.rules, c);
+        }
+    }
+    Some(Fill::Tiles(Tiles {
+        colors,
+        edges,
+        first,
+        negative,
+    }))
+}
+
+/// The larger per-channel diffuse and ambient of an object's materials (a tiled plane
+/// has two).
+fn materials_bound<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    o: &crate::Object<S>,
+) -> Option<([S; 3], [S; 3])> {
+    let first = scene.materials.get(usize::from(o.material))?;
+    let (mut d, mut a) = (first.diffuse.map(S::abs), first.ambient.map(S::abs));
     if let Shape::Tiled { alt, .. } = o.shape {
-        let a = scene.materials.get(usize::from(alt))?;
-        for (x, y) in d.iter_mut().zip(a.diffuse) {
+        let alt = scene.materials.get(usize::from(alt))?;
+        for (x, y) in d.iter_mut().zip(alt.diffuse) {
+            *x = x.max(y.abs());
+        }
+        for (x, y) in a.iter_mut().zip(alt.ambient) {
             *x = x.max(y.abs());
         }
     }
-    Some(d)
+    Some((d, a))
 }
 
 /// The squared distance from `c` to the segment from `a` to `a + v`.
@@ -447,17 +636,22 @@ fn distance_sq_to_segment<S: Scalar>(c: Vec3<S>, a: Vec3<S>, v: Vec3<S>) -> Opti
     d.dot(d)
 }
 
+/// The most runs of traced blocks a band's rows are drawn with at once (more are drawn in
+/// turns).
+const RUNS: usize = 32;
+
 /// Draws rows `rows` (inside one band of the sampler's blocks) over columns `columns` of
 /// a sampled frame into `out` (`out[(r − rows.start)·stride + (x − columns.start)]`):
 /// certified blocks filled from their corners, the others by `exact` (the frame's
-/// kernel: row, columns, the slice they go to). Returns how many pixels were filled.
+/// kernel: a row, its runs of columns, and the row's slice of `out`, whose first pixel is
+/// column `columns.start`). Returns how many pixels were filled.
 pub(crate) fn sampled_rows<S: Scalar, C: From<Rgb888>>(
     scene: &SceneView<'_, S>,
     shading: Shading,
     sampler: &Sampler<S>,
     (rows, columns): (Range<u16>, Range<u16>),
     (out, stride): (&mut [C], usize),
-    exact: &mut impl FnMut(u16, Range<u16>, &mut [C]),
+    exact: &mut impl FnMut(u16, &[Range<u16>], &mut [C]),
 ) -> usize {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let b = sampler.size;
@@ -471,74 +665,87 @@ pub(crate) fn sampled_rows<S: Scalar, C: From<Rgb888>>(
     let band = top..top.saturating_add(b).min(h);
     let rows = rows.start..rows.end.min(band.end);
     let trace = |x: u16, y: u16| corner(scene, shading, x, y);
-    let mut x0 = columns.start / b * b;
-    let mut left = (trace(x0, top), trace(x0, bottom));
-    let mut pending: Option<u16> = None;
-    let mut flush = |from: u16, to: u16, out: &mut [C]| {
-        let (from, to) = (from.max(columns.start), to.min(end));
-        if from >= to {
+    // The traced blocks' runs of columns, drawn row by row when the list is full and at
+    // the end.
+    let mut runs: Vec<Range<u16>, RUNS> = Vec::new();
+    let mut draw = |runs: &mut Vec<Range<u16>, RUNS>, out: &mut [C]| {
+        if runs.is_empty() {
             return;
         }
         for r in rows.clone() {
-            let at = usize::from(r - rows.start) * stride + usize::from(from - columns.start);
-            if let Some(slot) = out.get_mut(at..at + usize::from(to - from)) {
-                exact(r, from..to, slot);
+            let at = usize::from(r - rows.start) * stride;
+            if let Some(line) = out.get_mut(at..) {
+                exact(r, runs, line);
             }
         }
+        runs.clear();
     };
+    let mut x0 = columns.start / b * b;
+    let mut left = (trace(x0, top), trace(x0, bottom));
     while x0 < end {
         let x1 = x0.saturating_add(b).min(w - 1);
         let right = (trace(x1, top), trace(x1, bottom));
         let corners = [&left.0, &right.0, &left.1, &right.1];
         let next = x0.saturating_add(b).min(w);
-        if sampler.certifies(scene, corners, (x0, x1), (top, bottom)) {
-            if let Some(from) = pending.take() {
-                flush(from, x0, out);
-            }
-            let span = x0.max(columns.start)..next.min(end);
+        let span = x0.max(columns.start)..next.min(end);
+        if let Some(how) = sampler.certifies(scene, corners, (x0, x1), (top, bottom)) {
             filled += rows.len() * span.len();
             fill(
-                (corners.map(|c| c.color), (x0, x1), (top, bottom)),
+                (&how, (x0, x1), (top, bottom)),
                 (rows.clone(), span),
                 (out, stride, (rows.start, columns.start)),
             );
-        } else if pending.is_none() {
-            pending = Some(x0);
+        } else {
+            match runs.last_mut() {
+                Some(run) if run.end == span.start => run.end = span.end,
+                _ => {
+                    if runs.is_full() {
+                        draw(&mut runs, out);
+                    }
+                    let _ = runs.push(span);
+                }
+            }
         }
         left = right;
         x0 = next;
     }
-    if let Some(from) = pending {
-        flush(from, end, out);
-    }
+    draw(&mut runs, out);
     filled
 }
 
-/// Fills the pixels `rows × columns` of a block by bilinear interpolation of its corner
-/// colours (top left, top right, bottom left, bottom right at columns `x` and rows `y`),
-/// each channel rounded to nearest.
-fn fill<C: From<Rgb888>>(
-    (colors, x, y): ([Rgb888; 4], (u16, u16), (u16, u16)),
+/// Fills the pixels `rows × columns` of a block over columns `x` and rows `y` (its
+/// corners') as `how` says: each pixel the bilinear interpolation of four corner colours
+/// (rounded to nearest), in a tiled block those of the pixel's tile's material.
+fn fill<S: Scalar, C: From<Rgb888>>(
+    (how, x, y): (&Fill<S>, (u16, u16), (u16, u16)),
     (rows, columns): (Range<u16>, Range<u16>),
     (out, stride, origin): (&mut [C], usize, (u16, u16)),
 ) {
     use embedded_graphics_core::pixelcolor::RgbColor;
     let w = u32::from(x.1 - x.0).max(1);
     let h = u32::from(y.1 - y.0).max(1);
-    let channels = |c: Rgb888| [u32::from(c.r()), u32::from(c.g()), u32::from(c.b())];
-    let [c00, c10, c01, c11] = colors.map(channels);
     let area = w * h;
+    let channels = |c: Rgb888| [u32::from(c.r()), u32::from(c.g()), u32::from(c.b())];
+    let (smooth, tiles) = match how {
+        Fill::Smooth(colors) => (colors.map(channels), None),
+        Fill::Tiles(t) => (
+            t.colors[0].map(channels),
+            Some((t, t.colors[1].map(channels))),
+        ),
+    };
     for r in rows {
         let v = u32::from(r - y.0).min(h);
         let row = usize::from(r - origin.0) * stride;
         for col in columns.clone() {
             let u = u32::from(col - x.0).min(w);
+            let weights = [(w - u) * (h - v), u * (h - v), (w - u) * v, u * v];
+            let corners = match &tiles {
+                Some((t, other)) if odd_tile(t, weights) => other,
+                _ => &smooth,
+            };
             let mut c = [0u8; 3];
             for (i, slot) in c.iter_mut().enumerate() {
-                let sum = c00[i] * (w - u) * (h - v)
-                    + c10[i] * u * (h - v)
-                    + c01[i] * (w - u) * v
-                    + c11[i] * u * v;
+                let sum: u32 = corners.iter().zip(weights).map(|(k, wt)| k[i] * wt).sum();
                 *slot = u8::try_from((sum + area / 2) / area).unwrap_or(u8::MAX);
             }
             if let Some(p) = out.get_mut(row + usize::from(col - origin.1)) {
@@ -546,4 +753,35 @@ fn fill<C: From<Rgb888>>(
             }
         }
     }
+}
+
+/// Whether the pixel with these corner weights lies on an odd tile of the block's tiled
+/// plane: on each axis the block crosses, the side of the edge's line its interpolated
+/// `(a − A)·β` gives (exact for a function affine on the screen).
+fn odd_tile<S: Scalar>(t: &Tiles<S>, weights: [u32; 4]) -> bool {
+    let mut tile = [t.first.0, t.first.1];
+    for (index, edge) in tile.iter_mut().zip(t.edges) {
+        let Some(values) = edge else {
+            continue;
+        };
+        let mut sum = S::ZERO;
+        for (v, wt) in values.iter().zip(weights) {
+            let term = i32::try_from(wt).ok().and_then(|wt| v.checked_mul_int(wt));
+            sum = match term.and_then(|term| sum.checked_add(term)) {
+                Some(s) => s,
+                None => return false,
+            };
+        }
+        // `a ≥ A` (the upper tile, as `floor` puts a point on the edge): `(a − A)·β`
+        // has `β`'s sign there, or is zero.
+        let upper = if t.negative {
+            sum <= S::ZERO
+        } else {
+            sum >= S::ZERO
+        };
+        if upper {
+            *index += 1;
+        }
+    }
+    (tile[0].wrapping_add(tile[1])) & 1 == 1
 }

@@ -200,6 +200,19 @@ impl<S: Scalar, T: Stages> Iterator for Pixels<'_, S, T> {
 }
 
 impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
+    /// Goes on with columns `columns` of the same row (after the ones drawn so far), as a
+    /// whole scanline reaches them ([`Primary::row_resumed`]): the row's plane and lean
+    /// part are kept, the stepping resumes there.
+    pub(crate) fn resume_at(&mut self, columns: core::ops::Range<u16>) {
+        self.run_at = self.run_len;
+        match self.p.row_resumed(self.scene, self.row, columns.start) {
+            Some(r) => (self.state, self.valid) = (r, true),
+            None => self.valid = false,
+        }
+        (self.fresh, self.stale) = (true, false);
+        self.columns = columns;
+    }
+
     /// The pixel at `column` (the next of the row's columns).
     #[inline(never)]
     fn pixel(&mut self, column: u16) -> Rgb888 {
