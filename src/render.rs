@@ -29,7 +29,7 @@ use embedded_graphics_core::primitives::Rectangle;
 
 use crate::kernel::KernelStages;
 use crate::kernel::flat::PlaneMode;
-use crate::kernel::sampling::{Sampler, Sampling, sampled_rows, sampler};
+use crate::kernel::sampling::{Kept, Sampler, Sampling, sampled_rows, sampler};
 use crate::kernel::{self, Drawing, KernelKind, RowSink};
 use crate::shade::stages::{Shading, shading_for, stage, with_stages};
 use crate::stats::Counters;
@@ -341,11 +341,11 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
             let stride = line.len();
             sampled_rows(
                 &self.scene,
-                self.shading,
                 sampler,
                 (row..row + 1, 0..n),
                 (line, stride),
                 &mut |r, runs: &[Range<u16>], line: &mut [C]| self.exact_runs(r, runs, line, 0),
+                None,
             );
             return;
         }
@@ -372,6 +372,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
         let width = usize::from(self.scene.camera.width);
         let end = rows.end.min(self.scene.camera.height);
         let band = self.sampler.as_ref().map_or(1, Sampler::size);
+        let mut kept = Kept::default();
         let mut row = rows.start;
         while row < end {
             let next = (row / band + 1).saturating_mul(band).min(end);
@@ -383,13 +384,13 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                 Some(sampler) => {
                     filled += sampled_rows(
                         &self.scene,
-                        self.shading,
                         sampler,
                         (row..next, 0..self.scene.camera.width),
                         (slice, width),
                         &mut |r, runs: &[Range<u16>], line: &mut [C]| {
                             self.exact_runs(r, runs, line, 0)
                         },
+                        Some(&mut kept),
                     )
                 }
                 None => {
@@ -417,13 +418,13 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                 let stride = out.len();
                 sampled_rows(
                     &self.scene,
-                    self.shading,
                     sampler,
                     (row..row + 1, columns.clone()),
                     (out, stride),
                     &mut |r, runs: &[Range<u16>], line: &mut [C]| {
                         self.exact_runs(r, runs, line, columns.start)
                     },
+                    None,
                 );
             }
             Some(_) => {}

@@ -1,0 +1,142 @@
+//! A block's corners: each traced to its nearest hit, what it sees there (its plane,
+//! tile and occluders per light) and its colour by the diffuse model the certificates
+//! bound.
+
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+use super::{FACES_AWAY, LIGHTS};
+use crate::geometry::{Tiling, surface_tolerance};
+use crate::shade::color::to_pixel;
+use crate::shade::nearest;
+use crate::shade::rules::Fixray;
+use crate::{Scalar, SceneView, Shape, Vec3};
+
+/// What a block's corner sees.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Sees<S> {
+    /// Something no certificate covers (a sphere, a ray that cannot be formed).
+    Other,
+    /// Nothing: the background.
+    Background,
+    /// An infinite plane.
+    Plane {
+        object: u8,
+        tile: (i32, i32),
+        point: Vec3<S>,
+        /// Per light: the occluders between the point and the light (bit `k`: object
+        /// `k`), or [`FACES_AWAY`].
+        shadows: [u32; LIGHTS],
+    },
+}
+
+/// A traced corner: its colour and what it sees.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Corner<S> {
+    pub(super) color: Rgb888,
+    pub(super) sees: Sees<S>,
+}
+
+/// Pixel (`column`, `row`): its primary ray's nearest hit on the reference path (the
+/// definition's normalised ray), what it sees there and, on a plane, its colour by the
+/// diffuse model the certificates bound ([`plane_color`]).
+pub(super) fn corner<S: Scalar>(scene: &SceneView<'_, S>, column: u16, row: u16) -> Corner<S> {
+    let other = Corner {
+        color: Rgb888::new(0, 0, 0),
+        sees: Sees::Other,
+    };
+    let Some(ray) = scene.camera.primary_ray(column, row) else {
+        return other;
+    };
+    match nearest::<S, Fixray>(scene, &ray, None) {
+        None => Corner {
+            color: to_pixel(scene.rules, scene.background),
+            sees: Sees::Background,
+        },
+        Some((index, hit)) => plane_seen(scene, index, hit).unwrap_or(other),
+    }
+}
+
+/// A corner whose ray met `objects[index]` at `hit`, if it is a plane: its tile, its
+/// occluders per light, and its colour.
+fn plane_seen<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    index: usize,
+    hit: crate::Hit<S>,
+) -> Option<Corner<S>> {
+    let object = scene.objects.get(index)?;
+    let (tile, material) = match &object.shape {
+        Shape::Plane(_) => ((0, 0), object.material),
+        Shape::Tiled { frame, tiling, alt } => {
+            let tile = match tiling {
+                Tiling::Frame => frame.tile(hit.point)?,
+                Tiling::WorldXz => frame.tile_world_xz(hit.point)?,
+            };
+            let odd = (tile.0.wrapping_add(tile.1)) & 1 == 1;
+            (tile, if odd { *alt } else { object.material })
+        }
+        _ => return None,
+    };
+    let plane = object.shape.plane()?;
+    let point = hit.point;
+    // The side the eye sees: a light lights the point only from that side.
+    let eye_side = plane.normal().dot(scene.camera.viewpoint.diff(point)?)?;
+    let tol = surface_tolerance(hit.t, point.max_abs())?;
+    let mut shadows = [0; LIGHTS];
+    for (state, light) in shadows.iter_mut().zip(scene.lights) {
+        let l = light.location.diff(point)?;
+        let nl = plane.normal().dot(l)?;
+        if nl == S::ZERO || (nl > S::ZERO) != (eye_side > S::ZERO) {
+            *state = FACES_AWAY;
+            continue;
+        }
+        let ll = l.dot(l)?;
+        for (k, o) in scene.objects.iter().enumerate() {
+            if k != index && o.shape.meets_segment(point, l, ll, tol, scene.epsilon) {
+                *state |= 1 << k;
+            }
+        }
+    }
+    let lit = shadows.map(|s| s == 0);
+    let color = plane_color(
+        scene,
+        plane,
+        scene.materials.get(usize::from(material))?,
+        point,
+        lit,
+    )?;
+    Some(Corner {
+        color,
+        sees: Sees::Plane {
+            object: u8::try_from(index).ok()?,
+            tile,
+            point,
+            shadows,
+        },
+    })
+}
+
+/// The colour of `material` at `point` on `plane` under the lights `lit`: its ambient
+/// plus each light's `emissivity · diffuse · 255·|N·L|/|L|²` (the crate's diffuse model,
+/// each term rounded in its own order: within a level of the kernels' pixel).
+pub(super) fn plane_color<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    plane: &crate::geometry::Plane<S>,
+    material: &crate::Material<S>,
+    point: Vec3<S>,
+    lit: [bool; LIGHTS],
+) -> Option<Rgb888> {
+    let mut c = material.ambient;
+    for (light, _) in scene.lights.iter().zip(lit).filter(|(_, l)| *l) {
+        let l = light.location.diff(point)?;
+        let k = plane
+            .normal()
+            .dot(l)?
+            .abs()
+            .checked_mul(S::from_i32(255)?)?;
+        let f = k.checked_div(l.dot(l)?)?;
+        for ((c, e), d) in c.iter_mut().zip(light.emissivity).zip(material.diffuse) {
+            *c = c.checked_add(e.checked_mul(d)?.checked_mul(f)?)?;
+        }
+    }
+    Some(to_pixel(scene.rules, c))
+}
