@@ -1,7 +1,9 @@
-//! Animation: a scene's sphere moved along a bounce path, frame by frame, in the scene
-//! itself (no re-parsing), so that a chip draws a moving ball from one parsed scene.
+//! Animation: a scene's sphere moved along a bounce path, and the camera carried round
+//! it, frame by frame, in the scene itself (no re-parsing), so that a chip draws a moving
+//! ball from one parsed scene.
 //!
-//! A [`Bounce`] moves the first sphere of a scene. Frame `k` of `n` places its centre at
+//! An [`Orbit`] turns the whole scene about a vertical axis (see its documentation). A
+//! [`Bounce`] moves the first sphere of a scene. Frame `k` of `n` places its centre at
 //!
 //! ```text
 //! x = x₀ + sway · (1 − |2k − n| / n)              out and back once per loop
@@ -53,6 +55,8 @@ pub enum AnimError {
     NotASphere,
     /// A centre on the path does not fit the number format.
     OutOfRange,
+    /// An orbit cannot turn this kind of object or light ([`Orbit::apply`]).
+    CannotTurn,
 }
 
 impl fmt::Display for AnimError {
@@ -61,7 +65,10 @@ impl fmt::Display for AnimError {
             AnimError::NoSphere => "the scene has no sphere to bounce",
             AnimError::BadFrames => "a bounce needs 1 to 1024 frames and at least one bounce",
             AnimError::NotASphere => "the bounced object is not a sphere in this scene",
-            AnimError::OutOfRange => "the bounce path leaves the number format's range",
+            AnimError::OutOfRange => "the animation's path leaves the number format's range",
+            AnimError::CannotTurn => {
+                "an orbit turns only infinite planes, spheres, point lights and spotlights"
+            }
         })
     }
 }
@@ -208,6 +215,194 @@ impl<S: Scalar> Bounce<S> {
     }
 }
 
+/// The camera circling a point: the scene turned about the vertical axis through
+/// `pivot`, frame by frame, which is what the eye sees from a camera carried round it
+/// the other way (the camera of the scene language looks along −z through a window at
+/// z = 0; turning the world keeps that camera and turns everything it sees).
+///
+/// Frame `k` of `n` turns by the angle `θ` with `tan(θ/2) = swing · s(k)`, where `s` runs
+/// 0 → 1 → 0 → −1 → 0 over the loop (linear between), so the camera swings to one
+/// side, back, to the other and back. The turn is `cos θ = (1 − t²)/(1 + t²)`, `sin θ
+/// = 2t/(1 + t²)` for `t = tan(θ/2)`: two divisions a frame, no trigonometry, the same
+/// operations on a host and on a chip. Every object's geometry and every light's place
+/// (and a spotlight's axis) turn; a plane's normal and tiles turn with it.
+///
+/// Each frame turns a scene as parsed (with a [`Bounce`] applied first, for the
+/// bouncing ball seen from the circling camera), not the frame before: turns do not
+/// accumulate roundings.
+///
+/// ```
+/// use fixray::anim::{Bounce, Orbit};
+/// use fixray::{Frame, KernelKind, Scene, I16F16};
+///
+/// let base = Scene::<I16F16>::parse(include_str!("../scenes/boing.scene"))?;
+/// let (bounce, orbit) = (Bounce::boing(&base.objects)?, Orbit::boing(&base.objects)?);
+/// let mut scene = base.clone();
+/// bounce.apply(&mut scene, 5)?;
+/// orbit.apply(&mut scene, 5)?;
+/// // The back wall no longer faces the camera square on: the fast kernel draws it.
+/// assert_eq!(Frame::<_>::new(&scene).kernel(), KernelKind::Fast);
+/// orbit.apply(&mut scene, 0)?; // frame 0 does not turn
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Orbit<S> {
+    pivot: Vec3<S>,
+    swing: S,
+    frames: u16,
+}
+
+impl<S: Scalar> Orbit<S> {
+    /// An orbit about the vertical axis through `pivot` whose largest turn has
+    /// `tan(θ/2) = swing`, over a loop of `frames` frames.
+    ///
+    /// # Errors
+    /// [`AnimError::BadFrames`] for 0 or more than [`Bounce::MAX_FRAMES`] frames,
+    /// [`AnimError::OutOfRange`] when a turn does not fit the format.
+    pub fn new(pivot: Vec3<S>, swing: S, frames: u16) -> Result<Self, AnimError> {
+        if frames == 0 || frames > Bounce::<S>::MAX_FRAMES {
+            return Err(AnimError::BadFrames);
+        }
+        let orbit = Self {
+            pivot,
+            swing,
+            frames,
+        };
+        for k in 0..frames {
+            orbit.turn(k)?;
+        }
+        Ok(orbit)
+    }
+
+    /// The boing ball's orbit: about the vertical axis through the first sphere's place
+    /// at rest, 16 frames, turns of up to 2·atan(3/8) ≈ 41°.
+    ///
+    /// # Errors
+    /// [`AnimError::NoSphere`] without a sphere; as [`Orbit::new`].
+    pub fn boing(objects: &[Object<S>]) -> Result<Self, AnimError> {
+        let pivot = objects
+            .iter()
+            .find_map(|o| match o.shape {
+                Shape::Sphere(s) => Some(s.center()),
+                _ => None,
+            })
+            .ok_or(AnimError::NoSphere)?;
+        let swing = S::ONE.mul_ratio(3, 8).ok_or(AnimError::OutOfRange)?;
+        Self::new(pivot, swing, 16)
+    }
+
+    /// Frames per loop.
+    pub fn frames(&self) -> u16 {
+        self.frames
+    }
+
+    /// `(cos θ, sin θ)` of frame `frame`'s turn (taken modulo the loop).
+    ///
+    /// # Errors
+    /// [`AnimError::OutOfRange`] when it does not fit the format.
+    pub fn turn(&self, frame: u16) -> Result<(S, S), AnimError> {
+        let n = i32::from(self.frames);
+        let k = i32::from(frame % self.frames);
+        // s(k)·n/4 as an integer ratio: 0 → n/4 → 0 → −n/4 → 0.
+        let q = 4 * k;
+        let s = if q <= n {
+            q
+        } else if q <= 3 * n {
+            2 * n - q
+        } else {
+            q - 4 * n
+        };
+        let turn = || -> Option<(S, S)> {
+            let t = self.swing.mul_ratio(s, n)?;
+            let tt = t.checked_mul(t)?;
+            let den = S::ONE.checked_add(tt)?;
+            let cos = S::ONE.checked_sub(tt)?.checked_div(den)?;
+            let sin = t.checked_mul_int(2)?.checked_div(den)?;
+            Some((cos, sin))
+        };
+        turn().ok_or(AnimError::OutOfRange)
+    }
+
+    /// Turns every object and light of `scene` by frame `frame`'s turn (see the type's
+    /// documentation: apply it to a scene as parsed, not to the frame before).
+    ///
+    /// # Errors
+    /// [`AnimError::CannotTurn`] for a finite plane, a textured plane, a triangle, a
+    /// surface of revolution or a projector (only infinite planes, tiled or not,
+    /// spheres, point lights and spotlights turn); [`AnimError::OutOfRange`] when a
+    /// turned quantity does not fit the format. On an error the scene may be part
+    /// turned.
+    #[inline(never)]
+    pub fn apply<const O: usize, const M: usize, const L: usize>(
+        &self,
+        scene: &mut Scene<S, O, M, L>,
+        frame: u16,
+    ) -> Result<(), AnimError> {
+        let (cos, sin) = self.turn(frame)?;
+        let about = |p: Vec3<S>| self.turned(p, cos, sin, true);
+        let along = |v: Vec3<S>| self.turned(v, cos, sin, false);
+        for object in scene.objects.iter_mut() {
+            object.shape = match object.shape {
+                Shape::Sphere(s) => Shape::Sphere(
+                    Sphere::new(about(s.center())?, s.radius())
+                        .map_err(|_| AnimError::OutOfRange)?,
+                ),
+                Shape::Plane(p) => {
+                    let normal = along(p.normal())?;
+                    let point = about(p.normal().scale(p.offset()).ok_or(AnimError::OutOfRange)?)?;
+                    Shape::Plane(
+                        crate::Plane::new(normal, point).map_err(|_| AnimError::OutOfRange)?,
+                    )
+                }
+                Shape::Tiled { frame, alt, tiling } => {
+                    let turned = crate::PlaneFrame::new(
+                        along(frame.plane().normal())?,
+                        about(frame.corner())?,
+                        along(frame.u())?,
+                        frame.size(),
+                    )
+                    .map_err(|_| AnimError::OutOfRange)?;
+                    Shape::Tiled {
+                        frame: turned,
+                        alt,
+                        tiling,
+                    }
+                }
+                Shape::Finite(_) | Shape::Textured(_) | Shape::Triangle(_) | Shape::Revsurf(_) => {
+                    return Err(AnimError::CannotTurn);
+                }
+            };
+        }
+        for light in scene.lights.iter_mut() {
+            light.location = about(light.location)?;
+            match &mut light.beam {
+                crate::scene::Beam::Everywhere => {}
+                crate::scene::Beam::Cone(cone) => cone.axis = along(cone.axis)?,
+                crate::scene::Beam::Projector(_) => return Err(AnimError::CannotTurn),
+            }
+        }
+        Ok(())
+    }
+
+    /// `v` turned about the vertical axis through the pivot (`point`) or about the y
+    /// axis (a direction): `x' = c + (x − c) cos θ − (z − c) sin θ`, `z' = c + (x −
+    /// c) sin θ + (z − c) cos θ`.
+    fn turned(&self, v: Vec3<S>, cos: S, sin: S, point: bool) -> Result<Vec3<S>, AnimError> {
+        let (cx, cz) = if point {
+            (self.pivot.x, self.pivot.z)
+        } else {
+            (S::ZERO, S::ZERO)
+        };
+        let turn = || -> Option<Vec3<S>> {
+            let (dx, dz) = (v.x.checked_sub(cx)?, v.z.checked_sub(cz)?);
+            let x = dx.checked_mul(cos)?.checked_sub(dz.checked_mul(sin)?)?;
+            let z = dx.checked_mul(sin)?.checked_add(dz.checked_mul(cos)?)?;
+            Some(Vec3::new(x.checked_add(cx)?, v.y, z.checked_add(cz)?))
+        };
+        turn().ok_or(AnimError::OutOfRange)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -280,5 +475,69 @@ mod tests {
         assert_eq!(b.apply(&mut scene, 3), Err(AnimError::NotASphere));
         scene.objects.clear();
         assert_eq!(b.apply(&mut scene, 3), Err(AnimError::NotASphere));
+    }
+
+    /// The orbit: no turn in frame 0 and halfway, turns of opposite signs a quarter and
+    /// three quarters of the way, the loop closes, and a turned scene keeps its
+    /// distances (a sphere's from the pivot, a light's height) within a few DELTAs.
+    #[test]
+    fn the_camera_swings_round_and_back() {
+        fn check<S: Scalar>() {
+            let base = Scene::<S>::parse(include_str!("../scenes/boing.scene")).unwrap();
+            let orbit = Orbit::boing(&base.objects).unwrap();
+            assert_eq!(orbit.turn(0).unwrap(), (S::ONE, S::ZERO));
+            assert_eq!(orbit.turn(8).unwrap(), (S::ONE, S::ZERO));
+            let (c4, s4) = orbit.turn(4).unwrap();
+            let (c12, s12) = orbit.turn(12).unwrap();
+            assert_eq!((c4, s4), (c12, s12.checked_neg().unwrap()), "{}", S::NAME);
+            // tan(θ/2) = 3/8: cos θ = 55/73, sin θ = 48/73.
+            assert!((c4.to_f64() - 55.0 / 73.0).abs() < 1e-3, "{}", S::NAME);
+            assert!((s4.to_f64() - 48.0 / 73.0).abs() < 1e-3, "{}", S::NAME);
+            assert_eq!(orbit.turn(16).unwrap(), orbit.turn(0).unwrap());
+            let mut same = base.clone();
+            orbit.apply(&mut same, 0).unwrap();
+            assert_eq!(
+                same.objects,
+                base.objects,
+                "{}: frame 0 turns nothing",
+                S::NAME
+            );
+            let mut turned = base.clone();
+            orbit.apply(&mut turned, 4).unwrap();
+            let Shape::Sphere(ball) = turned.objects[2].shape else {
+                panic!("the ball")
+            };
+            let Shape::Sphere(rest) = base.objects[2].shape else {
+                panic!("the ball")
+            };
+            // The pivot is the ball at rest: it stays where it was.
+            let (a, b) = (ball.center().to_f64(), rest.center().to_f64());
+            assert!((0..3).all(|i| (a[i] - b[i]).abs() < 1e-3), "{}", S::NAME);
+            let light = |s: &Scene<S>| s.lights[0].location.to_f64();
+            let (l, m) = (light(&turned), light(&base));
+            assert_eq!(l[1], m[1], "{}: a light keeps its height", S::NAME);
+            let r = |p: [f64; 3]| ((p[0] - b[0]).powi(2) + (p[2] - b[2]).powi(2)).sqrt();
+            assert!((r(l) - r(m)).abs() < 1e-3, "{}: and its distance", S::NAME);
+            assert_ne!(turned.objects, base.objects);
+        }
+        check::<I16F16>();
+        check::<I32F32>();
+        check::<f32>();
+        check::<f64>();
+    }
+
+    #[test]
+    fn an_orbit_refuses_what_it_cannot_turn() {
+        let base = Scene::<I16F16>::parse(include_str!("../scenes/boing.scene")).unwrap();
+        let orbit = Orbit::boing(&base.objects).unwrap();
+        let pivot = Vec3::new(I16F16::ZERO, I16F16::ZERO, I16F16::ZERO);
+        assert_eq!(Orbit::new(pivot, I16F16::ONE, 0), Err(AnimError::BadFrames));
+        assert_eq!(
+            Orbit::new(pivot, I16F16::MAX, 16),
+            Err(AnimError::OutOfRange)
+        );
+        assert_eq!(Orbit::boing(&base.objects[..2]), Err(AnimError::NoSphere));
+        let mut tiles = Scene::<I16F16>::parse(include_str!("../scenes/tiles.scene")).unwrap();
+        assert_eq!(orbit.apply(&mut tiles, 3), Err(AnimError::CannotTurn));
     }
 }

@@ -127,6 +127,16 @@ impl<S: Scalar> PlaneFrame<S> {
         self.size
     }
 
+    /// The corner the plane coordinates start from (the scene's `point`).
+    pub fn corner(&self) -> Vec3<S> {
+        self.corner
+    }
+
+    /// The unit direction `u` of the first plane coordinate (`xdir` in the plane).
+    pub fn u(&self) -> Vec3<S> {
+        self.u
+    }
+
     /// The plane coordinates `(a, b)` of a point.
     pub fn coords(&self, p: Vec3<S>) -> Option<(S, S)> {
         let q = p.diff(self.corner)?;
