@@ -273,3 +273,158 @@ fn a_looser_bound_fills_more_blocks() {
         assert!(counts[1] > all / 2, "{size:?}: {counts:?}");
     }
 }
+
+/// PSNR (dB) of a picture against another, over the three channels.
+fn psnr(a: &[Rgb888], b: &[Rgb888]) -> f64 {
+    let se: f64 = a
+        .iter()
+        .zip(b)
+        .flat_map(|(x, y)| {
+            [
+                f64::from(x.r()) - f64::from(y.r()),
+                f64::from(x.g()) - f64::from(y.g()),
+                f64::from(x.b()) - f64::from(y.b()),
+            ]
+        })
+        .map(|d| d * d)
+        .sum();
+    let mse = se / (3 * a.len()) as f64;
+    10.0 * (255.0 * 255.0 / mse).log10()
+}
+
+/// Every frame of the ball bouncing before the circling camera, in blocks of 8 at a bound
+/// of 2 levels, against the exact frame: at most 1 % of the pixels beyond 2 levels, and a
+/// PSNR of at least 40 dB (the orbit's budget).
+fn orbit_within_budget<S: Scalar>(text: &str, step: usize) {
+    let base = Scene::<S>::parse(text).unwrap();
+    let (w, h) = (base.camera.width, base.camera.height);
+    let (bounce, orbit) = (
+        Bounce::boing(&base.objects).unwrap(),
+        fixray::anim::Orbit::boing(&base.objects).unwrap(),
+    );
+    for k in (0..orbit.frames()).step_by(step) {
+        let mut s = base.clone();
+        bounce.apply(&mut s, k).unwrap();
+        orbit.apply(&mut s, k).unwrap();
+        let exact = rows(&Frame::<S>::new(&s), w, h);
+        let frame = Frame::<S>::new(&s).with_sampling(Sampling::blocks(BlockSize::Eight, 2));
+        assert!(frame.sampled(), "{} frame {k}", S::NAME);
+        let sampled = rows(&frame, w, h);
+        let beyond = sampled
+            .iter()
+            .zip(&exact)
+            .filter(|(a, b)| {
+                a.r().abs_diff(b.r()) > 2 || a.g().abs_diff(b.g()) > 2 || a.b().abs_diff(b.b()) > 2
+            })
+            .count();
+        let share = beyond as f64 / exact.len() as f64;
+        let p = psnr(&sampled, &exact);
+        assert!(
+            share <= 0.01,
+            "{} frame {k}: {share} beyond 2 levels",
+            S::NAME
+        );
+        assert!(p >= 40.0, "{} frame {k}: PSNR {p:.1} dB", S::NAME);
+    }
+}
+
+#[test]
+fn every_orbit_frame_in_blocks_holds_the_budget() {
+    orbit_within_budget::<I16F16>(include_str!("../scenes/boing.scene"), 1);
+    orbit_within_budget::<I20F12>(include_str!("../scenes/boing.scene"), 3);
+    orbit_within_budget::<f32>(include_str!("../scenes/boing.scene"), 3);
+    orbit_within_budget::<I16F16>(include_str!("../scenes/boing-240x240.scene"), 5);
+}
+
+/// A floor under a light with a sphere far smaller than a block (2 × 2 pixels in blocks
+/// of 8), whose block's corners all see the floor, lit and clear of its shadow: every
+/// block its box meets is traced, so the sphere is drawn as the exact frame draws it,
+/// whatever the bound (without the boxes it is missed at a bound of 8).
+#[test]
+fn a_sphere_smaller_than_a_block_is_never_missed() {
+    let text = "rules fixray
+        camera c { pixeldim 64 48 worlddim 16 12 viewpoint 8 11 8 }
+        background 0 0 0.2
+        material floor { ambient 0.2 0.2 0.2 diffuse 0.6 0.6 0.6 }
+        material dot { ambient 1 0 0 }
+        light l { location 30 12 -1 emissivity 6 6 6 }
+        plane floor { material floor normal 0 1 0 point 0 0 0 }
+        sphere dot { material dot center 8.3 2 -1 radius 0.3 }";
+    let scene = Scene::<I16F16>::parse(text).unwrap();
+    let exact = rows(&Frame::<I16F16>::new(&scene), 64, 48);
+    let red = exact.iter().filter(|c| c.r() > 200 && c.g() < 50).count();
+    assert!((1..16).contains(&red), "the dot covers a few pixels: {red}");
+    for bound in [1, 8, 100] {
+        let frame =
+            Frame::<I16F16>::new(&scene).with_sampling(Sampling::blocks(BlockSize::Eight, bound));
+        let sampled = rows(&frame, 64, 48);
+        for (i, (a, b)) in sampled.iter().zip(&exact).enumerate() {
+            if b.r() > 200 && b.g() < 50 {
+                assert_eq!(a, b, "bound {bound}: the dot's pixel {i}");
+            }
+        }
+        within_bound(&sampled, &exact, 64, bound, "a small sphere");
+    }
+}
+
+/// Shadows' edges, silhouettes and a shadow far from its sphere's box: in the plain
+/// planes' room (no tiles) under two lights, with the ball low and high, every pixel
+/// within the bound of the exact frame, in blocks of every size.
+#[test]
+fn shadow_edges_and_silhouettes_are_caught() {
+    let text = include_str!("../scenes/boing.scene")
+        .replace("tiled_plane", "plane")
+        .replace(" altmaterial plum", "")
+        .replace(" xdir 1 0 0 dimension 1 1", "")
+        .replace(
+            "light lamp { location 7 9 2 emissivity 9 9 9 }",
+            "light lamp { location 7 9 2 emissivity 6 6 6 }
+             light low { location -2 3 4 emissivity 3 3 3 }",
+        );
+    let scene = Scene::<I16F16>::parse(&text).unwrap();
+    let bounce = Bounce::boing(&scene.objects).unwrap();
+    for k in [0, 4, 6] {
+        let mut s = scene.clone();
+        bounce.apply(&mut s, k).unwrap();
+        let exact = rows(&Frame::<I16F16>::new(&s), 128, 64);
+        for size in SIZES {
+            for bound in [1, 4] {
+                let frame = Frame::<I16F16>::new(&s).with_sampling(Sampling::blocks(size, bound));
+                let what = format!("frame {k}, {size:?}, bound {bound}");
+                let (worst, edges) =
+                    within_bound(&rows(&frame, 128, 64), &exact, 128, bound, &what);
+                assert_eq!(edges, 0, "{what}: no tiles here");
+                assert!(worst <= bound + 2, "{what}: {worst}");
+            }
+        }
+    }
+}
+
+/// Frames the certificates do not cover are drawn exact: a mirror (the moved ball seen
+/// in it), a glint, a light lying on a surface, the course's rules.
+#[test]
+fn frames_the_certificates_do_not_cover_are_exact() {
+    let boing = include_str!("../scenes/boing.scene");
+    let on_floor = boing.replace("location 7 9 2", "location 7 0 2");
+    let mirror = boing.replace(
+        "material pale  { ambient 0.12 0.12 0.14 diffuse 0.75 0.75 0.8 }",
+        "material pale  { ambient 0.12 0.12 0.14 diffuse 0.75 0.75 0.8 reflective 0.5 }",
+    );
+    for (name, text) in [
+        ("mirror", mirror.as_str()),
+        ("a light on the floor", on_floor.as_str()),
+        ("specular", include_str!("../scenes/specular.scene")),
+        ("course rules", include_str!("../scenes/course.scene")),
+    ] {
+        let scene = Scene::<I16F16>::parse(text).unwrap();
+        let (w, h) = (scene.camera.width, scene.camera.height);
+        let frame =
+            Frame::<I16F16>::new(&scene).with_sampling(Sampling::blocks(BlockSize::Four, 8));
+        assert!(!frame.sampled(), "{name}");
+        assert_eq!(
+            rows(&frame, w, h),
+            rows(&Frame::<I16F16>::new(&scene), w, h),
+            "{name}"
+        );
+    }
+}
