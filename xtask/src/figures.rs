@@ -1,5 +1,5 @@
-//! `cargo xtask figures [--check]`: the measured figures of `README.md` and
-//! `docs/performance.md`, written from measurements, never by hand.
+//! `cargo xtask figures [--check]`: the measured figures of `README.md` and `docs/`,
+//! written from measurements, never by hand.
 //!
 //! Each table of figures in those documents sits between `<!-- figures: NAME -->` and
 //! `<!-- end figures -->`. Its rows come from:
@@ -182,7 +182,7 @@ macro_rules! verbatim {
     };
 }
 
-const BLOCKS: [Block; 11] = [
+const BLOCKS: [Block; 12] = [
     ("README.md", "formats", formats),
     ("README.md", "sample", sample),
     ("README.md", "boing", boing),
@@ -206,6 +206,11 @@ const BLOCKS: [Block; 11] = [
         verbatim!("course-entities-report.md"),
     ),
     ("docs/course.md", "course", verbatim!("course-table.md")),
+    (
+        "docs/accuracy.md",
+        "sampling",
+        || Ok(crate::blocks::table()),
+    ),
 ];
 
 const END: &str = "<!-- end figures -->";

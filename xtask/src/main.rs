@@ -6,7 +6,7 @@
 //! cargo xtask numerics             # docs/numerics.md
 //! cargo xtask firmware [FORMATS]   # every core × format under QEMU: instructions, flash, hash
 //! cargo xtask scene-format         # docs/scene-format.md's reference tables, from the schema
-//! cargo xtask figures [--check]    # README.md's and docs/performance.md's figures, from the firmware reports
+//! cargo xtask figures [--check]    # the measured figures of README.md and docs/, from the reports and host renders
 //! ```
 
 // The test-support module's helpers, shared with the integration tests.
@@ -18,6 +18,7 @@ mod qemu;
 mod sampling;
 
 mod accuracy;
+mod blocks;
 mod figures;
 mod firmware;
 mod numerics;

@@ -198,6 +198,7 @@ pub fn main(args: &[String]) {
     let mut report = write_report(&accuracy, &host, &sweeps, &firmware, &firmware_log);
     report.push_str(&fast_section(&fast_rows, &firmware, &spans_fw));
     report.push_str(&entities::entities_section(quick));
+    report.push_str(&crate::blocks::section());
     std::fs::write(docs.join("accuracy.md"), report).expect("docs/ is writable");
     plot(&accuracy, &host, &firmware, &docs.join("accuracy.png"));
     println!("wrote docs/accuracy.md and docs/accuracy.png");
