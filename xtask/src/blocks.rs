@@ -92,8 +92,11 @@ struct Tally {
     ssim: f64,
 }
 
+/// A frame of a scene in I16F16 and in f64.
+type Pair = (Scene<I16F16>, Scene<f64>);
+
 /// Tallies every mode over the frames `scenes` (each in I16F16 and in f64).
-fn tally(frames: &[(Scene<I16F16>, Scene<f64>)]) -> Vec<Tally> {
+fn tally(frames: &[Pair]) -> Vec<Tally> {
     let mut tallies: Vec<Tally> = MODES
         .iter()
         .map(|_| Tally {
@@ -135,7 +138,7 @@ fn mode_name(mode: Sampling) -> String {
 }
 
 /// The scenes: a name and its frames (I16F16 and f64).
-fn scenes() -> Vec<(&'static str, Vec<(Scene<I16F16>, Scene<f64>)>)> {
+fn scenes() -> Vec<(&'static str, Vec<Pair>)> {
     let boing = include_str!("../../scenes/boing-240x240.scene");
     let parse = |text: &str| {
         (
@@ -143,7 +146,7 @@ fn scenes() -> Vec<(&'static str, Vec<(Scene<I16F16>, Scene<f64>)>)> {
             Scene::<f64>::parse(text).expect("a shipped scene parses"),
         )
     };
-    let animated = |orbit: bool| -> Vec<(Scene<I16F16>, Scene<f64>)> {
+    let animated = |orbit: bool| -> Vec<Pair> {
         let (a, b) = parse(boing);
         let (bounce_a, bounce_b) = (
             Bounce::boing(&a.objects).expect("the ball"),
