@@ -64,6 +64,7 @@ pub struct ReadmeDoctests;
 
 pub use kernel::KernelKind;
 pub use kernel::flat::PlaneMode;
+#[cfg(feature = "sampling")]
 pub use kernel::sampling::{BlockSize, Sampling};
 pub use num::{I16F16, I20F12, I32F32, Scalar};
 pub use render::{Changes, Frame, render, render_line};

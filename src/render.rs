@@ -20,6 +20,7 @@
 //! pixels (O(width), the caller's RAM), for drivers that want whole lines.
 
 use core::marker::PhantomData;
+#[cfg(feature = "sampling")]
 use core::ops::Range;
 
 use embedded_graphics_core::Drawable;
@@ -29,7 +30,11 @@ use embedded_graphics_core::primitives::Rectangle;
 
 use crate::kernel::KernelStages;
 use crate::kernel::flat::PlaneMode;
-use crate::kernel::sampling::{Kept, Sampler, Sampling, sampled_rows, sampler};
+#[cfg(feature = "sampling")]
+use crate::kernel::sampling::{Sampler, Sampling, sampled_rows, sampler};
+
+#[cfg(feature = "sampling")]
+mod sampled;
 use crate::kernel::{self, Drawing, KernelKind, RowSink};
 use crate::shade::stages::{Shading, shading_for, stage, with_stages};
 use crate::stats::Counters;
@@ -86,8 +91,10 @@ pub struct Frame<'a, S: Scalar, C = Rgb888> {
     shading: Shading,
     drawing: Drawing<S>,
     mode: PlaneMode,
+    #[cfg(feature = "sampling")]
     sampling: Sampling,
     /// The blocks' per-frame part, for a frame sampled in blocks (`None`: exact).
+    #[cfg(feature = "sampling")]
     sampler: Option<Sampler<S>>,
     /// The colour drawn in (no value: `fn() -> C` keeps the frame `Send` and `Sync`
     /// whatever `C` is).
@@ -115,14 +122,16 @@ impl<'a, S: Scalar, C> Frame<'a, S, C> {
             shading,
             drawing,
             mode,
+            #[cfg(feature = "sampling")]
             sampling: Sampling::Exact,
+            #[cfg(feature = "sampling")]
             sampler: None,
             color: PhantomData,
         }
     }
 
-    /// The frame drawn with `sampling` ([`Sampling::Exact`], every pixel traced, is the
-    /// default): in [`Sampling::Blocks`], blocks traced at their corners on the reference
+    /// The frame drawn with `sampling` (cargo feature `sampling`; [`Sampling::Exact`],
+    /// every pixel traced, is the default): in [`Sampling::Blocks`], blocks traced at their corners on the reference
     /// path and filled between them where a certificate holds (the same surface and tile,
     /// the same shadow state, no sphere's box, the colour's spread at most the bound),
     /// every other block drawn as the exact frame draws it. Every entry point draws the
@@ -148,6 +157,7 @@ impl<'a, S: Scalar, C> Frame<'a, S, C> {
     /// assert!(off > 0 && off < 128 * 64 / 4);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
+    #[cfg(feature = "sampling")]
     pub fn with_sampling(mut self, sampling: Sampling) -> Self {
         let plan = self.scene.plan();
         self.sampler = sampler(&self.scene, &plan, &self.drawing, sampling);
@@ -156,6 +166,7 @@ impl<'a, S: Scalar, C> Frame<'a, S, C> {
     }
 
     /// How this frame samples its pixels ([`Frame::with_sampling`]).
+    #[cfg(feature = "sampling")]
     pub fn sampling(&self) -> Sampling {
         self.sampling
     }
@@ -164,6 +175,7 @@ impl<'a, S: Scalar, C> Frame<'a, S, C> {
     /// the scene is of the kind the blocks' certificates cover (the crate's rules,
     /// infinite planes and spheres, point lights without glints, mirrors, translucency or
     /// a light on a surface); `false`: every pixel is traced.
+    #[cfg(feature = "sampling")]
     pub fn sampled(&self) -> bool {
         self.sampler.is_some()
     }
@@ -336,6 +348,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
         if row >= self.scene.camera.height {
             return;
         }
+        #[cfg(feature = "sampling")]
         if let Some(sampler) = &self.sampler {
             let n = u16::try_from(line.len()).unwrap_or(u16::MAX);
             let stride = line.len();
@@ -368,39 +381,21 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     /// scanlines. Returns how many of the pixels were filled from blocks' corners rather
     /// than traced (0 in an exact frame).
     pub fn render_rows(&self, rows: core::ops::Range<u16>, out: &mut [C]) -> usize {
-        let mut filled = 0;
+        #[cfg(feature = "sampling")]
+        if let Some(sampler) = &self.sampler {
+            return self.render_rows_sampled(sampler, rows, out);
+        }
         let width = usize::from(self.scene.camera.width);
         let end = rows.end.min(self.scene.camera.height);
-        let band = self.sampler.as_ref().map_or(1, Sampler::size);
-        let mut kept = Kept::default();
-        let mut row = rows.start;
-        while row < end {
-            let next = (row / band + 1).saturating_mul(band).min(end);
+        for row in rows.start..end {
             let at = usize::from(row - rows.start) * width;
             let Some(slice) = out.get_mut(at..) else {
-                return filled;
+                break;
             };
-            match &self.sampler {
-                Some(sampler) => {
-                    filled += sampled_rows(
-                        &self.scene,
-                        sampler,
-                        (row..next, 0..self.scene.camera.width),
-                        (slice, width),
-                        &mut |r, runs: &[Range<u16>], line: &mut [C]| {
-                            self.exact_runs(r, runs, line, 0)
-                        },
-                        Some(&mut kept),
-                    )
-                }
-                None => {
-                    let n = width.min(slice.len());
-                    self.render_line(row, &mut slice[..n]);
-                }
-            }
-            row = next;
+            let n = width.min(slice.len());
+            self.render_line(row, &mut slice[..n]);
         }
-        filled
+        0
     }
 }
 
@@ -413,8 +408,9 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     /// pixels before; a pure-geometry scanline from the multiple of 64 at or before the
     /// first column): the cost is that of the columns asked for.
     pub fn render_columns(&self, row: u16, columns: core::ops::Range<u16>, out: &mut [C]) {
-        match &self.sampler {
-            Some(sampler) if row < self.scene.camera.height => {
+        #[cfg(feature = "sampling")]
+        if let Some(sampler) = &self.sampler {
+            if row < self.scene.camera.height {
                 let stride = out.len();
                 sampled_rows(
                     &self.scene,
@@ -427,31 +423,9 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                     None,
                 );
             }
-            Some(_) => {}
-            None => self.exact_columns(row, columns, out),
+            return;
         }
-    }
-
-    /// Columns `runs` of scanline `row` as the exact frame draws them, into `line`
-    /// (`line[i]` is column `origin + i`).
-    fn exact_runs(&self, row: u16, runs: &[Range<u16>], line: &mut [C], origin: u16) {
-        let mut put = |column: u16, c: C| {
-            if let Some(slot) = line.get_mut(usize::from(column - origin)) {
-                *slot = c;
-            }
-        };
-        with_stages!(
-            self.shading,
-            kernel::runs::<S, C>(
-                &self.scene,
-                &self.drawing,
-                self.mode,
-                row,
-                runs,
-                &mut Counters::default(),
-                &mut put
-            )
-        );
+        self.exact_columns(row, columns, out);
     }
 
     /// [`Frame::render_columns`] as the exact frame draws them.
@@ -522,8 +496,9 @@ impl<S: Scalar, C: PixelColor + From<Rgb888>> Frame<'_, S, C> {
     where
         D: DrawTarget<Color = C>,
     {
+        #[cfg(feature = "sampling")]
         if self.sampler.is_some() {
-            return draw_sampled(self, target);
+            return sampled::draw_sampled(self, target);
         }
         with_stages!(self.shading, draw_with::<S, D>(self, target, counters))
     }
@@ -631,46 +606,6 @@ where
     }
     Ok(())
 }
-
-/// A frame sampled in blocks drawn into `target`: each scanline in pieces of
-/// [`SAMPLED_PIECE`] pixels (a buffer on the stack), one `fill_contiguous` call each.
-fn draw_sampled<S, D>(frame: &Frame<'_, S, D::Color>, target: &mut D) -> Result<(), D::Error>
-where
-    S: Scalar,
-    D: DrawTarget,
-    D::Color: From<Rgb888>,
-{
-    let camera = &frame.scene.camera;
-    let full = Rectangle::new(
-        Point::zero(),
-        Size::new(u32::from(camera.width), u32::from(camera.height)),
-    );
-    let area = full.intersection(&target.bounding_box());
-    let Some(bottom_right) = area.bottom_right() else {
-        return Ok(());
-    };
-    let to_u16 = |v: i32| u16::try_from(v).unwrap_or(0);
-    let (x0, x1) = (to_u16(area.top_left.x), to_u16(bottom_right.x));
-    let mut piece = [D::Color::from(Rgb888::new(0, 0, 0)); SAMPLED_PIECE];
-    for row in to_u16(area.top_left.y)..=to_u16(bottom_right.y) {
-        let mut x = x0;
-        while x <= x1 {
-            let n = (x1 - x + 1).min(u16::try_from(SAMPLED_PIECE).unwrap_or(1));
-            let out = &mut piece[..usize::from(n)];
-            frame.render_columns(row, x..x + n, out);
-            let at = Rectangle::new(
-                Point::new(i32::from(x), i32::from(row)),
-                Size::new(u32::from(n), 1),
-            );
-            target.fill_contiguous(&at, out.iter().copied())?;
-            x += n;
-        }
-    }
-    Ok(())
-}
-
-/// The pixels a sampled frame hands a target at once ([`Frame::draw_counted`]).
-const SAMPLED_PIECE: usize = 64;
 
 /// One row of a target, as the kernels stream into it.
 struct Row<'t, D> {

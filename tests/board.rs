@@ -14,13 +14,16 @@
 //! the UART lines as the board's docs give them; the whole panel drawn; and a bad scene
 //! turning the panel red with `error: …` on the UART. They print the emulated cycles and
 //! write `target/board-report.md` (frame rates from cycles, for `cargo xtask figures`).
+//! The orbit's builds (`orbit`, and `orbit,exact`) draw the ball before a circling camera
+//! in 8×8 blocks and exact; every frame is checked against the host's the same way, and
+//! `target/board-orbit-report.md` gives their cycles beside their error.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use embedded_graphics::pixelcolor::{IntoStorage, Rgb565};
-use fixray::anim::Bounce;
-use fixray::{Frame, I16F16, Scene};
+use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, RgbColor};
+use fixray::anim::{Bounce, Orbit};
+use fixray::{BlockSize, Frame, I16F16, Sampling, Scene};
 
 #[allow(dead_code)]
 #[path = "../boards/rp2040-st7789/src/rows.rs"]
@@ -384,6 +387,117 @@ fn the_emulated_board_draws_the_hosts_frames_on_the_whole_panel() {
             );
         }
     }
+}
+
+/// The orbit's frame `k` drawn by the host with `sampling`, whole (the board draws it band
+/// by band with `Frame::render_rows`, the same pixels).
+fn host_orbit_frame(k: u16, sampling: Sampling) -> Vec<Rgb565> {
+    let mut scene = Scene::<I16F16>::parse(SCENE).unwrap();
+    let bounce = Bounce::boing(&scene.objects).unwrap();
+    let orbit = Orbit::boing(&scene.objects).unwrap();
+    bounce.apply(&mut scene, k).unwrap();
+    orbit.apply(&mut scene, k).unwrap();
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let mut out = vec![Rgb565::BLACK; usize::from(w) * usize::from(h)];
+    Frame::new(&scene)
+        .with_sampling(sampling)
+        .render_rows(0..h, &mut out);
+    out
+}
+
+#[test]
+#[ignore = "needs Node and builds the board: cargo test --release --test board -- --ignored"]
+fn the_emulated_board_draws_the_orbit_in_blocks_and_exact() {
+    let displayed = (PANEL.0 * PANEL.1) as f64;
+    let blocks = Sampling::blocks(BlockSize::Eight, 2);
+    let mut report = String::from(
+        "| the ball before the circling camera | cycles per displayed pixel (200 MHz, one core) | \
+         fps | pixels > 2 levels of exact | PSNR against exact |\n|---|---|---|---|---|\n",
+    );
+    for (features, sampling, said) in [
+        ("emulated,orbit", blocks, "orbit, 8x8 blocks, bound 2"),
+        ("emulated,orbit,exact", Sampling::Exact, "orbit, exact"),
+    ] {
+        let elf = build(features);
+        let run = emulate(
+            &elf,
+            17,
+            &format!("board-{}", features.replace(',', "-")),
+            &[],
+        );
+        assert_eq!(run.stop, "frames", "{:?}", run.uart);
+        assert_eq!(
+            run.uart[0],
+            format!(
+                "fixray boing: 240x240 at (0,0) on a 240x240 panel, 200 MHz, 1 core, SPI 50000 kHz, {said}"
+            )
+        );
+        let (mut beyond, mut squared) = (0usize, 0.0f64);
+        for (n, frame) in run.frames.iter().enumerate() {
+            let line = &run.uart[n + 1];
+            assert!(line.starts_with(&format!("frame={} ", n % 16)), "{line}");
+            assert!(line.ends_with(" pixels=57600"), "{line}");
+            let us: f64 = line.split_whitespace().nth(1).unwrap()[3..]
+                .parse()
+                .unwrap();
+            assert!((us - frame.cycles / 200.0).abs() <= 0.01 * us, "{line}");
+            assert_eq!(frame.pixels, PANEL.0 * PANEL.1, "frame {n}");
+            // The panel shows the host's frame, bit for bit.
+            let memory = panel(&run, &format!("frame-{n}.rgb565"));
+            let host = host_orbit_frame(frame.index, sampling);
+            for (i, pixel) in host.iter().enumerate() {
+                assert_eq!(
+                    memory[i],
+                    pixel.into_storage(),
+                    "{features}, frame {n}: pixel {i}"
+                );
+            }
+            // Its error against the exact frame, on the host.
+            if n > 0 {
+                let exact = host_orbit_frame(frame.index, Sampling::Exact);
+                for (a, b) in host.iter().zip(&exact) {
+                    let channels = |c: &Rgb565| {
+                        // RGB565 to 8-bit levels, as the panel shows them.
+                        [
+                            c.r() << 3 | c.r() >> 2,
+                            c.g() << 2 | c.g() >> 4,
+                            c.b() << 3 | c.b() >> 2,
+                        ]
+                    };
+                    let (x, y) = (channels(a), channels(b));
+                    let d = x.iter().zip(&y).map(|(p, q)| p.abs_diff(*q)).max().unwrap();
+                    beyond += usize::from(d > 2);
+                    squared += x
+                        .iter()
+                        .zip(&y)
+                        .map(|(p, q)| (f64::from(*p) - f64::from(*q)).powi(2))
+                        .sum::<f64>();
+                }
+            }
+        }
+        let loop_frames = &run.frames[1..];
+        let cycles = loop_frames.iter().map(|f| f.cycles).sum::<f64>() / loop_frames.len() as f64;
+        let per_pixel = cycles / displayed;
+        let pixels = displayed * loop_frames.len() as f64;
+        let psnr = if squared == 0.0 {
+            "∞".to_string()
+        } else {
+            format!(
+                "{:.1} dB",
+                10.0 * (255.0f64 * 255.0 * 3.0 * pixels / squared).log10()
+            )
+        };
+        report += &format!(
+            "| {said} | {per_pixel:.1} | {:.2} | {:.3} % | {psnr} |\n",
+            200e6 / cycles,
+            100.0 * beyond as f64 / pixels,
+        );
+    }
+    println!(
+        "the orbit at 240x240, the mean of the loop's 16 frames on the emulated RP2040:\n{report}"
+    );
+    let target = Path::new(env!("CARGO_MANIFEST_DIR")).join("target");
+    std::fs::write(target.join("board-orbit-report.md"), report).unwrap();
 }
 
 #[test]

@@ -26,6 +26,7 @@ pub(crate) mod fast;
 pub(crate) mod flat;
 mod memo;
 mod rows;
+#[cfg(feature = "sampling")]
 pub(crate) mod sampling;
 mod scanline;
 mod shading;
@@ -379,6 +380,7 @@ where
 /// Columns `runs` (increasing and disjoint) of scanline `row` drawn by the frame's
 /// kernel, each pixel handed to `put` with its column: the pixels of [`line`] there, with
 /// one set-up of the scanline for all the runs (a sampled frame's blocks that are traced).
+#[cfg(feature = "sampling")]
 pub(crate) fn runs<S, T, C>(
     scene: &SceneView<'_, S>,
     drawing: &Drawing<S>,
@@ -436,6 +438,7 @@ pub(crate) fn runs<S, T, C>(
 
 /// [`runs`] on the level-plane kernel; `Err` (the counters handed back) when it cannot
 /// decide the row once.
+#[cfg(feature = "sampling")]
 #[inline(never)]
 fn rows_runs<'a, S, T, C>(
     scene: &'a SceneView<'a, S>,

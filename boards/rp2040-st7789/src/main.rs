@@ -108,8 +108,8 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::prelude::IntoStorage;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::MODE_3;
-use fixray::anim::{AnimError, Bounce};
-use fixray::{Frame, I16F16, Scene, SceneError};
+use fixray::anim::{AnimError, Bounce, Orbit};
+use fixray::{BlockSize, Frame, I16F16, Sampling, Scene, SceneError};
 use panic_halt as _;
 use rp2040_hal::dma::DMAExt;
 use rp2040_hal::fugit::RateExtU32;
@@ -173,6 +173,52 @@ const CORES: u16 = if cfg!(feature = "emulated") { 1 } else { 2 };
 /// pixel (also the `whole-frames` feature, for measuring both).
 const CHANGES_ONLY: bool = !cfg!(feature = "whole-frames");
 
+/// Which animation the board shows.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Program {
+    /// The ball bouncing before a still camera, exact: each frame bit for bit the exact
+    /// frame, sent where it may differ from the frame before ([`CHANGES_ONLY`]), on both
+    /// cores.
+    Bounce,
+    /// The ball bouncing before a camera circling it ([`Orbit::boing`]): every pixel
+    /// changes, each frame drawn in bands of [`BAND`] rows with [`ORBIT_SAMPLING`], sent
+    /// whole, on core 0.
+    Orbit,
+}
+
+/// The animation: the bounce, or the orbit with the cargo feature `orbit`.
+pub const PROGRAM: Program = if cfg!(feature = "orbit") {
+    Program::Orbit
+} else {
+    Program::Bounce
+};
+
+/// How the orbit's frames are drawn: 8×8 blocks traced at their corners and filled where
+/// the colour strays by at most 2 levels (within 1 % of pixels beyond 2 levels of the
+/// exact frame and 40 dB, `tests/sampling.rs`); every pixel traced with the feature
+/// `exact`.
+pub const ORBIT_SAMPLING: Sampling = if cfg!(feature = "exact") {
+    Sampling::Exact
+} else {
+    Sampling::blocks(BlockSize::Eight, 2)
+};
+
+/// The orbit's band: the rows drawn at once (a block's side: its corners are traced once).
+const BAND: u16 = 8;
+
+/// A band as the DMA reads it: [`BAND`] panel rows.
+const BAND_BYTES: usize = BAND as usize * LINE_BYTES;
+
+/// The orbit's two band buffers: one drawn while the other is sent.
+static mut BANDS: [[u8; BAND_BYTES]; 2] = [[0; BAND_BYTES]; 2];
+
+/// The band buffer `slot`.
+fn band(slot: usize) -> *mut [u8; BAND_BYTES] {
+    // SAFETY: only the address is formed; `draw_bands` alternates the slots so that the
+    // one written is never the one in flight.
+    unsafe { &raw mut BANDS[slot] }
+}
+
 /// The panel's colour after an error: red (RGB565).
 const ERROR_COLOUR: u16 = 0xf800;
 
@@ -233,7 +279,45 @@ fn load(scene: &mut Scene<I16F16>) -> Result<Bounce<I16F16>, Failure> {
     for k in 0..bounce.frames() {
         bounce.centre(k).map_err(Failure::Anim)?;
     }
+    if PROGRAM == Program::Orbit {
+        // Every turn of the loop fits (`Orbit::new`), and frame 0's turns nothing: what
+        // fails here is an object or light the orbit cannot turn.
+        let orbit = Orbit::boing(&scene.objects).map_err(Failure::Anim)?;
+        orbit.apply(scene, 0).map_err(Failure::Anim)?;
+    }
     Ok(bounce)
+}
+
+/// Draws `frame` (`width` × `height`) on the panel at `(x, y)` band by band
+/// ([`Frame::render_rows`]: a sampled frame's corners traced once), each band sent by DMA
+/// while the next is drawn. Returns the pixels sent.
+fn draw_bands(
+    frame: &Frame<'_, I16F16, Rgb565>,
+    (width, height): (u16, u16),
+    (x, y): (u16, u16),
+    panel: &mut Panel,
+) -> u32 {
+    let mut pixels = [Rgb565::BLACK; BAND as usize * PANEL_WIDTH as usize];
+    let mut slot = 0;
+    let mut sent = 0;
+    for top in (0..height).step_by(usize::from(BAND)) {
+        let rows = BAND.min(height - top);
+        let n = usize::from(rows) * usize::from(width);
+        frame.render_rows(top..top + rows, &mut pixels[..n]);
+        // SAFETY: the band in flight is the previous one, from the other slot.
+        let bytes = unsafe { &mut *band(slot) };
+        for (pair, pixel) in bytes.chunks_exact_mut(2).zip(&pixels[..n]) {
+            pair.copy_from_slice(&pixel.into_storage().to_be_bytes());
+        }
+        // SAFETY: the slot is drawn and is read by this one transfer until the next band's
+        // `send_rows` has waited for it.
+        let band: &'static [u8] = unsafe { &(&*band(slot))[..2 * n] };
+        panel.send_rows((x, y + top), width, slot, band);
+        slot ^= 1;
+        sent += n as u32;
+    }
+    panel.finish();
+    sent
 }
 
 /// Draws `columns` of row `row` of `frame` into `line` as big-endian RGB565 (the panel's
@@ -391,6 +475,40 @@ fn core1() -> ! {
     }
 }
 
+/// The orbit's loop: each frame the scene as parsed (`base`, kept here; `scene` is
+/// drawn), the ball moved by `bounce`, the whole scene turned by the orbit, then drawn
+/// band by band with [`ORBIT_SAMPLING`] and sent whole.
+fn orbit(
+    scene: &mut Scene<I16F16>,
+    bounce: Bounce<I16F16>,
+    at: (u16, u16),
+    panel: &mut Panel,
+    serial: &mut impl Write,
+    timer: &Timer,
+) -> ! {
+    let mut base = Scene::<I16F16>::empty();
+    // `load` read the same text without error.
+    let _ = load(&mut base);
+    let size = (scene.camera.width, scene.camera.height);
+    // `load` made the orbit and checked every object and light turns.
+    let Ok(orbit) = Orbit::boing(&base.objects) else {
+        halt(serial, "the orbit cannot be made")
+    };
+    loop {
+        for k in 0..bounce.frames() {
+            let start = timer.get_counter();
+            scene.clone_from(&base);
+            // `load` placed every frame of the bounce and checked the orbit's turns.
+            let _ = bounce.apply(scene, k);
+            let _ = orbit.apply(scene, k);
+            let frame = Frame::new(&*scene).with_sampling(ORBIT_SAMPLING);
+            let pixels = draw_bands(&frame, size, at, panel);
+            let us = (timer.get_counter() - start).to_micros();
+            let _ = write!(serial, "frame={k} us={us} pixels={pixels}\r\n");
+        }
+    }
+}
+
 /// Prints `error: {message}` on the serial port and stops (sleeping).
 fn halt(serial: &mut impl Write, message: impl fmt::Display) -> ! {
     // Nothing is left to report a failed write to.
@@ -489,7 +607,7 @@ fn main() -> ! {
     // Core 1 draws every other row once it has answered the launch handshake; if it does
     // not, core 0 draws them all.
     let mut cores = 1;
-    if CORES == 2 {
+    if CORES == 2 && PROGRAM == Program::Bounce {
         let mut multicore = Multicore::new(&mut pac.PSM, &mut pac.PPB, &mut sio.fifo);
         if let Some(stack) = CORE1_STACK.take()
             && multicore.cores()[1].spawn(stack, || core1()).is_ok()
@@ -506,12 +624,16 @@ fn main() -> ! {
          {} MHz, {cores_named}, SPI {} kHz, {}\r\n",
         SYS_HZ / 1_000_000,
         spi_hz.to_kHz(),
-        if CHANGES_ONLY {
-            "changes only"
-        } else {
-            "whole frames"
+        match (PROGRAM, ORBIT_SAMPLING) {
+            (Program::Bounce, _) if CHANGES_ONLY => "changes only",
+            (Program::Bounce, _) => "whole frames",
+            (Program::Orbit, Sampling::Exact) => "orbit, exact",
+            (Program::Orbit, Sampling::Blocks { .. }) => "orbit, 8x8 blocks, bound 2",
         },
     );
+    if PROGRAM == Program::Orbit {
+        orbit(&mut scene, bounce, (x, y), &mut panel, &mut serial, &timer);
+    }
 
     // The frame shown before: its scene, moved with `scene` one frame behind.
     let mut shown = Scene::<I16F16>::empty();

@@ -131,12 +131,25 @@ impl Panel {
         slot: usize,
         pixels: &'static [u8],
     ) -> Option<usize> {
+        self.send_rows((x0, y), (pixels.len() / 2) as u16, slot, pixels)
+    }
+
+    /// [`Panel::send`] for whole rows of `width` pixels from row `y` on (a band of rows
+    /// in one transfer).
+    pub fn send_rows(
+        &mut self,
+        (x0, y): (u16, u16),
+        width: u16,
+        slot: usize,
+        pixels: &'static [u8],
+    ) -> Option<usize> {
         let freed = self.finish();
-        let x1 = x0 + (pixels.len() / 2) as u16 - 1;
+        let x1 = x0 + width - 1;
+        let rows = (pixels.len() / 2) as u16 / width;
         if self.open != Some((x0, x1, y)) {
             self.window(x0, y, x1, PANEL_HEIGHT - 1);
         }
-        self.open = Some((x0, x1, y + 1));
+        self.open = Some((x0, x1, y + rows));
         let (channel, bus, _) = self.idle();
         let sending = single_buffer::Config::new(channel, pixels, bus).start();
         self.link = Some(Link::Sending(sending, slot));

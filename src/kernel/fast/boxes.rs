@@ -127,6 +127,7 @@ impl<S: Scalar> Primary<S> {
 
     /// Every sphere's box on the screen, `(rows, columns)`, first and last inclusive
     /// ([`sphere_rows`], [`sphere_columns`]): outside it no primary ray meets the sphere.
+    #[cfg(feature = "sampling")]
     pub(crate) fn sphere_boxes(&self) -> impl Iterator<Item = ((u16, u16), (u16, u16))> + '_ {
         self.terms
             .iter()

@@ -203,6 +203,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
     /// Goes on with columns `columns` of the same row (after the ones drawn so far), as a
     /// whole scanline reaches them ([`Primary::row_resumed`]): the row's plane and lean
     /// part are kept, the stepping resumes there.
+    #[cfg(feature = "sampling")]
     pub(crate) fn resume_at(&mut self, columns: core::ops::Range<u16>) {
         self.run_at = self.run_len;
         match self.p.row_resumed(self.scene, self.row, columns.start) {

@@ -58,14 +58,15 @@ use crate::{Plan, Rules, Scalar, SceneView, Shape, Vec3};
 use corners::{Corner, corner};
 use fill::fill;
 
-/// How a frame finds its pixels ([`crate::Frame::with_sampling`]).
+/// How a frame finds its pixels ([`crate::Frame::with_sampling`], cargo feature
+/// `sampling`).
 ///
 /// ```
 /// use fixray::{BlockSize, Frame, Sampling, Scene, I16F16};
 ///
-/// let scene = Scene::<I16F16>::parse(include_str!("../../scenes/boing.scene"))?;
+/// let scene = Scene::<I16F16>::parse(include_str!("../../../scenes/boing.scene"))?;
 /// let exact: Frame<'_, I16F16> = Frame::new(&scene);
-/// let sampled = Frame::new(&scene).with_sampling(Sampling::blocks(BlockSize::Four, 2));
+/// let sampled: Frame<'_, I16F16> = Frame::new(&scene).with_sampling(Sampling::blocks(BlockSize::Four, 2));
 /// assert_eq!(exact.sampling(), Sampling::Exact);
 /// assert!(sampled.sampled()); // the boing ball's kind of scene is sampled
 /// # Ok::<(), fixray::SceneError>(())
