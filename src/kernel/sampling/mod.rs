@@ -66,7 +66,8 @@ use fill::fill;
 ///
 /// let scene = Scene::<I16F16>::parse(include_str!("../../../scenes/boing.scene"))?;
 /// let exact: Frame<'_, I16F16> = Frame::new(&scene);
-/// let sampled: Frame<'_, I16F16> = Frame::new(&scene).with_sampling(Sampling::blocks(BlockSize::Four, 2));
+/// let blocks = Sampling::blocks(BlockSize::Four, 2);
+/// let sampled: Frame<'_, I16F16> = Frame::new(&scene).with_sampling(blocks);
 /// assert_eq!(exact.sampling(), Sampling::Exact);
 /// assert!(sampled.sampled()); // the boing ball's kind of scene is sampled
 /// # Ok::<(), fixray::SceneError>(())
