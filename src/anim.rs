@@ -123,14 +123,7 @@ impl<S: Scalar> Bounce<S> {
         if frames == 0 || frames > Self::MAX_FRAMES || bounces == 0 {
             return Err(AnimError::BadFrames);
         }
-        let (object, sphere) = objects
-            .iter()
-            .enumerate()
-            .find_map(|(i, o)| match o.shape {
-                Shape::Sphere(s) => Some((i, s)),
-                _ => None,
-            })
-            .ok_or(AnimError::NoSphere)?;
+        let (object, sphere) = first_sphere(objects)?;
         let bounce = Self {
             object,
             rest: sphere.center(),
@@ -215,6 +208,18 @@ impl<S: Scalar> Bounce<S> {
     }
 }
 
+/// The first sphere among `objects`, with its index.
+fn first_sphere<S: Scalar>(objects: &[Object<S>]) -> Result<(usize, Sphere<S>), AnimError> {
+    objects
+        .iter()
+        .enumerate()
+        .find_map(|(i, o)| match o.shape {
+            Shape::Sphere(s) => Some((i, s)),
+            _ => None,
+        })
+        .ok_or(AnimError::NoSphere)
+}
+
 /// The camera circling a point: the scene turned about the vertical axis through
 /// `pivot`, frame by frame, which is what the eye sees from a camera carried round it
 /// the other way (the camera of the scene language looks along −z through a window at
@@ -280,13 +285,7 @@ impl<S: Scalar> Orbit<S> {
     /// # Errors
     /// [`AnimError::NoSphere`] without a sphere; as [`Orbit::new`].
     pub fn boing(objects: &[Object<S>]) -> Result<Self, AnimError> {
-        let pivot = objects
-            .iter()
-            .find_map(|o| match o.shape {
-                Shape::Sphere(s) => Some(s.center()),
-                _ => None,
-            })
-            .ok_or(AnimError::NoSphere)?;
+        let pivot = first_sphere(objects)?.1.center();
         let swing = S::ONE.mul_ratio(3, 8).ok_or(AnimError::OutOfRange)?;
         Self::new(pivot, swing, 16)
     }

@@ -566,6 +566,26 @@ fn columns_with<S: Scalar, T: KernelStages, C, K: RowSink<Rgb888>>(
     );
 }
 
+/// The first and last columns of the frame `camera` draws that `target` shows, and its
+/// rows (`None`: none).
+fn visible<S, D: DrawTarget>(
+    camera: &crate::Camera<S>,
+    target: &D,
+) -> Option<((u16, u16), core::ops::RangeInclusive<u16>)> {
+    let full = Rectangle::new(
+        Point::zero(),
+        Size::new(u32::from(camera.width), u32::from(camera.height)),
+    );
+    let area = full.intersection(&target.bounding_box());
+    let bottom_right = area.bottom_right()?;
+    // Both corners lie inside `full`, whose coordinates fit u16.
+    let to_u16 = |v: i32| u16::try_from(v).unwrap_or(0);
+    Some((
+        (to_u16(area.top_left.x), to_u16(bottom_right.x)),
+        to_u16(area.top_left.y)..=to_u16(bottom_right.y),
+    ))
+}
+
 fn draw_with<S, T, D>(
     frame: &Frame<'_, S, D::Color>,
     target: &mut D,
@@ -577,22 +597,13 @@ where
     D: DrawTarget,
     D::Color: From<Rgb888>,
 {
-    let camera = &frame.scene.camera;
-    let full = Rectangle::new(
-        Point::zero(),
-        Size::new(u32::from(camera.width), u32::from(camera.height)),
-    );
-    let area = full.intersection(&target.bounding_box());
-    let Some(bottom_right) = area.bottom_right() else {
+    let Some(((x0, x1), rows)) = visible(&frame.scene.camera, target) else {
         return Ok(());
     };
-    // Both corners lie inside `full`, whose coordinates fit u16.
-    let to_u16 = |v: i32| u16::try_from(v).unwrap_or(0);
-    let (x0, x1) = (to_u16(area.top_left.x), to_u16(bottom_right.x));
-    for row in to_u16(area.top_left.y)..=to_u16(bottom_right.y) {
+    for row in rows {
         let line = Rectangle::new(
-            Point::new(area.top_left.x, i32::from(row)),
-            Size::new(area.size.width, 1),
+            Point::new(i32::from(x0), i32::from(row)),
+            Size::new(u32::from(x1 - x0) + 1, 1),
         );
         kernel::stream::<S, T, D::Color, _>(
             &frame.scene,

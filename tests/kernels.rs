@@ -6,54 +6,13 @@
 
 mod common;
 
+use common::pictures::Capture;
 use common::sampling::SplitMix;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use fixray::geometry::Shape;
 use fixray::internals::Flat;
 use fixray::{Frame, KernelKind, PlaneMode, Scalar, Scene, render, render_line};
-
-/// A target that records every pixel and how often it was written.
-struct Capture {
-    size: Size,
-    pixels: Vec<Option<Rgb888>>,
-    writes: Vec<u8>,
-}
-
-impl Capture {
-    fn new(w: u16, h: u16) -> Self {
-        let n = usize::from(w) * usize::from(h);
-        Self {
-            size: Size::new(u32::from(w), u32::from(h)),
-            pixels: vec![None; n],
-            writes: vec![0; n],
-        }
-    }
-}
-
-impl OriginDimensions for Capture {
-    fn size(&self) -> Size {
-        self.size
-    }
-}
-
-impl DrawTarget for Capture {
-    type Color = Rgb888;
-    type Error = core::convert::Infallible;
-
-    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb888>>>(
-        &mut self,
-        pixels: I,
-    ) -> Result<(), Self::Error> {
-        let w = self.size.width as usize;
-        for Pixel(p, c) in pixels {
-            let i = p.y as usize * w + p.x as usize;
-            self.pixels[i] = Some(c);
-            self.writes[i] += 1;
-        }
-        Ok(())
-    }
-}
 
 /// The three entry points in one plane mode: the image they agree on, and how many
 /// scanlines the pure-geometry kernel handed back.

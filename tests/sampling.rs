@@ -4,9 +4,10 @@
 //! shadow's and a silhouette's edge across a block, a light on a surface, a mirror) are
 //! either caught by the certificate or drawn exact.
 
-use embedded_graphics::draw_target::DrawTarget;
+mod common;
+
+use common::pictures::{Capture, difference, psnr, squared_error};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
-use embedded_graphics::prelude::{OriginDimensions, Pixel, Size};
 use fixray::anim::Bounce;
 use fixray::{BlockSize, Frame, I16F16, I20F12, I32F32, Sampling, Scalar, Scene};
 
@@ -28,52 +29,13 @@ fn lines<S: Scalar>(frame: &Frame<'_, S>, width: u16, height: u16) -> Vec<Rgb888
     out
 }
 
-/// A display that keeps what it is given, and counts pixels written twice.
-struct Screen {
-    size: Size,
-    pixels: Vec<Option<Rgb888>>,
-    twice: usize,
-}
-
-impl OriginDimensions for Screen {
-    fn size(&self) -> Size {
-        self.size
-    }
-}
-
-impl DrawTarget for Screen {
-    type Color = Rgb888;
-    type Error = core::convert::Infallible;
-
-    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb888>>>(
-        &mut self,
-        pixels: I,
-    ) -> Result<(), Self::Error> {
-        for Pixel(p, c) in pixels {
-            let i = usize::try_from(p.y * i32::try_from(self.size.width).unwrap() + p.x).unwrap();
-            self.twice += usize::from(self.pixels[i].is_some());
-            self.pixels[i] = Some(c);
-        }
-        Ok(())
-    }
-}
-
-/// The frame drawn as an `embedded-graphics` drawable.
+/// The frame drawn as an `embedded-graphics` drawable; every pixel written once.
 fn drawn<S: Scalar>(frame: &Frame<'_, S>, width: u16, height: u16) -> Vec<Rgb888> {
     use embedded_graphics::Drawable;
-    let size = Size::new(u32::from(width), u32::from(height));
-    let mut screen = Screen {
-        size,
-        pixels: vec![None; usize::from(width) * usize::from(height)],
-        twice: 0,
-    };
+    let mut screen = Capture::new(width, height);
     frame.draw(&mut screen).unwrap();
-    assert_eq!(screen.twice, 0, "a pixel written twice");
-    screen
-        .pixels
-        .into_iter()
-        .map(|p| p.expect("a pixel never written"))
-        .collect()
+    assert!(screen.writes.iter().all(|&n| n == 1), "every pixel once");
+    screen.pixels.into_iter().map(Option::unwrap).collect()
 }
 
 /// Every boing frame (and `more` scenes) drawn in blocks of every size with a zero bound
@@ -274,24 +236,6 @@ fn a_looser_bound_fills_more_blocks() {
     }
 }
 
-/// PSNR (dB) of a picture against another, over the three channels.
-fn psnr(a: &[Rgb888], b: &[Rgb888]) -> f64 {
-    let se: f64 = a
-        .iter()
-        .zip(b)
-        .flat_map(|(x, y)| {
-            [
-                f64::from(x.r()) - f64::from(y.r()),
-                f64::from(x.g()) - f64::from(y.g()),
-                f64::from(x.b()) - f64::from(y.b()),
-            ]
-        })
-        .map(|d| d * d)
-        .sum();
-    let mse = se / (3 * a.len()) as f64;
-    10.0 * (255.0 * 255.0 / mse).log10()
-}
-
 /// Every frame of the ball bouncing before the circling camera, in blocks of 8 at a bound
 /// of 2 levels, against the exact frame: at most 1 % of the pixels beyond 2 levels, and a
 /// PSNR of at least 40 dB (the orbit's budget).
@@ -313,12 +257,10 @@ fn orbit_within_budget<S: Scalar>(text: &str, step: usize) {
         let beyond = sampled
             .iter()
             .zip(&exact)
-            .filter(|(a, b)| {
-                a.r().abs_diff(b.r()) > 2 || a.g().abs_diff(b.g()) > 2 || a.b().abs_diff(b.b()) > 2
-            })
+            .filter(|(a, b)| difference(**a, **b) > 2)
             .count();
         let share = beyond as f64 / exact.len() as f64;
-        let p = psnr(&sampled, &exact);
+        let p = psnr(squared_error(&sampled, &exact), exact.len());
         assert!(
             share <= 0.01,
             "{} frame {k}: {share} beyond 2 levels",

@@ -81,19 +81,11 @@ where
     D: DrawTarget,
     D::Color: From<Rgb888>,
 {
-    let camera = &frame.scene.camera;
-    let full = Rectangle::new(
-        Point::zero(),
-        Size::new(u32::from(camera.width), u32::from(camera.height)),
-    );
-    let area = full.intersection(&target.bounding_box());
-    let Some(bottom_right) = area.bottom_right() else {
+    let Some(((x0, x1), rows)) = super::visible(&frame.scene.camera, target) else {
         return Ok(());
     };
-    let to_u16 = |v: i32| u16::try_from(v).unwrap_or(0);
-    let (x0, x1) = (to_u16(area.top_left.x), to_u16(bottom_right.x));
     let mut piece = [D::Color::from(Rgb888::new(0, 0, 0)); SAMPLED_PIECE];
-    for row in to_u16(area.top_left.y)..=to_u16(bottom_right.y) {
+    for row in rows {
         let mut x = x0;
         while x <= x1 {
             let n = (x1 - x + 1).min(u16::try_from(SAMPLED_PIECE).unwrap_or(1));

@@ -5,9 +5,11 @@
 //! - `sampling.rs`: the seeded generator and the random ray/plane cases behind the
 //!   property tests, the fuzzers and `docs/numerics.md`;
 //! - `qemu.rs`: building the firmware and running it under QEMU;
-//! - `probes.rs`: what a format is (rounded square root, dot products, division), measured.
+//! - `probes.rs`: what a format is (rounded square root, dot products, division), measured;
+//! - `pictures.rs`: a target that records what it is drawn, pixel differences, PSNR.
 #![allow(dead_code, unused_macros, unused_imports)]
 
+pub mod pictures;
 pub mod probes;
 pub mod qemu;
 pub mod sampling;

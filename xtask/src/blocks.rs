@@ -5,6 +5,7 @@
 
 use std::fmt::Write as _;
 
+use crate::pictures::{difference, psnr, squared_error};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::anim::{Bounce, Orbit};
 use fixray::{BlockSize, Frame, I16F16, Sampling, Scalar, Scene};
@@ -28,38 +29,6 @@ fn draw<S: Scalar>(scene: &Scene<S>, sampling: Sampling) -> (Vec<Rgb888>, usize)
         .with_sampling(sampling)
         .render_rows(0..h, &mut out);
     (out, filled)
-}
-
-/// The largest channel difference of each pixel pair.
-fn differences(a: &[Rgb888], b: &[Rgb888]) -> Vec<u8> {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| {
-            [
-                x.r().abs_diff(y.r()),
-                x.g().abs_diff(y.g()),
-                x.b().abs_diff(y.b()),
-            ]
-            .into_iter()
-            .max()
-            .unwrap_or(0)
-        })
-        .collect()
-}
-
-/// Squared error summed over the channels.
-fn squared_error(a: &[Rgb888], b: &[Rgb888]) -> f64 {
-    a.iter()
-        .zip(b)
-        .flat_map(|(x, y)| {
-            [
-                f64::from(x.r()) - f64::from(y.r()),
-                f64::from(x.g()) - f64::from(y.g()),
-                f64::from(x.b()) - f64::from(y.b()),
-            ]
-        })
-        .map(|d| d * d)
-        .sum()
 }
 
 /// SSIM of two pictures (the report's: `image-compare`'s, 8×8 windows, worst channel).
@@ -110,9 +79,16 @@ fn tally(frames: &[Pair]) -> Vec<Tally> {
         let (truth, _) = draw(reference, Sampling::Exact);
         for (mode, t) in MODES.iter().zip(tallies.iter_mut()) {
             let (picture, filled) = draw(scene, *mode);
-            let beyond = |d: Vec<u8>| [1, 2].map(|k| d.iter().filter(|&&x| x > k).count());
-            let e = beyond(differences(&picture, &exact));
-            let f = beyond(differences(&picture, &truth));
+            let beyond = |other: &[Rgb888]| {
+                [1, 2].map(|k| {
+                    picture
+                        .iter()
+                        .zip(other)
+                        .filter(|(a, b)| difference(**a, **b) > k)
+                        .count()
+                })
+            };
+            let (e, f) = (beyond(&exact), beyond(&truth));
             t.pixels += picture.len();
             t.filled += filled;
             for i in 0..2 {
@@ -204,8 +180,7 @@ pub fn table() -> String {
             let psnr = if t.squared == 0.0 {
                 "∞".to_string()
             } else {
-                let mse = t.squared / (3 * t.pixels) as f64;
-                format!("{:.1} dB", 10.0 * (255.0 * 255.0 / mse).log10())
+                format!("{:.1} dB", psnr(t.squared, t.pixels))
             };
             writeln!(
                 out,

@@ -182,7 +182,7 @@ macro_rules! verbatim {
     };
 }
 
-const BLOCKS: [Block; 12] = [
+const BLOCKS: [Block; 13] = [
     ("README.md", "formats", formats),
     ("README.md", "sample", sample),
     ("README.md", "boing", boing),
@@ -194,6 +194,11 @@ const BLOCKS: [Block; 12] = [
     ),
     ("docs/performance.md", "boing", verbatim!("boing-report.md")),
     ("docs/performance.md", "board", verbatim!("board-report.md")),
+    (
+        "docs/performance.md",
+        "orbit",
+        verbatim!("board-orbit-report.md"),
+    ),
     (
         "docs/performance.md",
         "features",

@@ -11,6 +11,9 @@
 
 // The test-support module's helpers, shared with the integration tests.
 #[allow(dead_code)]
+#[path = "../../tests/common/pictures.rs"]
+mod pictures;
+#[allow(dead_code)]
 #[path = "../../tests/common/qemu.rs"]
 mod qemu;
 #[allow(dead_code)]

@@ -84,6 +84,16 @@
 //! remove `INVON` in `panel.rs`. If the picture is garbled, lower [`SPI_HZ`] (e.g. to
 //! 31.25 MHz) or shorten the wires.
 //!
+//! # The orbit
+//!
+//! `cargo build --release --features orbit` builds the other program ([`PROGRAM`]): the
+//! ball bouncing before a camera that circles it ([`fixray::anim::Orbit`]). Every pixel
+//! changes, so each frame is sent whole; core 0 draws it in bands of eight rows
+//! ([`fixray::Frame::render_rows`]) in 8×8 blocks filled where a certificate bounds the
+//! error by 2 levels ([`ORBIT_SAMPLING`]; exact with the `exact` feature), each band sent
+//! by DMA while the next is drawn. The start line ends `orbit, 8x8 blocks, bound 2` (or
+//! `orbit, exact`).
+//!
 //! # Other panels
 //!
 //! An ST7789 of another size: a scene at its resolution (the camera's `pixeldim`), and
