@@ -10,15 +10,16 @@ use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixray::anim::{Bounce, Orbit};
 use fixray::{BlockSize, Frame, I16F16, Sampling, Scalar, Scene};
 
-/// The modes measured: the exact frame, then blocks of each size at bounds 1 and 4.
+/// The modes measured: the exact frame, then blocks of each size at bounds 1 and 8 (the
+/// board's orbit draws 8×8 blocks at 8).
 const MODES: [Sampling; 7] = [
     Sampling::Exact,
     Sampling::blocks(BlockSize::Two, 1),
-    Sampling::blocks(BlockSize::Two, 4),
+    Sampling::blocks(BlockSize::Two, 8),
     Sampling::blocks(BlockSize::Four, 1),
-    Sampling::blocks(BlockSize::Four, 4),
+    Sampling::blocks(BlockSize::Four, 8),
     Sampling::blocks(BlockSize::Eight, 1),
-    Sampling::blocks(BlockSize::Eight, 4),
+    Sampling::blocks(BlockSize::Eight, 8),
 ];
 
 /// A frame drawn whole, with how many of its pixels were filled from blocks' corners.
