@@ -430,7 +430,7 @@ pub(crate) fn runs<S, T, C>(
         Kernel::Reference => (None, counters),
     };
     let pixels =
-        scanline::scanline_over::<S, T, C>(scene, primary, (row, last), columns(), counters);
+        scanline::scanline_over::<S, T, C, true>(scene, primary, (row, last), columns(), counters);
     for (column, c) in columns().zip(pixels) {
         put(column, c);
     }

@@ -26,14 +26,15 @@ pub(crate) fn scanline<'a, S: Scalar, T: KernelStages, C: From<Rgb888>>(
     counters: &'a mut Counters,
 ) -> impl Iterator<Item = C> + 'a {
     let last = columns.end.saturating_sub(1);
-    scanline_over::<S, T, C>(scene, primary, (row, last), columns, counters)
+    scanline_over::<S, T, C, false>(scene, primary, (row, last), columns, counters)
 }
 
 /// [`scanline`] over any increasing columns of the row (`last`: the last of them, where
-/// certified blocks end): where a column is not the one after the previous, the row
-/// resumes there as a whole scanline reaches it (`Primary::row_resumed`), so the pixels
-/// are the whole scanline's.
-pub(crate) fn scanline_over<'a, S: Scalar, T: KernelStages, C: From<Rgb888>>(
+/// certified blocks end): with `JUMPS`, where a column is not the one after the previous,
+/// the row resumes there as a whole scanline reaches it (`Primary::row_resumed`), so the
+/// pixels are the whole scanline's. Without it (consecutive columns, every scanline but a
+/// sampled frame's runs) the test is not compiled: it is a compare and a branch a pixel.
+pub(crate) fn scanline_over<'a, S: Scalar, T: KernelStages, C: From<Rgb888>, const JUMPS: bool>(
     scene: &'a SceneView<'a, S>,
     primary: Option<&'a Primary<S>>,
     (row, last): (u16, u16),
@@ -52,11 +53,13 @@ pub(crate) fn scanline_over<'a, S: Scalar, T: KernelStages, C: From<Rgb888>>(
     let mut next = None;
     columns.map(move |column| {
         count(&mut counters.primary_rays);
-        if next != Some(column) {
-            // A jump: the row resumes at `column` (`step_to` on no row).
-            state = None;
+        if JUMPS {
+            if next != Some(column) {
+                // A jump: the row resumes at `column` (`step_to` on no row).
+                state = None;
+            }
+            next = column.checked_add(1);
         }
-        next = column.checked_add(1);
         // Without the kernels (cargo feature `kernels`) the fast kernel's code is not
         // linked: the test is a constant here, where each pixel reads `primary`.
         let found = primary.filter(|_| super::KERNELS).and_then(|p| {
