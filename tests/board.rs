@@ -419,12 +419,10 @@ fn the_emulated_board_draws_the_orbit_in_blocks_and_exact() {
         ("emulated,orbit,exact", Sampling::Exact, "orbit, exact"),
     ] {
         let elf = build(features);
-        let run = emulate(
-            &elf,
-            17,
-            &format!("board-{}", features.replace(',', "-")),
-            &[],
-        );
+        // An exact frame is about 284 M cycles: more than the emulator's default limit
+        // over the 17 frames.
+        let out = format!("board-{}", features.replace(',', "-"));
+        let run = emulate(&elf, 17, &out, &["--max-mcycles", "10000"]);
         assert_eq!(run.stop, "frames", "{:?}", run.uart);
         assert_eq!(
             run.uart[0],
