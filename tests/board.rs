@@ -21,7 +21,10 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, RgbColor};
+mod common;
+
+use common::pictures::{difference, psnr, squared_error};
+use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, Rgb888, RgbColor};
 use fixray::anim::{Bounce, Orbit};
 use fixray::{BlockSize, Frame, I16F16, Sampling, Scene};
 
@@ -390,15 +393,15 @@ fn the_emulated_board_draws_the_hosts_frames_on_the_whole_panel() {
 }
 
 /// The orbit's frame `k` drawn by the host with `sampling`, whole (the board draws it band
-/// by band with `Frame::render_rows`, the same pixels).
-fn host_orbit_frame(k: u16, sampling: Sampling) -> Vec<Rgb565> {
+/// by band with `Frame::render_rows`, the same pixels), in colour `C`.
+fn host_orbit_frame<C: From<Rgb888> + Copy>(k: u16, sampling: Sampling) -> Vec<C> {
     let mut scene = Scene::<I16F16>::parse(SCENE).unwrap();
     let bounce = Bounce::boing(&scene.objects).unwrap();
     let orbit = Orbit::boing(&scene.objects).unwrap();
     bounce.apply(&mut scene, k).unwrap();
     orbit.apply(&mut scene, k).unwrap();
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let mut out = vec![Rgb565::BLACK; usize::from(w) * usize::from(h)];
+    let mut out = vec![C::from(Rgb888::BLACK); usize::from(w) * usize::from(h)];
     Frame::new(&scene)
         .with_sampling(sampling)
         .render_rows(0..h, &mut out);
@@ -442,7 +445,7 @@ fn the_emulated_board_draws_the_orbit_in_blocks_and_exact() {
             assert_eq!(frame.pixels, PANEL.0 * PANEL.1, "frame {n}");
             // The panel shows the host's frame, bit for bit.
             let memory = panel(&run, &format!("frame-{n}.rgb565"));
-            let host = host_orbit_frame(frame.index, sampling);
+            let host: Vec<Rgb565> = host_orbit_frame(frame.index, sampling);
             for (i, pixel) in host.iter().enumerate() {
                 assert_eq!(
                     memory[i],
@@ -450,27 +453,17 @@ fn the_emulated_board_draws_the_orbit_in_blocks_and_exact() {
                     "{features}, frame {n}: pixel {i}"
                 );
             }
-            // Its error against the exact frame, on the host.
+            // Its error against the exact frame, on the host, in the shading's 8-bit
+            // levels (before the panel's RGB565 rounds both).
             if n > 0 {
-                let exact = host_orbit_frame(frame.index, Sampling::Exact);
-                for (a, b) in host.iter().zip(&exact) {
-                    let channels = |c: &Rgb565| {
-                        // RGB565 to 8-bit levels, as the panel shows them.
-                        [
-                            c.r() << 3 | c.r() >> 2,
-                            c.g() << 2 | c.g() >> 4,
-                            c.b() << 3 | c.b() >> 2,
-                        ]
-                    };
-                    let (x, y) = (channels(a), channels(b));
-                    let d = x.iter().zip(&y).map(|(p, q)| p.abs_diff(*q)).max().unwrap();
-                    beyond += usize::from(d > 2);
-                    squared += x
-                        .iter()
-                        .zip(&y)
-                        .map(|(p, q)| (f64::from(*p) - f64::from(*q)).powi(2))
-                        .sum::<f64>();
-                }
+                let drawn: Vec<Rgb888> = host_orbit_frame(frame.index, sampling);
+                let exact: Vec<Rgb888> = host_orbit_frame(frame.index, Sampling::Exact);
+                beyond += drawn
+                    .iter()
+                    .zip(&exact)
+                    .filter(|(a, b)| difference(**a, **b) > 2)
+                    .count();
+                squared += squared_error(&drawn, &exact);
             }
         }
         let loop_frames = &run.frames[1..];
@@ -480,10 +473,7 @@ fn the_emulated_board_draws_the_orbit_in_blocks_and_exact() {
         let psnr = if squared == 0.0 {
             "∞".to_string()
         } else {
-            format!(
-                "{:.1} dB",
-                10.0 * (255.0f64 * 255.0 * 3.0 * pixels / squared).log10()
-            )
+            format!("{:.1} dB", psnr(squared, pixels as usize))
         };
         report += &format!(
             "| {said} | {per_pixel:.1} | {:.2} | {:.3} % | {psnr} |\n",
