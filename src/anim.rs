@@ -302,7 +302,7 @@ impl<S: Scalar> Orbit<S> {
     pub fn turn(&self, frame: u16) -> Result<(S, S), AnimError> {
         let n = i32::from(self.frames);
         let k = i32::from(frame % self.frames);
-        // s(k)·n/4 as an integer ratio: 0 → n/4 → 0 → −n/4 → 0.
+        // s(k)·n as an integer: 0 → n → 0 → −n → 0.
         let q = 4 * k;
         let s = if q <= n {
             q
@@ -327,8 +327,9 @@ impl<S: Scalar> Orbit<S> {
     ///
     /// # Errors
     /// [`AnimError::CannotTurn`] for a finite plane, a textured plane, a triangle, a
-    /// surface of revolution or a projector (only infinite planes, tiled or not,
-    /// spheres, point lights and spotlights turn); [`AnimError::OutOfRange`] when a
+    /// surface of revolution, a checkerboard laid on world x and z (a `tiled_plane`
+    /// without `xdir`) or a projector (only infinite planes, tiled along their own axes or
+    /// plain, spheres, point lights and spotlights turn); [`AnimError::OutOfRange`] when a
     /// turned quantity does not fit the format. On an error the scene may be part
     /// turned.
     #[inline(never)]
@@ -353,6 +354,10 @@ impl<S: Scalar> Orbit<S> {
                         crate::Plane::new(normal, point).map_err(|_| AnimError::OutOfRange)?,
                     )
                 }
+                Shape::Tiled {
+                    tiling: crate::geometry::Tiling::WorldXz,
+                    ..
+                } => return Err(AnimError::CannotTurn),
                 Shape::Tiled { frame, alt, tiling } => {
                     let turned = crate::PlaneFrame::new(
                         along(frame.plane().normal())?,

@@ -225,7 +225,14 @@ impl<'a, S: Scalar, C> Frame<'a, S, C> {
     /// Which pixels of this frame may differ from `before` (the frame shown before it):
     /// what an animation redraws on a display that keeps its picture. See [`Changes`].
     pub fn changes_since<'f, D>(&'f self, before: &'f Frame<'_, S, D>) -> Changes<'f, S> {
-        let moved = kernel::moved_spheres(&before.scene, &self.scene).map(|objects| Moved {
+        // A block filled in one frame may be traced in the other: a sampled frame may
+        // change anywhere.
+        #[cfg(feature = "sampling")]
+        let exact = self.sampler.is_none() && before.sampler.is_none();
+        #[cfg(not(feature = "sampling"))]
+        let exact = true;
+        let moved = kernel::moved_spheres(&before.scene, &self.scene).filter(|_| exact);
+        let moved = moved.map(|objects| Moved {
             objects,
             before: (&before.scene, &before.drawing),
             after: (&self.scene, &self.drawing),
@@ -246,8 +253,8 @@ impl<'a, S: Scalar, C> Frame<'a, S, C> {
 /// [`crate::anim::Bounce`]) and the level-plane kernel draws both ([`KernelKind::Rows`]:
 /// lit level planes and spheres, the boing ball's kind), a scanline changes only inside
 /// the moved spheres' boxes on the screen, old and new, unless their shadows can fall on
-/// it (then it changes whole). Two frames of the same scene change nowhere; any other pair
-/// changes everywhere. The columns are certified, not estimated: a pixel outside them is
+/// it (then it changes whole). Two exact frames of the same scene change nowhere; any
+/// other pair (a frame sampled in blocks among them) changes everywhere. The columns are certified, not estimated: a pixel outside them is
 /// drawn from nothing that differs between the two frames (the level-plane kernel tests a
 /// sphere only inside its box, and casts its shadow only on the rows its shadow cone
 /// meets), so drawing them over the frame before ([`Frame::render_columns`]) gives the
@@ -328,7 +335,8 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     }
 
     /// [`Frame::render_line`], adding the line's rays and stage evaluations to `counters`
-    /// (counted with the `stats` feature; without it they stay 0).
+    /// (counted with the `stats` feature; without it they stay 0; a frame sampled in
+    /// blocks counts none).
     ///
     /// ```
     /// use embedded_graphics::pixelcolor::Rgb888;
@@ -505,9 +513,10 @@ impl<S: Scalar, C: PixelColor + From<Rgb888>> Frame<'_, S, C> {
 }
 
 /// The frame as an `embedded-graphics` drawable: `frame.draw(&mut display)` streams it
-/// into the display, one `fill_contiguous` call per scanline, top to bottom, cut to the
-/// display's bounding box: only visible pixels are computed, each written once. The
-/// target's error is that of the first scanline it refused.
+/// into the display, one `fill_contiguous` call per scanline (a frame sampled in blocks:
+/// per 64 pixels of a scanline), top to bottom, cut to the display's bounding box: only
+/// visible pixels are computed, each written once. The target's error is that of the
+/// first scanline it refused.
 impl<S: Scalar, C: PixelColor + From<Rgb888>> Drawable for Frame<'_, S, C> {
     type Color = C;
     type Output = ();
@@ -524,7 +533,7 @@ impl<S: Scalar, C> Frame<'_, S, C> {
     /// Columns `start..start + out.len()` of scanline `row` into `out` (the shading's
     /// colours, whatever the frame's `C`), streamed as [`Frame::draw_counted`] computes them
     /// (no line buffer of the frame's width: a tool compares two frames chunk by chunk).
-    /// Chunks that start at multiples of 64 give exactly the pixels of
+    /// Chunks that start at multiples of 64 give exactly the pixels of an exact frame's
     /// [`Frame::render_line`] (the pure-geometry kernel's blocks; the other kernels resume
     /// exactly anywhere).
     pub(crate) fn render_chunk(&self, row: u16, start: u16, out: &mut [Rgb888]) {

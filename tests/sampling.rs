@@ -208,12 +208,31 @@ fn a_filled_pixel_stays_within_its_bound_of_the_exact_frame() {
             worst <= bound + 2,
             "plain planes, bound {bound}: {worst} levels"
         );
+        // Planes seen far away (a long lit floor: rays' parameters up to about 4) and the
+        // spheres on a floor.
+        for (name, text) in [
+            ("default", include_str!("../scenes/default.scene")),
+            ("spheres", include_str!("../scenes/spheres.scene")),
+        ] {
+            let scene = Scene::<I16F16>::parse(text).unwrap();
+            let (w, h) = (scene.camera.width, scene.camera.height);
+            let exact = rows(&Frame::<I16F16>::new(&scene), w, h);
+            for size in SIZES {
+                let frame =
+                    Frame::<I16F16>::new(&scene).with_sampling(Sampling::blocks(size, bound));
+                assert!(frame.sampled(), "{name}");
+                let what = format!("{name}, {size:?}, bound {bound}");
+                let sampled = rows(&frame, w, h);
+                let (worst, _) = within_bound(&sampled, &exact, usize::from(w), bound, &what);
+                assert!(worst <= bound + 2, "{what}: {worst} levels");
+            }
+        }
     }
 }
 
 #[test]
 fn a_looser_bound_fills_more_blocks() {
-    // A zero bound fills only blocks of one colour; a bound of one level fills most of
+    // A zero bound fills only blocks of one colour; a bound of one level fills much of
     // the floor and the wall (the colour's curvature is far below a level over a block),
     // and a looser bound never fills less.
     let scene = Scene::<I16F16>::parse(include_str!("../scenes/boing-240x240.scene")).unwrap();
@@ -232,7 +251,7 @@ fn a_looser_bound_fills_more_blocks() {
             counts.windows(2).all(|p| p[0] <= p[1]),
             "{size:?}: {counts:?}"
         );
-        assert!(counts[1] > all / 2, "{size:?}: {counts:?}");
+        assert!(counts[1] > all / 3, "{size:?}: {counts:?}");
     }
 }
 

@@ -213,7 +213,8 @@ pub const ORBIT_SAMPLING: Sampling = if cfg!(feature = "exact") {
     Sampling::blocks(BlockSize::Eight, 8)
 };
 
-/// The orbit's band: the rows drawn at once (a block's side: its corners are traced once).
+/// The orbit's band: the rows drawn at once (a block's side; each band traces its top and
+/// bottom rows of corners, so a row of corners between two bands is traced twice).
 const BAND: u16 = 8;
 
 /// A band as the DMA reads it: [`BAND`] panel rows.
@@ -299,8 +300,8 @@ fn load(scene: &mut Scene<I16F16>) -> Result<Bounce<I16F16>, Failure> {
 }
 
 /// Draws `frame` (`width` × `height`) on the panel at `(x, y)` band by band
-/// ([`Frame::render_rows`]: a sampled frame's corners traced once), each band sent by DMA
-/// while the next is drawn. Returns the pixels sent.
+/// ([`Frame::render_rows`] a band at a time), each band sent by DMA while the next is
+/// drawn. Returns the pixels sent.
 fn draw_bands(
     frame: &Frame<'_, I16F16, Rgb565>,
     (width, height): (u16, u16),

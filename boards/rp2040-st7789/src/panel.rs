@@ -144,6 +144,9 @@ impl Panel {
         pixels: &'static [u8],
     ) -> Option<usize> {
         let freed = self.finish();
+        if width == 0 {
+            return freed;
+        }
         let x1 = x0 + width - 1;
         let rows = (pixels.len() / 2) as u16 / width;
         if self.open != Some((x0, x1, y)) {

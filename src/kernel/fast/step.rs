@@ -165,11 +165,13 @@ impl<S: Scalar> Primary<S> {
         Some(r)
     }
 
-    /// Scanline `row` at column `column` as a scanline started at column 0 reaches it:
-    /// restarted at the last [`resync_pixels`] column at or before it and stepped from
-    /// there, so that a scanline drawn from any column has the whole scanline's pixels
-    /// (where a step out of range made the whole scanline restart between the two, it
-    /// restarts at `column` itself, as a whole scanline restarts after a failed step).
+    /// Scanline `row` at column `column` as a scanline started at column 0 reaches it, so
+    /// that a scanline drawn from any column has the whole scanline's pixels: the steps
+    /// from the last [`resync_pixels`] column at or before it replayed as
+    /// [`Primary::step_to`] takes them (a restart there, then a step a pixel; after a step
+    /// that fails, a restart at the next pixel; after a restart that fails, a restart at
+    /// each next pixel until one holds). `None` where the whole scanline's step to
+    /// `column` fails too (its pixel then takes the reference path).
     pub(crate) fn row_resumed(
         &self,
         scene: &SceneView<'_, S>,
@@ -177,13 +179,27 @@ impl<S: Scalar> Primary<S> {
         column: u16,
     ) -> Option<Row<S>> {
         let anchor = column - column % resync_pixels::<S>();
-        let mut r = self.row(scene, row, anchor)?;
-        for _ in anchor..column {
-            if self.advance(&mut r).is_none() {
-                return self.row(scene, row, column);
-            }
+        let mut state: Option<Row<S>> = None;
+        let mut held = false;
+        for c in anchor..=column {
+            held = match state.as_mut() {
+                Some(r) if r.column.checked_add(1) == Some(c) && c % resync_pixels::<S>() != 0 => {
+                    self.advance(r).is_some()
+                }
+                Some(r) => {
+                    let restarted = self.restart(scene, row, c, r).is_some();
+                    if !restarted {
+                        state = None;
+                    }
+                    restarted
+                }
+                None => {
+                    state = self.row(scene, row, c);
+                    state.is_some()
+                }
+            };
         }
-        Some(r)
+        state.filter(|_| held)
     }
 
     /// [`Primary::row`] into an existing row (in place: a row is hundreds of bytes, and

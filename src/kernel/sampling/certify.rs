@@ -21,7 +21,7 @@ impl<S: Scalar> Sampler<S> {
         x: (u16, u16),
         y: (u16, u16),
     ) -> Option<Fill<S>> {
-        let meets = |(a, b): (u16, u16), (c, d): (u16, u16)| a <= d && c <= b;
+        let meets = |(a, b): (u16, u16), (c, d): (u16, u16)| a <= b && a <= d && c <= b;
         if self
             .spheres
             .iter()
@@ -59,8 +59,7 @@ impl<S: Scalar> Sampler<S> {
                 *n |= s;
             }
         }
-        let size = (x.1 - x.0, y.1 - y.0);
-        let error = self.interpolation_error(scene, object, &points, (all, any), size)?;
+        let error = self.interpolation_error(scene, object, &points, (all, any), (x, y))?;
         if error.iter().any(|c| *c > self.bound) {
             return None;
         }
@@ -77,8 +76,8 @@ impl<S: Scalar> Sampler<S> {
     }
 
     /// A bound, per channel, on how far the colour of plane `object` strays from the
-    /// bilinear interpolation of its values at the corners over a block of `size` pixels
-    /// whose corners hit it at `points`, given each light's occluders common to all
+    /// bilinear interpolation of its values at the corners over the block whose corner
+    /// pixels are at columns and rows `corners` and hit it at `points`, given each light's occluders common to all
     /// corners (`all`) and found at any (`any`); `None` where the shadow state may change
     /// inside the block, a channel may reach 255 (where it is clamped, the colour is not
     /// smooth) or a quantity leaves the format.
@@ -104,8 +103,9 @@ impl<S: Scalar> Sampler<S> {
         object: u8,
         points: &[Vec3<S>; 4],
         (all, any): ([u32; LIGHTS], [u32; LIGHTS]),
-        (w, h): (u16, u16),
+        corners: ((u16, u16), (u16, u16)),
     ) -> Option<[S; 3]> {
+        let (w, h) = (corners.0.1 - corners.0.0, corners.1.1 - corners.1.0);
         let o = scene.objects.get(usize::from(object))?;
         let plane = o.shape.plane()?;
         let n = plane.normal();
@@ -125,15 +125,11 @@ impl<S: Scalar> Sampler<S> {
         }
         let rho = rho_sq.checked_sqrt()?.checked_add(S::DELTA)?;
         let (diffuse, ambient) = materials_bound(scene, o)?;
-        let eye = scene.camera.viewpoint;
         let slopes = self.slopes.get(usize::from(object))?;
-        let mut beta = S::MAX;
-        for p in points {
-            beta = beta.min(n.dot(p.diff(eye)?)?.abs());
-        }
-        if beta <= S::ZERO {
-            return None;
-        }
+        // `β` is affine over the block and keeps its sign: its smallest size is at a corner.
+        let beta = super::fill::corner_betas(scene, n, corners)?
+            .iter()
+            .fold(S::MAX, |m, b| m.min(b.abs()));
         let k = S::from_i32(255)?;
         let (w, h) = (S::from_i32(i32::from(w))?, S::from_i32(i32::from(h))?);
         let sizes = [

@@ -36,6 +36,32 @@ pub(super) struct Tiles<S> {
     negative: bool,
 }
 
+/// `β = N·D` of the rays through a block's corner pixels (columns `x`, rows `y`: top
+/// left, top right, bottom left, bottom right), `D` the unnormalised direction from the
+/// eye to the pixel's point of the window; `None` where one is zero, where they differ in
+/// sign (the plane is edge-on within the block), or out of range.
+pub(super) fn corner_betas<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    n: Vec3<S>,
+    (x, y): ((u16, u16), (u16, u16)),
+) -> Option<[S; 4]> {
+    let camera = &scene.camera;
+    let eye = camera.viewpoint;
+    let mut beta = [S::ZERO; 4];
+    for (b, (c, r)) in beta
+        .iter_mut()
+        .zip([(x.0, y.0), (x.1, y.0), (x.0, y.1), (x.1, y.1)])
+    {
+        let d = Vec3::new(camera.screen_x(c)?, camera.screen_y(r)?, S::ZERO).diff(eye)?;
+        *b = n.dot(d)?;
+    }
+    let negative = beta[0] < S::ZERO;
+    let same = beta
+        .iter()
+        .all(|b| (*b < S::ZERO) == negative && *b != S::ZERO);
+    same.then_some(beta)
+}
+
 /// The fill of a block of tiled plane `object` whose corners (at `points`, in `tiles`)
 /// lie in at most two tiles along each axis, under the lights `lit` (lit everywhere in
 /// the block; the others light none of it), over columns `x` and rows `y`.
@@ -63,25 +89,12 @@ pub(super) fn tiles_fill<S: Scalar>(
         tiles.iter().map(|t| t.0).max()?,
         tiles.iter().map(|t| t.1).max()?,
     );
-    if last.0 - first.0 > 1 || last.1 - first.1 > 1 {
+    if last.0.abs_diff(first.0) > 1 || last.1.abs_diff(first.1) > 1 {
         return None;
     }
-    let camera = &scene.camera;
-    let eye = camera.viewpoint;
     let n = frame.plane().normal();
-    let at = [(x.0, y.0), (x.1, y.0), (x.0, y.1), (x.1, y.1)];
-    let mut beta = [S::ZERO; 4];
-    for (b, (c, r)) in beta.iter_mut().zip(at) {
-        let d = Vec3::new(camera.screen_x(c)?, camera.screen_y(r)?, S::ZERO).diff(eye)?;
-        *b = n.dot(d)?;
-    }
+    let beta = corner_betas(scene, n, (x, y))?;
     let negative = beta[0] < S::ZERO;
-    if beta
-        .iter()
-        .any(|b| (*b < S::ZERO) != negative || *b == S::ZERO)
-    {
-        return None;
-    }
     let size = frame.size();
     let mut edges = [None; 2];
     for (axis, edge) in edges.iter_mut().enumerate() {
@@ -95,11 +108,17 @@ pub(super) fn tiles_fill<S: Scalar>(
         }
         let bound = size[axis].checked_mul(S::from_i32(hi)?)?;
         let mut values = [S::ZERO; 4];
+        let mut largest = S::ZERO;
         for ((v, p), b) in values.iter_mut().zip(points).zip(beta) {
             let (a, c) = frame.coords(*p)?;
             let coord = if axis == 0 { a } else { c };
             *v = coord.checked_sub(bound)?.checked_mul(b)?;
+            largest = largest.max(v.abs());
         }
+        // A pixel's interpolated value sums the four weighted by at most `w·h` in all:
+        // where that may not fit, the block is traced (the side could not be told).
+        let (w, h) = (i32::from(x.1 - x.0).max(1), i32::from(y.1 - y.0).max(1));
+        largest.checked_mul_int(4 * w * h)?;
         *edge = Some(values);
     }
     let own = scene.materials.get(usize::from(o.material))?;
