@@ -59,7 +59,16 @@ impl<S: Scalar> Sampler<S> {
                 *n |= s;
             }
         }
-        let error = self.interpolation_error(scene, object, &points, (all, any), (x, y))?;
+        // `β = N·D` at the corner pixels: the curvature bound's and the tile edges' (once a
+        // block).
+        let n = scene
+            .objects
+            .get(usize::from(object))?
+            .shape
+            .plane()?
+            .normal();
+        let beta = super::fill::corner_betas(scene, n, (x, y))?;
+        let error = self.interpolation_error(scene, object, &points, (all, any), (x, y), &beta)?;
         if error.iter().any(|c| *c > self.bound) {
             return None;
         }
@@ -69,7 +78,7 @@ impl<S: Scalar> Sampler<S> {
         // Across a tile's edge: only with a bound (the colours are this module's own).
         let lit = core::array::from_fn(|j| all[j] == 0);
         if self.bound > S::ZERO {
-            tiles_fill(scene, object, (&points, &tiles), lit, (x, y))
+            tiles_fill(scene, object, (&points, &tiles), lit, (x, y), beta)
         } else {
             None
         }
@@ -104,6 +113,7 @@ impl<S: Scalar> Sampler<S> {
         points: &[Vec3<S>; 4],
         (all, any): ([u32; LIGHTS], [u32; LIGHTS]),
         corners: ((u16, u16), (u16, u16)),
+        betas: &[S; 4],
     ) -> Option<[S; 3]> {
         let (w, h) = (corners.0.1 - corners.0.0, corners.1.1 - corners.1.0);
         let o = scene.objects.get(usize::from(object))?;
@@ -127,9 +137,7 @@ impl<S: Scalar> Sampler<S> {
         let (diffuse, ambient) = materials_bound(scene, o)?;
         let slopes = self.slopes.get(usize::from(object))?;
         // `β` is affine over the block and keeps its sign: its smallest size is at a corner.
-        let beta = super::fill::corner_betas(scene, n, corners)?
-            .iter()
-            .fold(S::MAX, |m, b| m.min(b.abs()));
+        let beta = betas.iter().fold(S::MAX, |m, b| m.min(b.abs()));
         let k = S::from_i32(255)?;
         let (w, h) = (S::from_i32(i32::from(w))?, S::from_i32(i32::from(h))?);
         let sizes = [

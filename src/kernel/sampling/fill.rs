@@ -64,13 +64,15 @@ pub(super) fn corner_betas<S: Scalar>(
 
 /// The fill of a block of tiled plane `object` whose corners (at `points`, in `tiles`)
 /// lie in at most two tiles along each axis, under the lights `lit` (lit everywhere in
-/// the block; the others light none of it), over columns `x` and rows `y`.
+/// the block; the others light none of it), over columns `x` and rows `y`, with `β` at
+/// its corner pixels ([`corner_betas`]).
 pub(super) fn tiles_fill<S: Scalar>(
     scene: &SceneView<'_, S>,
     object: u8,
     (points, tiles): (&[Vec3<S>; 4], &[(i32, i32); 4]),
     lit: [bool; LIGHTS],
     (x, y): ((u16, u16), (u16, u16)),
+    beta: [S; 4],
 ) -> Option<Fill<S>> {
     let o = scene.objects.get(usize::from(object))?;
     let Shape::Tiled {
@@ -92,8 +94,6 @@ pub(super) fn tiles_fill<S: Scalar>(
     if last.0.abs_diff(first.0) > 1 || last.1.abs_diff(first.1) > 1 {
         return None;
     }
-    let n = frame.plane().normal();
-    let beta = corner_betas(scene, n, (x, y))?;
     let negative = beta[0] < S::ZERO;
     let size = frame.size();
     let mut edges = [None; 2];
