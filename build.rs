@@ -15,10 +15,14 @@
 //!   256 KB of flash, build them on their own) chooses which number formats the firmware
 //!   renders (checked against the one list, `src/num/formats.rs`, and handed to the
 //!   firmware as `FIXRAY_FW_FORMATS_BUILT`), so that flash can be measured per format;
-//! - `FIXRAY_FW_SCENES` (default `default,boing`: the boing ball is animated, 16 frames) chooses which scenes of `scenes/` the firmware
+//! - `FIXRAY_FW_SCENES` (default `default,boing`: the boing ball is animated, 16 frames;
+//!   an entry ending `.scene` is a file's path) chooses which scenes of `scenes/` the firmware
 //!   embeds and renders (`$OUT_DIR/fw_scenes.rs`), with the texture files they name
 //!   (`include_bytes!`, in flash);
 //! - `FIXRAY_FW_SPANS=1` draws pure-geometry plane scenes in span mode (`fw_spans`);
+//! - `FIXRAY_FW_SAMPLING` (a list such as `8x8:8,4x4:1`: block side and bound) also
+//!   draws each frame sampled in those modes (`fw_sampling`; needs the cargo feature
+//!   `sampling`), a band of 8 rows at a time;
 //! - `FIXRAY_FW_PPM=1` makes the firmware also write each frame to the host as a PPM file
 //!   through semihosting (`fw_ppm`).
 
@@ -56,10 +60,12 @@ fn main() {
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_PPM");
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_SCENES");
     println!("cargo:rerun-if-env-changed=FIXRAY_FW_SPANS");
+    println!("cargo:rerun-if-env-changed=FIXRAY_FW_SAMPLING");
     for cfg in [
         "fw_microbit",
         "fw_mps2",
         "fw_ppm",
+        "fw_sampling",
         "fw_spans",
         "no_long_multiply",
     ] {
@@ -94,6 +100,14 @@ fn main() {
     // with its own `memory.x`, `boards/`) and could shadow that crate's layout.
     println!("cargo:rustc-link-arg-examples=-L{}", out.display());
     println!("cargo:rustc-link-arg-examples=--nmagic");
+    // A firmware that draws sampled frames holds a band of 8 rows and the blocks' corners
+    // beside the exact frame's stack: more than a micro:bit's 16 KiB. Its stack starts at
+    // 64 KiB (the QEMU runner gives the micro:bit that much SRAM; `memory.x`, found first
+    // in the crate's root, keeps the static data within 16 KiB). The riscv layout has
+    // 64 KiB already.
+    if !riscv && env::var("FIXRAY_FW_SAMPLING").is_ok_and(|v| !v.is_empty()) {
+        println!("cargo:rustc-link-arg-examples=--defsym=_stack_start=0x20010000");
+    }
     if riscv {
         // riscv-rt's `link.x` leaves the regions to a layout read before it.
         println!("cargo:rustc-link-arg-examples=-Tmemory-riscv.x");
@@ -132,12 +146,18 @@ fn main() {
     let mut table = String::from(
         "/// The scenes this firmware renders: (name, text).\nconst SCENES: &[(&str, &str)] = &[\n",
     );
-    for name in scenes.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+    for entry in scenes.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+        // A name of `scenes/`, or the path of a scene file (ending `.scene`), named by its
+        // file's stem.
+        let (name, path) = match entry.strip_suffix(".scene") {
+            Some(stem) => (stem.rsplit('/').next().unwrap_or(stem), entry.to_string()),
+            None => (entry, format!("{dir}/scenes/{entry}.scene")),
+        };
         assert!(
-            name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'),
+            name.chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-'),
             "FIXRAY_FW_SCENES: bad scene name `{name}`"
         );
-        let path = format!("{dir}/scenes/{name}.scene");
         assert!(
             fs::metadata(&path).is_ok(),
             "FIXRAY_FW_SCENES: no file {path}"
@@ -173,6 +193,24 @@ fn main() {
     if env::var("FIXRAY_FW_SPANS").is_ok_and(|v| v == "1") {
         println!("cargo:rustc-cfg=fw_spans");
     }
+    let sampling = env::var("FIXRAY_FW_SAMPLING").unwrap_or_default();
+    for mode in sampling.split(',').filter(|m| !m.is_empty()) {
+        let ok = mode.split_once(':').is_some_and(|(size, bound)| {
+            ["2x2", "4x4", "8x8"].contains(&size) && bound.parse::<u8>().is_ok()
+        });
+        assert!(
+            ok,
+            "FIXRAY_FW_SAMPLING: bad mode `{mode}` (SIDExSIDE:BOUND, SIDE 2, 4 or 8, BOUND 0 to 255)"
+        );
+    }
+    if !sampling.is_empty() {
+        assert!(
+            env::var_os("CARGO_FEATURE_SAMPLING").is_some(),
+            "FIXRAY_FW_SAMPLING needs the cargo feature `sampling`"
+        );
+        println!("cargo:rustc-cfg=fw_sampling");
+    }
+    println!("cargo:rustc-env=FIXRAY_FW_SAMPLING_BUILT={sampling}");
     if env::var("FIXRAY_FW_PPM").is_ok_and(|v| v == "1") {
         println!("cargo:rustc-cfg=fw_ppm");
     }

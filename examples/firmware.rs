@@ -24,6 +24,7 @@
 //! FIXRAY_FW_FORMATS=i16f16 cargo build ...   # only some formats (to measure flash per format)
 //! FIXRAY_FW_SCENES=default,planes cargo ...  # which scenes/ to embed (default: default,boing)
 //! FIXRAY_FW_SPANS=1 cargo run ...            # pure-geometry plane scenes in span mode
+//! FIXRAY_FW_SAMPLING=8x8:8,4x4:1 cargo run --features sampling ...  # each frame also sampled in blocks
 //! FIXRAY_FW_PPM=1 cargo run ...              # also write fixray-<core>-<scene>[NN]-<format>.ppm (Arm)
 //! ```
 //!
@@ -561,6 +562,88 @@ mod firmware {
         ));
         #[cfg(all(fw_ppm, target_arch = "arm"))]
         write_ppm(name, frame_no, scene, line);
+        #[cfg(fw_sampling)]
+        sampled::frames(name, scene, frame_no);
+    }
+
+    /// The frame sampled in blocks (`FIXRAY_FW_SAMPLING`): one report line per mode,
+    /// `sampling=8x8:8 filled=N` added, the frame drawn by `Frame::render_rows` a band of
+    /// [`sampled::BAND`] rows at a time (the band's buffer is static: 5,760 bytes).
+    #[cfg(fw_sampling)]
+    mod sampled {
+        use embedded_graphics::pixelcolor::Rgb888;
+        use fixray::hash::FrameHash;
+        use fixray::{BlockSize, Frame, Sampling, Scalar, Scene};
+
+        use super::board::{BOARD, instructions, say};
+        use super::{FrameNo, MAX_WIDTH, MODE};
+
+        /// Rows a band holds: the largest block's side.
+        pub const BAND: usize = 8;
+
+        /// The modes, as `FIXRAY_FW_SAMPLING` names them (checked by the build script).
+        const MODES: &str = env!("FIXRAY_FW_SAMPLING_BUILT");
+
+        /// The band's pixels.
+        static mut PIXELS: [Rgb888; BAND * MAX_WIDTH] = [Rgb888::new(0, 0, 0); BAND * MAX_WIDTH];
+
+        /// `8x8:8` as a sampling mode.
+        fn mode(text: &str) -> Option<Sampling> {
+            let (size, bound) = text.split_once(':')?;
+            let size = match size {
+                "2x2" => BlockSize::Two,
+                "4x4" => BlockSize::Four,
+                "8x8" => BlockSize::Eight,
+                _ => return None,
+            };
+            Some(Sampling::blocks(size, bound.parse().ok()?))
+        }
+
+        /// Draws and reports the frame in every mode of [`MODES`].
+        #[inline(never)]
+        pub fn frames<S: Scalar>(name: &str, scene: &Scene<S>, frame_no: Option<u16>) {
+            // SAFETY: the firmware runs on one core without interrupts that touch the
+            // band: this is its only reference.
+            let band = unsafe { &mut *(&raw mut PIXELS) };
+            let (w, h) = (usize::from(scene.camera.width), scene.camera.height);
+            for text in MODES.split(',').filter(|m| !m.is_empty()) {
+                let Some(sampling) = mode(text) else {
+                    continue;
+                };
+                let mut hash = FrameHash::new();
+                let before = instructions();
+                let frame = Frame::with_mode(scene, MODE).with_sampling(sampling);
+                let mut filled = 0;
+                let mut top = 0;
+                while top < h {
+                    let rows = top..(top + BAND as u16).min(h);
+                    let n = usize::from(rows.end - rows.start) * w;
+                    filled += frame.render_rows(rows.clone(), &mut band[..n]);
+                    for c in &band[..n] {
+                        hash.push(*c);
+                    }
+                    top = rows.end;
+                }
+                let frame_instructions = instructions() - before;
+                let pixels = (w as u64) * u64::from(h);
+                let tenths = frame_instructions * 10 / pixels;
+                say(format_args!(
+                    "format={} size={}x{} hash=0x{:08x} instructions={} per_pixel={}.{} core={} scene={} sampling={} filled={}{}",
+                    S::NAME,
+                    w,
+                    h,
+                    hash.value(),
+                    frame_instructions,
+                    tenths / 10,
+                    tenths % 10,
+                    BOARD.0,
+                    name,
+                    text,
+                    filled,
+                    FrameNo(frame_no)
+                ));
+            }
+        }
     }
 
     /// ` frame=K` for an animation's frame, nothing otherwise.

@@ -8,6 +8,7 @@
 //!                                         [--out FILE.png] [--compare FILE.png]
 //!                                         [--rules course|fixray]
 //! cargo run --release --example render -- scenes/boing.scene --bounce-strip FILE.png
+//! cargo run --release --example render -- scenes/spheres.scene --advise cortex-m0 [--budget 2:1]
 //! ```
 //!
 //! Without `--format` every main format is rendered and reported, and `--out` (default
@@ -36,6 +37,13 @@
 //! (`fixray::anim::Bounce::boing`: its first sphere moved as the firmware moves it) in
 //! `--format` (default I16F16) into one picture, 8 frames a row, and prints each frame's
 //! share of pixels that differ from the f64 frame.
+//!
+//! `--advise CORE` (`cortex-m0`, `cortex-m4f`, `riscv32imc` or `rp2040`) prints the
+//! advisor's answer (`fixray::advise`): the cheapest main format and sampling mode whose
+//! frame holds the budget against f64, and every candidate's predicted cost per pixel
+//! and measured accuracy. `--budget` is `LEVELS:PERCENT` (at most PERCENT % of pixels
+//! with a channel more than LEVELS levels off; default `2:1`) or `DBdB` (a PSNR of at
+//! least DB). The advisor reads the scene as its file says (no texture files).
 
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -57,7 +65,7 @@ const DEFAULT_SCENE: &str = include_str!("../scenes/default.scene");
 const DEFAULT_SCENE_NAME: &str = "scenes/default.scene";
 
 const USAGE: &str = "usage: render [SCENE_FILE] [--format FORMAT] [--out FILE.png] \
-                     [--compare FILE.png] [--rules course|fixray] [--bounce-strip FILE.png]   (FORMAT: one of \
+                     [--compare FILE.png] [--rules course|fixray] [--bounce-strip FILE.png] [--advise CORE [--budget 2:1|40dB]]   (FORMAT: one of \
                      fixray::num::formats::FORMATS; without it, every main format)";
 
 struct Args {
@@ -67,6 +75,8 @@ struct Args {
     compare: Option<String>,
     rules: Option<Rules>,
     strip: Option<String>,
+    advise: Option<fixray::advise::Core>,
+    budget: fixray::advise::Budget,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -77,6 +87,11 @@ fn parse_args() -> Result<Args, String> {
         compare: None,
         rules: None,
         strip: None,
+        advise: None,
+        budget: fixray::advise::Budget::Beyond {
+            levels: 2,
+            percent: 1.0,
+        },
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -93,6 +108,18 @@ fn parse_args() -> Result<Args, String> {
             "--rules" => {
                 let r = value("--rules")?;
                 args.rules = Some(r.parse().map_err(|e| format!("--rules `{r}`: {e}"))?);
+            }
+            "--advise" => {
+                let c = value("--advise")?;
+                args.advise = Some(fixray::advise::Core::from_name(&c).ok_or(format!(
+                    "--advise `{c}`: not a core (cortex-m0, cortex-m4f, riscv32imc, rp2040)"
+                ))?);
+            }
+            "--budget" => {
+                let b = value("--budget")?;
+                args.budget = fixray::advise::Budget::parse(&b).ok_or(format!(
+                    "--budget `{b}`: write LEVELS:PERCENT (e.g. 2:1) or a PSNR (e.g. 40dB)"
+                ))?;
             }
             "-h" | "--help" => return Err(String::new()),
             s if s.starts_with("--") => return Err(format!("unknown option `{s}`")),
@@ -270,6 +297,56 @@ fn read_err<S: Scalar>(text: &str, rules: Option<Rules>) -> Option<SceneError> {
     read::<S>(text, rules).err()
 }
 
+/// Prints the advisor's answer for `text` on `core` (`--advise`).
+fn advise(text: &str, core: fixray::advise::Core, budget: fixray::advise::Budget) -> ExitCode {
+    use fixray::advise::mode_name;
+    let advice = match fixray::advise::advise(text, core, budget) {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("render: --advise: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    let unit = core.unit();
+    println!("advice for {}, budget: {budget}", core.name());
+    match advice.choice() {
+        Some(c) => println!(
+            "choice: {} {}: {:.1} {unit}/pixel (model, within {:.1} % on the calibration \
+             scenes), {:.3} % of pixels beyond, PSNR {:.1} dB",
+            c.format,
+            mode_name(c.sampling),
+            c.cost,
+            100.0 * c.cost_error,
+            c.beyond,
+            c.psnr
+        ),
+        None => println!("choice: none of the candidates holds the budget"),
+    }
+    println!(
+        "{:<7} {:<7} {:>7} {:>16} {:>9} {:>8} {:>6}",
+        "format",
+        "mode",
+        "blocks",
+        format!("{unit}/pixel"),
+        "beyond %",
+        "PSNR dB",
+        "holds"
+    );
+    for c in &advice.candidates {
+        println!(
+            "{:<7} {:<7} {:>7} {:>16.1} {:>9.3} {:>8.1} {:>6}",
+            c.format,
+            mode_name(c.sampling),
+            if c.sampled { "yes" } else { "no" },
+            c.cost,
+            c.beyond,
+            c.psnr,
+            if c.holds { "yes" } else { "no" }
+        );
+    }
+    ExitCode::SUCCESS
+}
+
 fn main() -> ExitCode {
     let args = match parse_args() {
         Ok(a) => a,
@@ -324,6 +401,9 @@ fn main() -> ExitCode {
         "the file"
     };
     println!("rules: {} (from {from})", reference.rules());
+    if let Some(core) = args.advise {
+        return advise(&text, core, args.budget);
+    }
     if let Some(path) = &args.strip {
         let format = named.unwrap_or("i16f16");
         let outcome = fixray::with_format!(format, bounce_strip(&text, &reference, path))

@@ -53,6 +53,8 @@ mod kernel;
 
 mod render;
 
+#[cfg(feature = "advise")]
+pub mod advise;
 pub mod anim;
 pub mod compare;
 pub mod hash;
@@ -61,6 +63,11 @@ pub mod hash;
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
+
+/// The advisor's document's example, compiled and run as a doc test.
+#[cfg(all(doctest, feature = "advise"))]
+#[doc = include_str!("../docs/advisor.md")]
+pub struct AdvisorDoctests;
 
 pub use kernel::KernelKind;
 pub use kernel::flat::PlaneMode;

@@ -358,19 +358,34 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
         }
         #[cfg(feature = "sampling")]
         if let Some(sampler) = &self.sampler {
-            let n = u16::try_from(line.len()).unwrap_or(u16::MAX);
-            let stride = line.len();
-            sampled_rows(
-                &self.scene,
-                sampler,
-                (row..row + 1, 0..n),
-                (line, stride),
-                &mut |r, runs: &[Range<u16>], line: &mut [C]| self.exact_runs(r, runs, line, 0),
-                None,
-            );
-            return;
+            return self.sampled_line(sampler, row, line, counters);
         }
         self.exact_line(row, line, counters);
+    }
+
+    /// [`Frame::render_line_counted`] of a frame sampled in blocks. Out of line: the
+    /// blocks' corners and runs live in its stack frame, not in the exact line's.
+    #[cfg(feature = "sampling")]
+    #[inline(never)]
+    fn sampled_line(
+        &self,
+        sampler: &Sampler<S>,
+        row: u16,
+        line: &mut [C],
+        counters: &mut Counters,
+    ) {
+        let n = u16::try_from(line.len()).unwrap_or(u16::MAX);
+        let stride = line.len();
+        sampled_rows(
+            &self.scene,
+            sampler,
+            (row..row + 1, 0..n),
+            (line, stride),
+            &mut |r, runs: &[Range<u16>], line: &mut [C]| {
+                self.exact_runs(r, runs, line, 0, counters);
+            },
+            None,
+        );
     }
 
     /// [`Frame::render_line_counted`] as the exact frame draws it.
@@ -389,9 +404,39 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     /// scanlines. Returns how many of the pixels were filled from blocks' corners rather
     /// than traced (0 in an exact frame).
     pub fn render_rows(&self, rows: core::ops::Range<u16>, out: &mut [C]) -> usize {
+        self.render_rows_counted(rows, out, &mut Counters::default())
+    }
+
+    /// [`Frame::render_rows`], counting the traced pixels' rays and stage evaluations
+    /// in `counters` (with the `stats` feature; the corners of a sampled frame's blocks
+    /// are not counted there).
+    ///
+    /// ```
+    /// use fixray::stats::Counters;
+    /// use fixray::{Frame, Scene, I16F16};
+    /// use embedded_graphics::pixelcolor::Rgb888;
+    ///
+    /// let scene = Scene::<I16F16>::parse(include_str!("../scenes/spheres.scene"))?;
+    /// let w = scene.camera.width;
+    /// let mut band = vec![Rgb888::new(0, 0, 0); usize::from(w) * 8];
+    /// let mut counters = Counters::default();
+    /// let frame: Frame<'_, I16F16> = Frame::new(&scene);
+    /// let filled = frame.render_rows_counted(0..8, &mut band, &mut counters);
+    /// assert_eq!(filled, 0); // an exact frame traces every pixel
+    /// if cfg!(feature = "stats") {
+    ///     assert_eq!(counters.primary_rays, u32::from(w) * 8);
+    /// }
+    /// # Ok::<(), fixray::SceneError>(())
+    /// ```
+    pub fn render_rows_counted(
+        &self,
+        rows: core::ops::Range<u16>,
+        out: &mut [C],
+        counters: &mut Counters,
+    ) -> usize {
         #[cfg(feature = "sampling")]
         if let Some(sampler) = &self.sampler {
-            return self.render_rows_sampled(sampler, rows, out);
+            return self.render_rows_sampled(sampler, rows, out, counters);
         }
         let width = usize::from(self.scene.camera.width);
         let end = rows.end.min(self.scene.camera.height);
@@ -401,7 +446,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                 break;
             };
             let n = width.min(slice.len());
-            self.render_line(row, &mut slice[..n]);
+            self.render_line_counted(row, &mut slice[..n], counters);
         }
         0
     }
@@ -426,7 +471,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                     (row..row + 1, columns.clone()),
                     (out, stride),
                     &mut |r, runs: &[Range<u16>], line: &mut [C]| {
-                        self.exact_runs(r, runs, line, columns.start)
+                        self.exact_runs(r, runs, line, columns.start, &mut Counters::default())
                     },
                     None,
                 );

@@ -69,6 +69,35 @@ fn a_scene_error_prints_file_line_column_and_fails() {
 }
 
 #[test]
+fn advise_names_the_choice_and_refuses_bad_cores_and_budgets() {
+    let out = run(&["scenes/spheres.scene", "--advise", "cortex-m4f"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains("advice for cortex-m4f, budget: at most 1 % of pixels beyond 2 levels"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("choice: "), "{stdout}");
+    // One row per candidate: each format's exact frame and its priced modes (no sampled
+    // I32F32 was counted on the M4F).
+    let rows: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.ends_with(" yes") || l.ends_with(" no"))
+        .collect();
+    assert_eq!(rows.len(), 3 * 13 + 1, "{stdout}");
+    assert!(
+        rows.iter().any(|r| r.starts_with("i32f32  exact")),
+        "{stdout}"
+    );
+    let out = run(&["--advise", "z80"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("not a core"));
+    let out = run(&["--advise", "rp2040", "--budget", "lots"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("LEVELS:PERCENT"));
+}
+
+#[test]
 fn bad_arguments_fail_with_usage() {
     let out = run(&["--format", "i8f8"]);
     assert_eq!(out.status.code(), Some(2));

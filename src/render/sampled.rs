@@ -16,12 +16,15 @@ use crate::stats::Counters;
 
 impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     /// [`Frame::render_rows`] of a frame sampled in blocks: band by band, each band's
-    /// bottom corners kept for the next.
+    /// bottom corners kept for the next. Out of line: its corners live in its own stack
+    /// frame, not in an exact frame's.
+    #[inline(never)]
     pub(super) fn render_rows_sampled(
         &self,
         sampler: &Sampler<S>,
         rows: core::ops::Range<u16>,
         out: &mut [C],
+        counters: &mut Counters,
     ) -> usize {
         let mut filled = 0;
         let width = usize::from(self.scene.camera.width);
@@ -40,7 +43,9 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                 sampler,
                 (row..next, 0..self.scene.camera.width),
                 (slice, width),
-                &mut |r, runs: &[Range<u16>], line: &mut [C]| self.exact_runs(r, runs, line, 0),
+                &mut |r, runs: &[Range<u16>], line: &mut [C]| {
+                    self.exact_runs(r, runs, line, 0, counters);
+                },
                 Some(&mut kept),
             );
             row = next;
@@ -48,8 +53,15 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
         filled
     }
     /// Columns `runs` of scanline `row` as the exact frame draws them, into `line`
-    /// (`line[i]` is column `origin + i`).
-    pub(super) fn exact_runs(&self, row: u16, runs: &[Range<u16>], line: &mut [C], origin: u16) {
+    /// (`line[i]` is column `origin + i`), their rays counted in `counters`.
+    pub(super) fn exact_runs(
+        &self,
+        row: u16,
+        runs: &[Range<u16>],
+        line: &mut [C],
+        origin: u16,
+        counters: &mut Counters,
+    ) {
         let mut put = |column: u16, c: C| {
             if let Some(slot) = line.get_mut(usize::from(column - origin)) {
                 *slot = c;
@@ -63,7 +75,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                 self.mode,
                 row,
                 runs,
-                &mut Counters::default(),
+                counters,
                 &mut put
             )
         );

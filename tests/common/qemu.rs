@@ -100,12 +100,25 @@ pub fn run_with_features(
     scenes: &str,
     features: Option<&str>,
 ) -> Result<Run, String> {
-    run_with(target, formats, scenes, features, false)
+    run_with(target, formats, scenes, features, false, "")
+}
+
+/// [`run`] with each frame also drawn sampled in blocks (`FIXRAY_FW_SAMPLING`, e.g.
+/// `8x8:8,4x4:1`; `features` must hold `sampling`): one more frame reported per mode,
+/// with `sampling=` and `filled=`.
+pub fn run_sampled(
+    target: &str,
+    formats: &str,
+    scenes: &str,
+    features: &str,
+    sampling: &str,
+) -> Result<Run, String> {
+    run_with(target, formats, scenes, Some(features), false, sampling)
 }
 
 /// [`run`] with pure-geometry plane scenes drawn in span mode (`FIXRAY_FW_SPANS=1`).
 pub fn run_spans(target: &str, formats: &str, scenes: &str) -> Result<Run, String> {
-    run_with(target, formats, scenes, None, true)
+    run_with(target, formats, scenes, None, true, "")
 }
 
 /// One firmware build and run at a time: the builds share `target/` (one ELF per
@@ -119,6 +132,7 @@ fn run_with(
     scenes: &str,
     features: Option<&str>,
     spans: bool,
+    sampling: &str,
 ) -> Result<Run, String> {
     // A panic in another test while it held the lock leaves nothing half-done here.
     let _one_at_a_time = FIRMWARE.lock().unwrap_or_else(|e| e.into_inner());
@@ -143,6 +157,7 @@ fn run_with(
         .env("FIXRAY_FW_SCENES", scenes)
         .env_remove("FIXRAY_FW_PPM")
         .env("FIXRAY_FW_SPANS", if spans { "1" } else { "0" })
+        .env("FIXRAY_FW_SAMPLING", sampling)
         .output()
         .map_err(|e| format!("cannot run cargo: {e}"))?;
     let stdout = String::from_utf8_lossy(&out.stdout);

@@ -182,7 +182,7 @@ macro_rules! verbatim {
     };
 }
 
-const BLOCKS: [Block; 13] = [
+const BLOCKS: [Block; 14] = [
     ("README.md", "formats", formats),
     ("README.md", "sample", sample),
     ("README.md", "boing", boing),
@@ -216,6 +216,7 @@ const BLOCKS: [Block; 13] = [
         "sampling",
         || Ok(crate::blocks::table()),
     ),
+    ("docs/advisor.md", "advice", crate::advice::table),
 ];
 
 const END: &str = "<!-- end figures -->";
