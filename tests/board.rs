@@ -14,7 +14,8 @@
 //! the UART lines as the board's docs give them; the whole panel drawn; and a bad scene
 //! turning the panel red with `error: …` on the UART. They print the emulated cycles and
 //! write `target/board-report.md` (frame rates from cycles, for `cargo xtask figures`).
-//! The orbit's builds (`orbit`, and `orbit,exact`) draw the ball before a circling camera
+//! The still camera's builds have the `bounce` feature; the orbit's (the default program,
+//! and `exact`) draw the ball before a circling camera
 //! in 8×8 blocks and exact; every frame is checked against the host's the same way, and
 //! `target/board-orbit-report.md` gives their cycles beside their error.
 
@@ -312,10 +313,15 @@ fn the_emulated_board_draws_the_hosts_frames_on_the_whole_panel() {
     let frames = 17;
     let mut costs = Vec::new();
     for (features, mhz, spi_khz, whole) in [
-        ("emulated,whole-frames,clock-125mhz", 125, 62_500, true),
-        ("emulated,whole-frames", 200, 50_000, true),
-        ("emulated,clock-125mhz", 125, 62_500, false),
-        ("emulated", 200, 50_000, false),
+        (
+            "emulated,bounce,whole-frames,clock-125mhz",
+            125,
+            62_500,
+            true,
+        ),
+        ("emulated,bounce,whole-frames", 200, 50_000, true),
+        ("emulated,bounce,clock-125mhz", 125, 62_500, false),
+        ("emulated,bounce", 200, 50_000, false),
     ] {
         let elf = build(features);
         let out = format!("board-{}", features.replace(',', "-"));
@@ -418,8 +424,8 @@ fn the_emulated_board_draws_the_orbit_in_blocks_and_exact() {
          fps | pixels > 2 levels of exact | PSNR against exact |\n|---|---|---|---|---|\n",
     );
     for (features, sampling, said) in [
-        ("emulated,orbit", blocks, "orbit, 8x8 blocks, bound 8"),
-        ("emulated,orbit,exact", Sampling::Exact, "orbit, exact"),
+        ("emulated", blocks, "orbit, 8x8 blocks, bound 8"),
+        ("emulated,exact", Sampling::Exact, "orbit, exact"),
     ] {
         let elf = build(features);
         // An exact frame is about 284 M cycles: more than the emulator's default limit

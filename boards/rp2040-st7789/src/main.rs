@@ -5,7 +5,9 @@
 //! At run time the program parses `scenes/boing-240x240.scene` (a red, lit sphere over a
 //! checkered floor and back wall at the panel's resolution) with fixray's parser, in the
 //! `I16F16` fixed-point format, then loops forever over the ball's 16-frame bounce
-//! ([`fixray::anim::Bounce::boing`]). Each frame is ray-cast one scanline at a time,
+//! ([`fixray::anim::Bounce::boing`]), seen by a camera circling it (the default program,
+//! below) or before a still camera (the `bounce` feature). In the still camera's program
+//! each frame is ray-cast one scanline at a time,
 //! only where it differs from the frame before: the rows are dealt out between the two
 //! cores ([`rows`]), and each finished row goes to the panel by DMA while the next one is
 //! drawn ([`panel`]). There is no framebuffer and no
@@ -62,14 +64,18 @@
 //!
 //! The panel turns black, then the ball bounces twice over a pale/plum checkerboard
 //! floor in front of a checkered wall, swaying right and back, with its shadow on the
-//! floor, looping every 16 frames. On the serial port (e.g.
+//! floor, looping every 16 frames, while the camera swings round it and back (with
+//! `bounce`, the camera stands still). On the serial port (e.g.
 //! `picocom -b 115200 /dev/ttyUSB0`) a start line and then one line per frame:
 //!
 //! ```text
-//! fixray boing: 240x240 at (0,0) on a 240x240 panel, 200 MHz, 2 cores, SPI 50000 kHz, changes only
+//! fixray boing: 240x240 at (0,0) on a 240x240 panel, 200 MHz, 1 core, SPI 50000 kHz, orbit, 8x8 blocks, bound 8
 //! frame=0 us=… pixels=57600
-//! frame=1 us=… pixels=…
+//! frame=1 us=… pixels=57600
 //! ```
+//!
+//! With `bounce` the start line says `2 cores, SPI 50000 kHz, changes only`, and each
+//! frame's `pixels` are those sent.
 //!
 //! `us` is the frame's time from the RP2040's 1 MHz timer: ray casting its pixels, with
 //! the display transfer overlapped, up to the last row's transfer. `pixels` are the
@@ -84,15 +90,19 @@
 //! remove `INVON` in `panel.rs`. If the picture is garbled, lower [`SPI_HZ`] (e.g. to
 //! 31.25 MHz) or shorten the wires.
 //!
-//! # The orbit
+//! # The two programs
 //!
-//! `cargo build --release --features orbit` builds the other program ([`PROGRAM`]): the
-//! ball bouncing before a camera that circles it ([`fixray::anim::Orbit`]). Every pixel
-//! changes, so each frame is sent whole; core 0 draws it in bands of eight rows
-//! ([`fixray::Frame::render_rows`]) in 8×8 blocks filled where a certificate bounds the
-//! error by 8 levels ([`ORBIT_SAMPLING`]; exact with the `exact` feature), each band sent
-//! by DMA while the next is drawn. The start line ends `orbit, 8x8 blocks, bound 8` (or
-//! `orbit, exact`).
+//! The default program ([`PROGRAM`]) is the orbit: the ball bouncing before a camera that
+//! circles it ([`fixray::anim::Orbit`]). Every pixel changes, so each frame is sent whole;
+//! core 0 draws it in bands of eight rows ([`fixray::Frame::render_rows`]) in 8×8 blocks
+//! filled where a certificate bounds the error by 8 levels ([`ORBIT_SAMPLING`], the
+//! fastest setting measured within the orbit's budget; exact with the `exact` feature),
+//! each band sent by DMA while the next is drawn. Its start line ends `orbit, 8x8 blocks,
+//! bound 8` (or `orbit, exact`).
+//!
+//! `cargo build --release --features bounce` builds the other: the ball bouncing before
+//! a still camera, exact, as described below; its start line ends `changes only` (or
+//! `whole frames`).
 //!
 //! # Other panels
 //!
@@ -196,11 +206,12 @@ pub enum Program {
     Orbit,
 }
 
-/// The animation: the bounce, or the orbit with the cargo feature `orbit`.
-pub const PROGRAM: Program = if cfg!(feature = "orbit") {
-    Program::Orbit
-} else {
+/// The animation: the orbit, or the bounce before a still camera with the cargo feature
+/// `bounce`.
+pub const PROGRAM: Program = if cfg!(feature = "bounce") {
     Program::Bounce
+} else {
+    Program::Orbit
 };
 
 /// How the orbit's frames are drawn: 8×8 blocks traced at their corners and filled where
