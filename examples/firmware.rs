@@ -573,7 +573,7 @@ mod firmware {
     mod sampled {
         use embedded_graphics::pixelcolor::Rgb888;
         use fixray::hash::FrameHash;
-        use fixray::{BlockSize, Frame, Sampling, Scalar, Scene};
+        use fixray::{Frame, Sampling, Scalar, Scene};
 
         use super::board::{BOARD, instructions, say};
         use super::{FrameNo, MAX_WIDTH, MODE};
@@ -587,18 +587,6 @@ mod firmware {
         /// The band's pixels.
         static mut PIXELS: [Rgb888; BAND * MAX_WIDTH] = [Rgb888::new(0, 0, 0); BAND * MAX_WIDTH];
 
-        /// `8x8:8` as a sampling mode.
-        fn mode(text: &str) -> Option<Sampling> {
-            let (size, bound) = text.split_once(':')?;
-            let size = match size {
-                "2x2" => BlockSize::Two,
-                "4x4" => BlockSize::Four,
-                "8x8" => BlockSize::Eight,
-                _ => return None,
-            };
-            Some(Sampling::blocks(size, bound.parse().ok()?))
-        }
-
         /// Draws and reports the frame in every mode of [`MODES`].
         #[inline(never)]
         pub fn frames<S: Scalar>(name: &str, scene: &Scene<S>, frame_no: Option<u16>) {
@@ -607,7 +595,7 @@ mod firmware {
             let band = unsafe { &mut *(&raw mut PIXELS) };
             let (w, h) = (usize::from(scene.camera.width), scene.camera.height);
             for text in MODES.split(',').filter(|m| !m.is_empty()) {
-                let Some(sampling) = mode(text) else {
+                let Ok(sampling) = text.parse::<Sampling>() else {
                     continue;
                 };
                 let mut hash = FrameHash::new();

@@ -299,7 +299,6 @@ fn read_err<S: Scalar>(text: &str, rules: Option<Rules>) -> Option<SceneError> {
 
 /// Prints the advisor's answer for `text` on `core` (`--advise`).
 fn advise(text: &str, core: fixray::advise::Core, budget: fixray::advise::Budget) -> ExitCode {
-    use fixray::advise::mode_name;
     let advice = match fixray::advise::advise(text, core, budget) {
         Ok(a) => a,
         Err(e) => {
@@ -314,7 +313,7 @@ fn advise(text: &str, core: fixray::advise::Core, budget: fixray::advise::Budget
             "choice: {} {}: {:.1} {unit}/pixel (model, within {:.1} % on the calibration \
              scenes), {:.3} % of pixels beyond, PSNR {:.1} dB",
             c.format,
-            mode_name(c.sampling),
+            c.sampling,
             c.cost,
             100.0 * c.cost_error,
             c.beyond,
@@ -333,10 +332,11 @@ fn advise(text: &str, core: fixray::advise::Core, budget: fixray::advise::Budget
         "holds"
     );
     for c in &advice.candidates {
+        // Padded as a string (the mode's `Display` writes its name as it is).
+        let mode = c.sampling.to_string();
         println!(
-            "{:<7} {:<7} {:>7} {:>16.1} {:>9.3} {:>8.1} {:>6}",
+            "{:<7} {mode:<7} {:>7} {:>16.1} {:>9.3} {:>8.1} {:>6}",
             c.format,
-            mode_name(c.sampling),
             if c.sampled { "yes" } else { "no" },
             c.cost,
             c.beyond,

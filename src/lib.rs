@@ -72,7 +72,7 @@ pub struct AdvisorDoctests;
 pub use kernel::KernelKind;
 pub use kernel::flat::PlaneMode;
 #[cfg(feature = "sampling")]
-pub use kernel::sampling::{BlockSize, Sampling};
+pub use kernel::sampling::{BlockSize, Sampling, UnknownSampling};
 pub use num::{I16F16, I20F12, I32F32, Scalar};
 pub use render::{Changes, Frame, render, render_line};
 pub use scene::{Scene, SceneError};

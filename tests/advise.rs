@@ -2,7 +2,7 @@
 //! its accuracy figures are the frames', and its costs follow the calibrated counts (the
 //! render example's `--advise` is tested in `tests/cli.rs`).
 
-use fixray::advise::{Budget, Core, MODELS, Model, advise, mode_name, model_price, work};
+use fixray::advise::{Budget, Core, MODELS, Model, advise, model_price, work};
 use fixray::{I16F16, Sampling, Scene};
 
 const SPHERES: &str = include_str!("../scenes/spheres.scene");
@@ -52,12 +52,7 @@ fn the_choice_holds_the_budget_and_nothing_cheaper_does() {
             }
             for c in &advice.candidates {
                 if c.cost < choice.cost {
-                    assert!(
-                        !c.holds,
-                        "{} {} is cheaper and holds",
-                        c.format,
-                        mode_name(c.sampling)
-                    );
+                    assert!(!c.holds, "{} {} is cheaper and holds", c.format, c.sampling);
                 }
             }
             assert!(advice.candidates.windows(2).all(|w| w[0].cost <= w[1].cost));

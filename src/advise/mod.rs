@@ -166,33 +166,6 @@ pub const MODES: [Sampling; 13] = [
     Sampling::blocks(BlockSize::Eight, 8),
 ];
 
-/// `exact` or `8x8:8` (side and bound), as the firmware's `FIXRAY_FW_SAMPLING` and the
-/// tools name a mode.
-pub fn mode_name(sampling: Sampling) -> String {
-    match sampling {
-        Sampling::Exact => "exact".into(),
-        Sampling::Blocks { size, bound } => {
-            let b = size.pixels();
-            format!("{b}x{b}:{bound}")
-        }
-    }
-}
-
-/// The mode [`mode_name`] names.
-pub fn mode_from_name(name: &str) -> Option<Sampling> {
-    if name == "exact" {
-        return Some(Sampling::Exact);
-    }
-    let (size, bound) = name.split_once(':')?;
-    let size = match size {
-        "2x2" => BlockSize::Two,
-        "4x4" => BlockSize::Four,
-        "8x8" => BlockSize::Eight,
-        _ => return None,
-    };
-    Some(Sampling::blocks(size, bound.parse().ok()?))
-}
-
 /// The features of the cost model, in the order of [`Work::counts`] and of
 /// [`Model::coefficients`]. A ray's cost grows with the objects it is tested against:
 /// those features are rays times objects.
@@ -509,7 +482,7 @@ mod tests {
     #[test]
     fn modes_and_budgets_read_back() {
         for m in MODES {
-            assert_eq!(mode_from_name(&mode_name(m)), Some(m));
+            assert_eq!(m.to_string().parse(), Ok(m));
         }
         assert_eq!(
             Budget::parse("2:1"),

@@ -15,7 +15,6 @@ use crate::pictures::{Capture, difference, psnr, squared_error};
 use embedded_graphics::prelude::Drawable;
 use fixray::advise::{
     Advice, Budget, Candidate, Core, RP2040_CYCLES_PER_INSTRUCTION, Work, advise, advise_with,
-    mode_name,
 };
 use fixray::scene::LargeScene;
 use fixray::{Frame, Sampling, Scalar};
@@ -83,7 +82,7 @@ fn counted(
 ) -> impl FnMut(&'static str, Sampling, bool, &Work) -> Option<(f64, f64)> {
     move |format, sampling, sampled, _| {
         let mode = if sampled {
-            mode_name(sampling)
+            sampling.to_string()
         } else {
             "exact".into()
         };
@@ -103,7 +102,7 @@ fn setting(c: &Candidate) -> String {
     format!(
         "{} {}{}",
         c.format,
-        mode_name(c.sampling),
+        c.sampling,
         if c.sampled || c.sampling == Sampling::Exact {
             ""
         } else {
@@ -167,6 +166,43 @@ pub fn table() -> Result<String, String> {
                 c.psnr,
                 again.0,
                 again.1
+            )
+            .unwrap();
+        }
+    }
+    Ok(out)
+}
+
+/// The sampling section's cost table (`docs/accuracy.md`, figures block `sampling-cost`):
+/// each scene of [`SCENES`] exact and in each mode that draws it in blocks, I16F16, the
+/// instructions per pixel `docs/calibration.md` holds for the three QEMU cores and the
+/// RP2040's cycles from the Cortex-M0's.
+pub fn sampling_costs() -> Result<String, String> {
+    let record = std::fs::read_to_string(crate::root().join("docs/calibration.md"))
+        .map_err(|e| format!("docs/calibration.md: {e} (run `cargo xtask calibrate`)"))?;
+    let counts = counts(&record);
+    let mut out = String::from(
+        "| scene | sampling | Cortex-M0 | Cortex-M4F | RISC-V | RP2040 cycles (estimated) |\n\
+         |---|---|---|---|---|---|\n",
+    );
+    for scene in SCENES {
+        for mode in fixray::advise::MODES {
+            let name = mode.to_string();
+            let of = |core: &str| {
+                counts
+                    .iter()
+                    .find(|(c, f, s, m, _)| c == core && f == "i16f16" && s == scene && *m == name)
+                    .map(|e| e.4)
+            };
+            let (Some(m0), Some(m4), Some(rv)) =
+                (of("cortex-m0"), of("cortex-m4f"), of("riscv32imc"))
+            else {
+                continue;
+            };
+            writeln!(
+                out,
+                "| {scene} | {name} | {m0:.1} | {m4:.1} | {rv:.1} | {:.1} |",
+                m0 * RP2040_CYCLES_PER_INSTRUCTION
             )
             .unwrap();
         }

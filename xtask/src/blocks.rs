@@ -215,7 +215,15 @@ pub fn section() -> String {
          the f64 frame, the PSNR over all the frames and the worst frame's SSIM (8×8 windows, \
          worst channel) against the exact frame. The exact rows' f64 columns are the format's \
          own error. `cargo xtask figures --check` (CI) checks the table.\n\n\
-         <!-- figures: sampling -->\n{}<!-- end figures -->\n",
-        table()
+         <!-- figures: sampling -->\n{}<!-- end figures -->\n\n\
+         What each mode costs on the chips: instructions per pixel in I16F16 under QEMU, \
+         one frame of each scene, hashing included, as `cargo xtask calibrate` counts them \
+         for the advisor (`docs/calibration.md`; the RP2040's cycles are the Cortex-M0's \
+         count times the board's cycles per instruction, [`advisor.md`](advisor.md)). A mode \
+         whose blocks the scene's kind refuses draws the exact frame and is left out. \
+         `cargo xtask figures --check` (CI) checks this table too.\n\n\
+         <!-- figures: sampling-cost -->\n{}<!-- end figures -->\n",
+        table(),
+        crate::advice::sampling_costs().unwrap_or_else(|e| format!("{e}\n"))
     )
 }

@@ -11,12 +11,13 @@
 //! the fit without that scene. The RP2040's cycles per instruction are the emulated
 //! board's whole exact frame (`target/board-report.md`, from `cargo test --release
 //! --test board -- --ignored`) over the Cortex-M0's count of the same scene at 240×240.
-//! Takes about 10 minutes.
+//! Takes about 5 minutes. With `--check` nothing is written: the command fails when the
+//! committed models or record differ from what the counts give (CI runs it).
 
 use std::fmt::Write as _;
 
 use fixray::Scalar;
-use fixray::advise::{FEATURES, Work, mode_from_name, mode_name, work};
+use fixray::advise::{FEATURES, Work, work};
 use fixray::hash::FrameHash;
 use fixray::num::formats::{MAIN, REFERENCE};
 use fixray::scene::LargeScene;
@@ -47,7 +48,7 @@ pub fn modes() -> String {
     fixray::advise::MODES
         .into_iter()
         .filter(|m| *m != fixray::Sampling::Exact)
-        .map(mode_name)
+        .map(|m| m.to_string())
         .collect::<Vec<_>>()
         .join(",")
 }
@@ -72,7 +73,7 @@ struct Measured {
 fn host<S: Scalar>(scene: &str, mode: &str) -> Option<(Work, u32)> {
     let text = std::fs::read_to_string(crate::root().join(format!("scenes/{scene}.scene"))).ok()?;
     let parsed = LargeScene::<S>::parse(&text).ok()?;
-    let sampling = mode_from_name(mode)?;
+    let sampling = mode.parse::<fixray::Sampling>().ok()?;
     let (pixels, work) = work(&parsed, sampling);
     let mut hash = FrameHash::new();
     pixels.iter().for_each(|p| hash.push(*p));
@@ -149,7 +150,15 @@ fn board_cycles() -> Result<f64, String> {
         .ok_or("target/board-report.md has no `whole | 1` row".into())
 }
 
-pub fn main() {
+pub fn main(args: &[String]) {
+    let check = match args {
+        [] => false,
+        [flag] if flag == "--check" => true,
+        _ => {
+            eprintln!("usage: cargo xtask calibrate [--check]");
+            std::process::exit(2);
+        }
+    };
     if !qemu::qemu_available() {
         eprintln!("qemu-system-arm or qemu-system-riscv32 is not installed (both are needed)");
         std::process::exit(1);
@@ -249,11 +258,32 @@ pub fn main() {
         .unwrap();
     }
     std::fs::write(crate::root().join("target/calibration.tsv"), raw).expect("target/ is writable");
-    write(&measured, &formats, board);
+    write(&measured, &formats, board, check);
+}
+
+/// `text` as `cargo fmt` leaves it (the models are Rust source, checked by `cargo fmt
+/// --check`).
+fn rustfmt(text: &str) -> String {
+    use std::io::Write as _;
+    let mut child = std::process::Command::new("rustfmt")
+        .args(["--edition", "2024", "--emit", "stdout"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .expect("rustfmt runs (the toolchain's)");
+    child
+        .stdin
+        .take()
+        .expect("piped")
+        .write_all(text.as_bytes())
+        .expect("rustfmt reads");
+    let out = child.wait_with_output().expect("rustfmt ends");
+    assert!(out.status.success(), "rustfmt formats the models");
+    String::from_utf8(out.stdout).expect("rustfmt writes UTF-8")
 }
 
 /// Writes the models and the record.
-fn write(measured: &[Measured], formats: &[&'static str], board: f64) {
+fn write(measured: &[Measured], formats: &[&'static str], board: f64, check: bool) {
     let mut models = String::from(
         "//! The cost models, written by `cargo xtask calibrate` from the firmware's counts under\n\
          //! QEMU (`docs/calibration.md` holds every frame): do not edit.\n\n\
@@ -365,8 +395,34 @@ fn write(measured: &[Measured], formats: &[&'static str], board: f64) {
         FEATURES.join(", ")
     )
     .unwrap();
-    std::fs::write(crate::root().join("src/advise/model.rs"), models)
-        .expect("src/advise is writable");
-    std::fs::write(crate::root().join("docs/calibration.md"), record).expect("docs/ is writable");
+    let files = [
+        ("src/advise/model.rs", rustfmt(&models)),
+        ("docs/calibration.md", record),
+    ];
+    if check {
+        // The counts are deterministic for one QEMU; numbers may differ within the
+        // figures' tolerance, words not at all.
+        let stale: Vec<&str> = files
+            .iter()
+            .filter(|(path, text)| {
+                let committed =
+                    std::fs::read_to_string(crate::root().join(path)).unwrap_or_default();
+                !crate::figures::agree(&committed, text)
+            })
+            .map(|(path, _)| *path)
+            .collect();
+        if !stale.is_empty() {
+            eprintln!(
+                "calibrate: {} differ from the counts (run `cargo xtask calibrate` and commit)",
+                stale.join(" and ")
+            );
+            std::process::exit(1);
+        }
+        println!("calibrate: the models and their record are the counts'");
+        return;
+    }
+    for (path, text) in files {
+        std::fs::write(crate::root().join(path), text).unwrap_or_else(|e| panic!("{path}: {e}"));
+    }
     println!("calibrate: src/advise/model.rs and docs/calibration.md written");
 }

@@ -182,7 +182,7 @@ macro_rules! verbatim {
     };
 }
 
-const BLOCKS: [Block; 14] = [
+const BLOCKS: [Block; 15] = [
     ("README.md", "formats", formats),
     ("README.md", "sample", sample),
     ("README.md", "boing", boing),
@@ -217,6 +217,11 @@ const BLOCKS: [Block; 14] = [
         || Ok(crate::blocks::table()),
     ),
     ("docs/advisor.md", "advice", crate::advice::table),
+    (
+        "docs/accuracy.md",
+        "sampling-cost",
+        crate::advice::sampling_costs,
+    ),
 ];
 
 const END: &str = "<!-- end figures -->";
@@ -229,7 +234,7 @@ const NUMBER_TOLERANCE: f64 = 0.005;
 
 /// Whether a committed block says what the measured one says: the same words, and numbers
 /// within [`NUMBER_TOLERANCE`] of each other.
-fn agree(committed: &str, measured: &str) -> bool {
+pub(crate) fn agree(committed: &str, measured: &str) -> bool {
     let number = |w: &str| -> Option<f64> {
         let w = w.trim_matches(|c: char| c == '*' || c == '(' || c == ')' || c == '%');
         let w = w.rsplit_once('=').map_or(w, |(_, v)| v);

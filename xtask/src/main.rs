@@ -6,7 +6,7 @@
 //! cargo xtask numerics             # docs/numerics.md
 //! cargo xtask firmware [FORMATS]   # every core × format under QEMU: instructions, flash, hash
 //! cargo xtask scene-format         # docs/scene-format.md's reference tables, from the schema
-//! cargo xtask calibrate          # the advisor's cost models, from the firmware's counts under QEMU
+//! cargo xtask calibrate [--check] # the advisor's cost models, from the firmware's counts under QEMU
 //! cargo xtask advise SCENE CORE [BUDGET]   # the advisor with every candidate counted under QEMU
 //! cargo xtask figures [--check]    # the measured figures of README.md and docs/, from the reports and host renders
 //! ```
@@ -31,7 +31,7 @@ mod firmware;
 mod numerics;
 mod scene_format;
 
-const USAGE: &str = "usage: cargo xtask accuracy [--quick] | numerics | firmware [FORMAT,...] | calibrate | advise SCENE CORE [BUDGET] | figures [--check] | scene-format";
+const USAGE: &str = "usage: cargo xtask accuracy [--quick] | numerics | firmware [FORMAT,...] | calibrate [--check] | advise SCENE CORE [BUDGET] | figures [--check] | scene-format";
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -41,7 +41,7 @@ fn main() {
         Some("firmware") => firmware::main(&args[1..]),
         Some("scene-format") => scene_format::main(),
         Some("figures") => figures::main(&args[1..]),
-        Some("calibrate") => calibrate::main(),
+        Some("calibrate") => calibrate::main(&args[1..]),
         Some("advise") => advice::main(&args[1..]),
         _ => {
             eprintln!("{USAGE}");

@@ -98,6 +98,61 @@ impl Sampling {
     }
 }
 
+/// A mode's name, as the tools and the firmware write it: `exact`, or the block's side and
+/// the bound, `8x8:8`. [`Sampling`] parses it back.
+///
+/// ```
+/// use fixray::{BlockSize, Sampling};
+///
+/// let mode = Sampling::blocks(BlockSize::Four, 2);
+/// assert_eq!(mode.to_string(), "4x4:2");
+/// assert_eq!("4x4:2".parse(), Ok(mode));
+/// assert_eq!("exact".parse(), Ok(Sampling::Exact));
+/// assert!("3x3:1".parse::<Sampling>().is_err());
+/// ```
+impl core::fmt::Display for Sampling {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Sampling::Exact => f.write_str("exact"),
+            Sampling::Blocks { size, bound } => {
+                let b = size.pixels();
+                write!(f, "{b}x{b}:{bound}")
+            }
+        }
+    }
+}
+
+/// A name that is not a sampling mode (see [`Sampling`]'s `Display`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct UnknownSampling;
+
+impl core::fmt::Display for UnknownSampling {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("not a sampling mode: write `exact` or SIDExSIDE:BOUND (SIDE 2, 4 or 8, BOUND 0 to 255), e.g. `8x8:8`")
+    }
+}
+
+impl core::str::FromStr for Sampling {
+    type Err = UnknownSampling;
+
+    fn from_str(name: &str) -> Result<Self, UnknownSampling> {
+        if name == "exact" {
+            return Ok(Sampling::Exact);
+        }
+        let (size, bound) = name.split_once(':').ok_or(UnknownSampling)?;
+        let size = match size {
+            "2x2" => BlockSize::Two,
+            "4x4" => BlockSize::Four,
+            "8x8" => BlockSize::Eight,
+            _ => return Err(UnknownSampling),
+        };
+        Ok(Sampling::blocks(
+            size,
+            bound.parse().map_err(|_| UnknownSampling)?,
+        ))
+    }
+}
+
 /// The side of a sampled block.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum BlockSize {
