@@ -124,7 +124,7 @@ fn main() {
     }
     // The default is one fixed and one float format: with the course's tracer and every
     // effect built in, I16F16 and f32 take 219 KB of the 256 KB of flash in `memory.x` on
-    // either core (issue 25; with I20F12 beside them it overflowed). Others build on
+    // either core (with I20F12 beside them it overflows). Others build on
     // their own (I32F32 alone takes about 180 KB on the M0).
     let formats = env::var("FIXRAY_FW_FORMATS").unwrap_or_else(|_| "i16f16,f32".into());
     let mut chosen = Vec::new();

@@ -376,6 +376,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     ) {
         let n = u16::try_from(line.len()).unwrap_or(u16::MAX);
         let stride = line.len();
+        let mut corners = 0;
         sampled_rows(
             &self.scene,
             sampler,
@@ -385,7 +386,9 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                 self.exact_runs(r, runs, line, 0, counters);
             },
             None,
+            &mut corners,
         );
+        crate::stats::count_n(&mut counters.corners, corners);
     }
 
     /// [`Frame::render_line_counted`] as the exact frame draws it.
@@ -408,8 +411,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     }
 
     /// [`Frame::render_rows`], counting the traced pixels' rays and stage evaluations
-    /// in `counters` (with the `stats` feature; the corners of a sampled frame's blocks
-    /// are not counted there).
+    /// and a sampled frame's blocks' corners in `counters` (with the `stats` feature).
     ///
     /// ```
     /// use fixray::stats::Counters;
@@ -474,6 +476,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                         self.exact_runs(r, runs, line, columns.start, &mut Counters::default())
                     },
                     None,
+                    &mut 0,
                 );
             }
             return;

@@ -46,12 +46,22 @@ pub struct Counters {
     pub transmitted_rays: u32,
     /// Texel lookups of projectors.
     pub texel_lookups: u32,
+    /// Blocks' corners traced by a frame sampled in blocks (`Frame::with_sampling`).
+    pub corners: u32,
 }
 
 #[inline(always)]
 pub(crate) fn count(field: &mut u32) {
     if cfg!(feature = "stats") {
         *field = field.wrapping_add(1);
+    }
+}
+
+/// Adds `n` to a count (with the `stats` feature).
+#[inline(always)]
+pub(crate) fn count_n(field: &mut u32, n: u32) {
+    if cfg!(feature = "stats") {
+        *field = field.wrapping_add(n);
     }
 }
 

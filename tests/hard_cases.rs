@@ -3,6 +3,21 @@
 //! case's right answer is exact (see [`exact`]).
 //! Each says why it is hard and what the right answer is. (Spheres join this catalogue when
 //! the renderer draws them.)
+//!
+//! The hard cases of frames drawn in blocks (`Frame::with_sampling`) and of the regions a
+//! moved sphere changes (`Frame::changes_since`) are tested where those frames are drawn;
+//! each is caught by its certificate or has its error stated:
+//!
+//! | case | what handles it | tested by |
+//! |---|---|---|
+//! | a sphere smaller than a block | every block its screen box meets is traced | `tests/sampling.rs`, `a_sphere_smaller_than_a_block_is_never_missed` |
+//! | a tile's edge crossing a block | the edge located by the affine `(a − A)·β`, or the block traced; a pixel within rounding of the edge may take the other tile (stated: under 0.5 %) | `tests/sampling.rs`, `a_filled_pixel_stays_within_its_bound_of_the_exact_frame` |
+//! | a shadow's edge crossing a block | one shadow state per light at the four corners and no sphere near the segments to the light, or the block traced | `tests/sampling.rs`, `shadow_edges_and_silhouettes_are_caught` |
+//! | a mirror's edge crossing a block | a scene with a mirror is drawn exact | `tests/sampling.rs`, `frames_the_certificates_do_not_cover_are_exact` |
+//! | a grazing silhouette | the sphere's screen box: its blocks are traced | `tests/sampling.rs`, `shadow_edges_and_silhouettes_are_caught` |
+//! | a light on a surface | such a scene is drawn exact | `tests/sampling.rs`, `frames_the_certificates_do_not_cover_are_exact` |
+//! | a shadow that leaves the moved sphere's box | the widened shadow cone's span on each row | `tests/changes.rs`, `a_ball_moved_anywhere_under_any_light_is_redrawn_exactly` |
+//! | a reflection of the moved sphere | a scene another kernel draws changes whole rows | `tests/changes.rs`, `a_moved_sphere_another_kernel_draws_changes_whole_rows` |
 
 mod common;
 

@@ -43,7 +43,8 @@ pub use model::{MODELS, RP2040_CYCLES_PER_INSTRUCTION};
 /// A core the advisor prices a frame on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Core {
-    /// Cortex-M0 (ARMv6-M, no FPU): QEMU's micro:bit, 16 KB of RAM.
+    /// Cortex-M0 (ARMv6-M, no FPU): QEMU's micro:bit (16 KB of RAM; a firmware that
+    /// draws sampled frames is given 64 KB).
     CortexM0,
     /// Cortex-M4F (single-precision FPU): QEMU's MPS2 AN386.
     CortexM4F,
@@ -148,7 +149,7 @@ impl Budget {
     }
 }
 
-/// The sampling modes the advisor tries beside the exact frame: each block size at bounds
+/// The sampling modes the advisor tries: the exact frame, and each block size at bounds
 /// 1, 2, 4 and 8 levels.
 pub const MODES: [Sampling; 13] = [
     Sampling::Exact,
@@ -172,7 +173,7 @@ pub const MODES: [Sampling; 13] = [
 pub const FEATURES: [&str; 15] = [
     "pixels",
     "pure-geometry rays",
-    "level-plane rays",
+    "level-plane rays × objects",
     "fast rays × objects",
     "reference rays × objects",
     "shadow rays × objects",
@@ -183,7 +184,7 @@ pub const FEATURES: [&str; 15] = [
     "cone tests",
     "transmitted rays × objects",
     "texel lookups",
-    "blocks' corners",
+    "blocks' corners × objects",
     "filled pixels",
 ];
 
@@ -210,42 +211,36 @@ pub fn work<S: Scalar>(scene: &impl AsView<S>, sampling: Sampling) -> (Vec<Rgb88
     let objects = view.objects.len() as f64;
     let frame: Frame<'_, S> = Frame::new(scene).with_sampling(sampling);
     let mut pixels = std::vec![Rgb888::BLACK; usize::from(w) * usize::from(h)];
-    let mut counters = Counters::default();
+    let mut c = [0.0; FEATURES.len()];
     let mut filled = 0usize;
     let mut top = 0;
     while top < h {
         let rows = top..top.saturating_add(BAND).min(h);
         let at = usize::from(top) * usize::from(w);
+        let mut counters = Counters::default();
         filled += frame.render_rows_counted(rows.clone(), &mut pixels[at..], &mut counters);
+        // The band's rays go to the kernel that draws its first row (a row the level-plane
+        // kernel cannot decide once goes to the fast kernel, `Frame::row_kernel`).
+        let rays = f64::from(counters.primary_rays);
+        match frame.row_kernel(top) {
+            KernelKind::Flat => c[1] += rays,
+            KernelKind::Rows => c[2] += rays * objects,
+            KernelKind::Fast => c[3] += rays * objects,
+            KernelKind::Reference => c[4] += rays * objects,
+        }
+        c[5] += f64::from(counters.shadow_rays) * objects;
+        c[6] += f64::from(counters.diffuse);
+        c[7] += f64::from(counters.specular);
+        c[8] += f64::from(counters.tile_lookups);
+        c[9] += f64::from(counters.reflection_rays) * objects;
+        c[10] += f64::from(counters.cone_tests);
+        c[11] += f64::from(counters.transmitted_rays) * objects;
+        c[12] += f64::from(counters.texel_lookups);
+        c[13] += f64::from(counters.corners) * objects;
         top = rows.end;
     }
-    let rays = f64::from(counters.primary_rays);
-    let mut c = [0.0; FEATURES.len()];
     c[0] = f64::from(w) * f64::from(h);
-    match frame.kernel() {
-        KernelKind::Flat => c[1] = rays,
-        KernelKind::Rows => c[2] = rays,
-        KernelKind::Fast => c[3] = rays * objects,
-        KernelKind::Reference => c[4] = rays * objects,
-    }
-    c[5] = f64::from(counters.shadow_rays) * objects;
-    c[6] = f64::from(counters.diffuse);
-    c[7] = f64::from(counters.specular);
-    c[8] = f64::from(counters.tile_lookups);
-    c[9] = f64::from(counters.reflection_rays) * objects;
-    c[10] = f64::from(counters.cone_tests);
-    c[11] = f64::from(counters.transmitted_rays) * objects;
-    c[12] = f64::from(counters.texel_lookups);
-    if frame.sampled() {
-        if let Sampling::Blocks { size, .. } = sampling {
-            let b = size.pixels();
-            // Each band's corners along its bottom edge, the first band's top edge too.
-            let across = f64::from(w.div_ceil(b) + 1);
-            let down = f64::from(h.div_ceil(b) + 1);
-            c[13] = across * down;
-        }
-        c[14] = filled as f64;
-    }
+    c[14] = filled as f64;
     (pixels, Work { counts: c })
 }
 

@@ -12,7 +12,7 @@ use crate::Scalar;
 use crate::kernel::sampling::{Kept, Sampler, sampled_rows};
 use crate::kernel::{self};
 use crate::shade::stages::with_stages;
-use crate::stats::Counters;
+use crate::stats::{Counters, count_n};
 
 impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     /// [`Frame::render_rows`] of a frame sampled in blocks: band by band, each band's
@@ -31,6 +31,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
         let end = rows.end.min(self.scene.camera.height);
         let band = sampler.size();
         let mut kept = Kept::default();
+        let mut corners = 0;
         let mut row = rows.start;
         while row < end {
             let next = (row / band + 1).saturating_mul(band).min(end);
@@ -47,9 +48,11 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                     self.exact_runs(r, runs, line, 0, counters);
                 },
                 Some(&mut kept),
+                &mut corners,
             );
             row = next;
         }
+        count_n(&mut counters.corners, corners);
         filled
     }
     /// Columns `runs` of scanline `row` as the exact frame draws them, into `line`

@@ -128,10 +128,10 @@ pub fn table() -> Result<String, String> {
             let advice = advise_with(&text, core, BUDGET, &mut counted(&counts, core, scene))
                 .map_err(|e| format!("{scene}: {e}"))?;
             let model = advise(&text, core, BUDGET).map_err(|e| format!("{scene}: {e}"))?;
-            let (Some(c), Some(m)) = (advice.choice(), model.choice()) else {
+            let Some(c) = advice.choice() else {
                 writeln!(
                     out,
-                    "| {scene} | {} | none holds | | | | | | |",
+                    "| {scene} | {} | none holds | | | | | | | |",
                     core.name()
                 )
                 .unwrap();
@@ -150,18 +150,26 @@ pub fn table() -> Result<String, String> {
                     c.beyond
                 ));
             }
-            let model_counted =
-                counted(&counts, core, scene)(m.format, m.sampling, m.sampled, &Work::default())
-                    .map_or("—".into(), |p| format!("{:.1}", p.0));
+            let (model_choice, model_cost, model_counted) = match model.choice() {
+                None => ("none holds".to_string(), String::new(), String::new()),
+                Some(m) => (
+                    setting(m),
+                    format!("{:.1} (± {:.0} %)", m.cost, 100.0 * m.cost_error),
+                    counted(&counts, core, scene)(
+                        m.format,
+                        m.sampling,
+                        m.sampled,
+                        &Work::default(),
+                    )
+                    .map_or("—".into(), |p| format!("{:.1}", p.0)),
+                ),
+            };
             writeln!(
                 out,
-                "| {scene} | {} | {} | {:.1} | {} | {:.1} (± {:.0} %) | {model_counted} | {:.3} % | {:.1} dB | {:.3} %, {:.1} dB |",
+                "| {scene} | {} | {} | {:.1} | {model_choice} | {model_cost} | {model_counted} | {:.3} % | {:.1} dB | {:.3} %, {:.1} dB |",
                 core.name(),
                 setting(c),
                 c.cost,
-                setting(m),
-                m.cost,
-                100.0 * m.cost_error,
                 c.beyond,
                 c.psnr,
                 again.0,
@@ -255,29 +263,34 @@ pub fn main(args: &[String]) {
         eprintln!("{path}: {e}");
         std::process::exit(1);
     });
-    let full = std::fs::canonicalize(path).unwrap_or_else(|e| {
-        eprintln!("{path}: {e}");
+    // The firmware embeds the scene under a name of its own (a file stem the firmware
+    // animates, or one it cannot name, would draw another frame or not build).
+    let name = "advised".to_string();
+    let copy = crate::root().join("target/advise/advised.scene");
+    let written = std::fs::create_dir_all(crate::root().join("target/advise"))
+        .and_then(|()| std::fs::write(&copy, &text));
+    if let Err(e) = written {
+        eprintln!("target/advise: {e}");
         std::process::exit(1);
-    });
-    let name = full
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .unwrap_or_default()
-        .to_string();
+    }
     let target = match core {
         Core::CortexM0 | Core::Rp2040 => "thumbv6m-none-eabi",
         Core::CortexM4F => "thumbv7em-none-eabihf",
         Core::RiscV => "riscv32imc-unknown-none-elf",
     };
+    let measured = match core {
+        Core::Rp2040 => "cortex-m0",
+        c => c.name(),
+    };
     let modes = crate::calibrate::modes();
+    let file = copy.to_string_lossy().into_owned();
     let mut counts: Counts = Vec::new();
     for format in fixray::num::formats::MAIN
         .into_iter()
         .filter(|f| *f != fixray::num::formats::REFERENCE)
     {
         eprintln!("advise: counting {format} on {target}");
-        let file = full.to_string_lossy();
-        let frames = crate::qemu::run_sampled(
+        let run = crate::qemu::run_sampled(
             target,
             format,
             &file,
@@ -287,26 +300,36 @@ pub fn main(args: &[String]) {
         .or_else(|_| {
             crate::qemu::run_with_features(target, format, &file, Some(crate::calibrate::EXACT))
         });
-        match frames {
-            Ok(run) => counts.extend(run.frames.iter().filter_map(|f| {
-                let instructions = f.number("instructions")? as f64;
-                let mode = match f.get("sampling") {
-                    "" => "exact".to_string(),
-                    m => m.to_string(),
-                };
-                let measured = match core {
-                    Core::Rp2040 => "cortex-m0",
-                    c => c.name(),
-                };
-                Some((
+        let run = match run {
+            Ok(run) => run,
+            Err(e) => {
+                eprintln!("advise: {format}: {}", e.lines().next().unwrap_or_default());
+                continue;
+            }
+        };
+        for f in &run.frames {
+            let mode = match f.get("sampling") {
+                "" => "exact".to_string(),
+                m => m.to_string(),
+            };
+            let host = fixray::with_format!(format, crate::calibrate::host_text(&text, &mode))
+                .ok()
+                .flatten();
+            match (host, f.number("instructions")) {
+                (Some((_, hash)), Some(n)) if hash == f.hash() => counts.push((
                     measured.into(),
                     format.into(),
                     name.clone(),
                     mode,
-                    instructions / f.pixels() as f64,
-                ))
-            })),
-            Err(e) => eprintln!("advise: {format}: {}", e.lines().next().unwrap_or_default()),
+                    n as f64 / f.pixels() as f64,
+                )),
+                _ => {
+                    eprintln!(
+                        "advise: {format} {mode}: the chip's frame is not the host's (or has no count)"
+                    );
+                    std::process::exit(1);
+                }
+            }
         }
     }
     match advise_with(&text, core, budget, &mut counted(&counts, core, &name)) {

@@ -358,6 +358,7 @@ pub(crate) fn sampled_rows<S: Scalar, C: From<Rgb888>>(
     (out, stride): (&mut [C], usize),
     exact: &mut impl FnMut(u16, &[Range<u16>], &mut [C]),
     mut kept: Option<&mut Kept<S>>,
+    corners_traced: &mut u32,
 ) -> usize {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let b = sampler.size;
@@ -370,7 +371,12 @@ pub(crate) fn sampled_rows<S: Scalar, C: From<Rgb888>>(
     let bottom = top.saturating_add(b).min(h - 1);
     let band = top..top.saturating_add(b).min(h);
     let rows = rows.start..rows.end.min(band.end);
-    let trace = |x: u16, y: u16| corner(scene, x, y);
+    // Corners traced, for `Counters::corners`.
+    let traced = core::cell::Cell::new(0u32);
+    let trace = |x: u16, y: u16| {
+        traced.set(traced.get().wrapping_add(1));
+        corner(scene, x, y)
+    };
     // The traced blocks' runs of columns, drawn row by row when the list is full and at
     // the end.
     let mut runs: Vec<Range<u16>, RUNS> = Vec::new();
@@ -445,5 +451,6 @@ pub(crate) fn sampled_rows<S: Scalar, C: From<Rgb888>>(
     if let Some(k) = kept {
         k.at = Some((bottom, first));
     }
+    *corners_traced = corners_traced.wrapping_add(traced.get());
     filled
 }
