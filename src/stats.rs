@@ -57,7 +57,8 @@ pub(crate) fn count(field: &mut u32) {
     }
 }
 
-/// Adds `n` to a count (with the `stats` feature).
+/// Adds `n` to a count (with the `stats` feature): a sampled frame's corners.
+#[cfg(feature = "sampling")]
 #[inline(always)]
 pub(crate) fn count_n(field: &mut u32, n: u32) {
     if cfg!(feature = "stats") {
