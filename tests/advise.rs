@@ -88,6 +88,7 @@ fn sampled_modes_are_priced_by_their_work() {
     assert_eq!(exact.counts[13], 0.0);
     assert_eq!(exact.counts[14], 0.0);
     assert!(sampled.counts[13] > 0.0 && sampled.counts[14] > 0.0);
+    assert!(sampled.sampled && !exact.sampled);
     let rays = |w: &fixray::advise::Work| w.counts[1..5].iter().sum::<f64>();
     assert!(rays(&sampled) < rays(&exact));
     // Zero bound: the exact frame's pixels.

@@ -193,6 +193,9 @@ pub const FEATURES: [&str; 15] = [
 pub struct Work {
     /// One count per entry of [`FEATURES`].
     pub counts: [f64; FEATURES.len()],
+    /// Whether the frame was drawn in blocks ([`Frame::sampled`]): a mode whose blocks
+    /// the scene's kind refuses draws the exact frame.
+    pub sampled: bool,
 }
 
 impl Work {
@@ -241,7 +244,13 @@ pub fn work<S: Scalar>(scene: &impl AsView<S>, sampling: Sampling) -> (Vec<Rgb88
     }
     c[0] = f64::from(w) * f64::from(h);
     c[14] = filled as f64;
-    (pixels, Work { counts: c })
+    (
+        pixels,
+        Work {
+            counts: c,
+            sampled: frame.sampled(),
+        },
+    )
 }
 
 /// One core × format's cost model: instructions per frame = Σ coefficient × count.
@@ -397,10 +406,8 @@ fn candidates<S: Scalar>(
     };
     let mut out = Vec::new();
     for sampling in MODES {
-        let sampled = Frame::<'_, S>::new(&scene)
-            .with_sampling(sampling)
-            .sampled();
         let (pixels, work) = work(&scene, sampling);
+        let sampled = work.sampled;
         let Some((cost, cost_error)) = price(S::NAME, sampling, sampled, &work) else {
             continue;
         };

@@ -315,9 +315,9 @@ fn write(measured: &[Measured], formats: &[&'static str], board: f64, check: boo
             let frames: Vec<&Measured> = measured
                 .iter()
                 .filter(|m| m.core == core && m.format == format)
-                // A mode whose blocks the scene's kind refuses (no corner traced) drew the
-                // exact frame: it would count twice.
-                .filter(|m| m.mode == "exact" || m.work.counts[13] > 0.0)
+                // A mode whose blocks the scene's kind refuses drew the exact frame: it
+                // would count twice.
+                .filter(|m| m.mode == "exact" || m.work.sampled)
                 .collect();
             if frames.is_empty() {
                 continue;
