@@ -172,6 +172,7 @@ class Profile {
   constructor(symbols) {
     this.symbols = symbols;
     this.cycles = new Map();
+    this.calls = new Map();
     this.last = null;
   }
 
@@ -195,13 +196,18 @@ class Profile {
       this.last = f;
     }
     this.cycles.set(f.name, (this.cycles.get(f.name) ?? 0) + cycles);
+    // An instruction at a function's first address is a call (or a loop back to it).
+    if (pc === f.start) this.calls.set(f.name, (this.calls.get(f.name) ?? 0) + 1);
   }
 
   print(total, top = 60) {
     const rows = [...this.cycles].sort((a, b) => b[1] - a[1]).slice(0, top);
-    process.stdout.write(`profile: ${Math.round(total)} cycles after the start line\n`);
+    process.stdout.write(`profile: ${Math.round(total)} cycles after the start line (share, cycles, calls, function)\n`);
     for (const [name, c] of rows) {
-      process.stdout.write(`${((100 * c) / total).toFixed(2).padStart(6)} % ${String(Math.round(c)).padStart(11)}  ${name}\n`);
+      const calls = this.calls.get(name) ?? 0;
+      process.stdout.write(
+        `${((100 * c) / total).toFixed(2).padStart(6)} % ${String(Math.round(c)).padStart(11)} ${String(calls).padStart(9)}  ${name}\n`,
+      );
     }
   }
 }

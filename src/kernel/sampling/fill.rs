@@ -140,7 +140,9 @@ pub(super) fn tiles_fill<S: Scalar>(
 /// Fills the pixels `rows × columns` of a block over columns `x` and rows `y` (its
 /// corners') as `how` says: each pixel the bilinear interpolation of four corner colours
 /// (rounded to nearest), in a tiled block those of the pixel's tile's material. Along a
-/// row the interpolation is affine: each channel steps by one addition a pixel.
+/// row the interpolation is affine: each channel steps by one addition a pixel, and so
+/// does each tile edge's side ([`EdgeSteps`]), in integers where the format's sums and
+/// products are exact.
 pub(super) fn fill<S: Scalar, C: From<Rgb888>>(
     (how, x, y): (&Fill<S>, (u16, u16), (u16, u16)),
     (rows, columns): (Range<u16>, Range<u16>),
@@ -149,58 +151,164 @@ pub(super) fn fill<S: Scalar, C: From<Rgb888>>(
     use embedded_graphics_core::pixelcolor::RgbColor;
     let w = i32::from(x.1 - x.0).max(1);
     let h = i32::from(y.1 - y.0).max(1);
-    let area = w * h;
-    // A whole block's area is a power of two: a shift, not a division.
-    let shift = (area.count_ones() == 1).then(|| area.trailing_zeros());
-    let divide = |v: i32| {
-        let v = v + area / 2;
-        let q = match shift {
-            Some(s) => v >> s,
-            None => v / area,
-        };
-        u8::try_from(q.clamp(0, 255)).unwrap_or(u8::MAX)
-    };
+    let round = Rounding::new(w * h);
     let channels = |c: Rgb888| [i32::from(c.r()), i32::from(c.g()), i32::from(c.b())];
-    let sets = match how {
-        Fill::Smooth(colors) => [colors.map(channels); 2],
-        Fill::Tiles(t) => t.colors.map(|set| set.map(channels)),
-    };
     let u0 = i32::from(columns.start - x.0);
     for r in rows {
         let v = i32::from(r - y.0).min(h);
-        // Per colour set and channel: the value at the row's first column (times the
-        // area) and its step.
-        let mut value = [[0; 3]; 2];
-        let mut step = [[0; 3]; 2];
-        for (set, (val, st)) in sets.iter().zip(value.iter_mut().zip(step.iter_mut())) {
-            for i in 0..3 {
-                let left = set[0][i] * (h - v) + set[2][i] * v;
-                let right = set[1][i] * (h - v) + set[3][i] * v;
-                st[i] = right - left;
-                val[i] = left * w + st[i] * u0;
-            }
-        }
-        let edges = match how {
-            Fill::Tiles(t) => Some((t, t.row_edges(v, h))),
-            Fill::Smooth(_) => None,
-        };
         let row = usize::from(r - origin.0) * stride;
-        for (k, col) in columns.clone().enumerate() {
-            let u = u0 + i32::try_from(k).unwrap_or(0);
-            let set = match &edges {
-                Some((t, e)) if t.odd(e, u, w) => 1,
-                _ => 0,
-            };
-            let c = value[set].map(divide);
-            for (val, st) in value.iter_mut().zip(step) {
-                for (a, b) in val.iter_mut().zip(st) {
-                    *a += b;
+        // The row's pixels that `out` holds.
+        let Some(line) = out.get_mut(row + usize::from(columns.start - origin.1)..) else {
+            continue;
+        };
+        let len = columns.len().min(line.len());
+        let line = &mut line[..len];
+        match how {
+            Fill::Smooth(colors) => {
+                let (mut value, step) = row_start(&colors.map(channels), (v, h), (u0, w));
+                for p in line.iter_mut() {
+                    *p = round.pixel(value);
+                    for (a, b) in value.iter_mut().zip(step) {
+                        *a += b;
+                    }
                 }
             }
-            if let Some(p) = out.get_mut(row + usize::from(col - origin.1)) {
-                *p = C::from(Rgb888::new(c[0], c[1], c[2]));
+            Fill::Tiles(t) => {
+                // Each set's start and step; a pixel takes its set's `start + k·step` (two
+                // sets stepped together would not stay in a small core's registers).
+                let starts = t
+                    .colors
+                    .map(|set| row_start(&set.map(channels), (v, h), (u0, w)));
+                let edges = t.row_edges(v, h);
+                let mut stepped = EdgeSteps::new(t, &edges, (u0, w));
+                for (k, p) in (0i32..).zip(line.iter_mut()) {
+                    let odd = match stepped.as_mut() {
+                        Some(s) => s.next_odd(),
+                        None => t.odd(&edges, u0 + k, w),
+                    };
+                    let (start, step) = &starts[usize::from(odd)];
+                    *p = round.pixel([
+                        start[0] + k * step[0],
+                        start[1] + k * step[1],
+                        start[2] + k * step[2],
+                    ]);
+                }
             }
         }
+    }
+}
+
+/// A colour set's interpolation on row `v` (of `h`) from column `u0` (of `w`): each
+/// channel's value times the block's area there, and its step a column.
+#[inline(always)]
+fn row_start(set: &[[i32; 3]; 4], (v, h): (i32, i32), (u0, w): (i32, i32)) -> ([i32; 3], [i32; 3]) {
+    let mut value = [0; 3];
+    let mut step = [0; 3];
+    for i in 0..3 {
+        let left = set[0][i] * (h - v) + set[2][i] * v;
+        let right = set[1][i] * (h - v) + set[3][i] * v;
+        step[i] = right - left;
+        value[i] = left * w + step[i] * u0;
+    }
+    (value, step)
+}
+
+/// Rounding an interpolated channel (times the block's area) to a pixel value: to
+/// nearest, by a shift where the area is a power of two (a whole block), clamped to 0..=255.
+#[derive(Clone, Copy)]
+struct Rounding {
+    area: i32,
+    shift: Option<u32>,
+}
+
+impl Rounding {
+    fn new(area: i32) -> Self {
+        Self {
+            area,
+            shift: (area.count_ones() == 1).then(|| area.trailing_zeros()),
+        }
+    }
+
+    #[inline(always)]
+    fn channel(self, v: i32) -> u8 {
+        let v = v + self.area / 2;
+        let q = match self.shift {
+            Some(s) => v >> s,
+            None => v / self.area,
+        };
+        u8::try_from(q.clamp(0, 255)).unwrap_or(u8::MAX)
+    }
+
+    #[inline(always)]
+    fn pixel<C: From<Rgb888>>(self, value: [i32; 3]) -> C {
+        C::from(Rgb888::new(
+            self.channel(value[0]),
+            self.channel(value[1]),
+            self.channel(value[2]),
+        ))
+    }
+}
+
+/// A tiled block's row, its tile edges' sides stepped column by column: what
+/// [`Tiles::odd`] computes at each column, one addition a column instead of two
+/// products. Only where the format's products and sums are exact (the sides are then
+/// the same integers either way; `None` otherwise, or where a start does not fit:
+/// each column then takes [`Tiles::odd`]).
+struct EdgeSteps<S> {
+    /// Per axis: the side's value at the current column and its step (`None`: the
+    /// block lies in one tile along that axis).
+    sides: [Option<(S, S)>; 2],
+    first: [i32; 2],
+    negative: bool,
+}
+
+impl<S: Scalar> EdgeSteps<S> {
+    fn new(t: &Tiles<S>, edges: &[Option<(S, S)>; 2], (u0, w): (i32, i32)) -> Option<Self> {
+        if !(S::EXACT_SUMS && S::EXACT_PRODUCTS) {
+            return None;
+        }
+        let mut sides = [None; 2];
+        for ((side, edge), crosses) in sides.iter_mut().zip(edges).zip(t.edges) {
+            if crosses.is_none() {
+                continue;
+            }
+            // As `odd` at `u0`; a side that does not fit there is `odd`'s to decide.
+            let (left, right) = (*edge)?;
+            let start = left
+                .checked_mul_int(w - u0)?
+                .checked_add(right.checked_mul_int(u0)?)?;
+            *side = Some((start, right.checked_sub(left)?));
+        }
+        Some(Self {
+            sides,
+            first: [t.first.0, t.first.1],
+            negative: t.negative,
+        })
+    }
+
+    /// Whether the current column lies on an odd tile (as [`Tiles::odd`]), then steps to
+    /// the next column. Every column of the block's row is `left·(w − u) + right·u`, within
+    /// the bound the block was certified with (`tiles_fill`: four times the largest
+    /// corner value times `w·h`), so no step overflows; one that would ends on the
+    /// block's last column, whose value is not read.
+    #[inline(always)]
+    fn next_odd(&mut self) -> bool {
+        let mut tile = self.first;
+        for (index, side) in tile.iter_mut().zip(self.sides.iter_mut()) {
+            let Some((sum, step)) = side else {
+                continue;
+            };
+            let upper = if self.negative {
+                *sum <= S::ZERO
+            } else {
+                *sum >= S::ZERO
+            };
+            if upper {
+                *index += 1;
+            }
+            *sum = sum.checked_add(*step).unwrap_or(*sum);
+        }
+        (tile[0].wrapping_add(tile[1])) & 1 == 1
     }
 }
 
@@ -245,5 +353,148 @@ impl<S: Scalar> Tiles<S> {
             }
         }
         (tile[0].wrapping_add(tile[1])) & 1 == 1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fixed::types::{I16F16, I20F12};
+
+    /// A seeded xorshift.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0
+        }
+        fn below(&mut self, n: u64) -> i32 {
+            i32::try_from(self.next() % n).unwrap_or(0)
+        }
+    }
+
+    /// The fill as it is defined, pixel by pixel: each pixel's bilinear value from the
+    /// four corners, its tile from [`Tiles::odd`] (two products a column).
+    fn fill_by_pixel<S: Scalar>(
+        how: &Fill<S>,
+        (x, y): ((u16, u16), (u16, u16)),
+        (rows, columns): (Range<u16>, Range<u16>),
+    ) -> Vec<Rgb888> {
+        use embedded_graphics_core::pixelcolor::RgbColor;
+        let w = i32::from(x.1 - x.0).max(1);
+        let h = i32::from(y.1 - y.0).max(1);
+        let area = w * h;
+        let channels = |c: Rgb888| [i32::from(c.r()), i32::from(c.g()), i32::from(c.b())];
+        let sets = match how {
+            Fill::Smooth(colors) => [colors.map(channels); 2],
+            Fill::Tiles(t) => t.colors.map(|set| set.map(channels)),
+        };
+        let mut out = Vec::new();
+        for r in rows {
+            let v = i32::from(r - y.0).min(h);
+            let edges = match how {
+                Fill::Tiles(t) => Some((t, t.row_edges(v, h))),
+                Fill::Smooth(_) => None,
+            };
+            for col in columns.clone() {
+                let u = i32::from(col - x.0);
+                let set = match &edges {
+                    Some((t, e)) if t.odd(e, u, w) => &sets[1],
+                    _ => &sets[0],
+                };
+                let c = [0, 1, 2].map(|i| {
+                    let value = set[0][i] * (h - v) * (w - u)
+                        + set[1][i] * (h - v) * u
+                        + set[2][i] * v * (w - u)
+                        + set[3][i] * v * u;
+                    let q = (value + area / 2).div_euclid(area);
+                    u8::try_from(q.clamp(0, 255)).unwrap_or(u8::MAX)
+                });
+                out.push(Rgb888::new(c[0], c[1], c[2]));
+            }
+        }
+        out
+    }
+
+    fn corners(rng: &mut Rng) -> [Rgb888; 4] {
+        [0; 4].map(|_: i32| {
+            let mut c = || u8::try_from(rng.next() % 256).unwrap_or(0);
+            Rgb888::new(c(), c(), c())
+        })
+    }
+
+    /// Four corner sides within `±limit`, some of either sign.
+    fn sides<S: Scalar>(rng: &mut Rng, limit: f64) -> [S; 4] {
+        [0; 4].map(|_: i32| {
+            let f = (rng.next() % 2001) as f64 / 1000.0 - 1.0;
+            S::from_f64(f * limit * 0.999).unwrap_or(S::ZERO)
+        })
+    }
+
+    /// Seeded blocks, smooth and tiled (crossing one tile edge or two, either sign of
+    /// `β`, sides within the bound `tiles_fill` certifies), whole and in part: [`fill`]
+    /// (stepped colours, stepped tile sides) draws what [`fill_by_pixel`] draws, bit for
+    /// bit, in each fixed format.
+    fn fills_are_the_pixels_definition<S: Scalar>(seed: u64) {
+        let mut rng = Rng(seed);
+        let mut tiled = 0;
+        for _ in 0..4000 {
+            let (w, h) = (1 + rng.below(8), 1 + rng.below(8));
+            let (x0, y0) = (u16::try_from(rng.below(50)).unwrap_or(0), 3u16);
+            let x = (x0, x0 + u16::try_from(w).unwrap_or(1));
+            let y = (y0, y0 + u16::try_from(h).unwrap_or(1));
+            let how = if rng.next().is_multiple_of(4) {
+                Fill::Smooth(corners(&mut rng))
+            } else {
+                tiled += 1;
+                // Corner sides up to the largest whose `4·w·h` multiple fits the format.
+                let limit = S::MAX.to_f64().min(1e30) / f64::from(4 * w * h);
+                let edges = match rng.next() % 3 {
+                    0 => [Some(sides::<S>(&mut rng, limit)), None],
+                    1 => [None, Some(sides::<S>(&mut rng, limit))],
+                    _ => [
+                        Some(sides::<S>(&mut rng, limit)),
+                        Some(sides::<S>(&mut rng, limit)),
+                    ],
+                };
+                Fill::Tiles(Tiles {
+                    colors: [corners(&mut rng), corners(&mut rng)],
+                    edges,
+                    first: (rng.below(9) - 4, rng.below(9) - 4),
+                    negative: rng.next().is_multiple_of(2),
+                })
+            };
+            // Whole, or some of its rows and columns.
+            let c0 = x.0 + u16::try_from(rng.below(u64::from(w.unsigned_abs()))).unwrap_or(0);
+            let c1 = (c0 + 1 + u16::try_from(rng.below(9)).unwrap_or(0)).min(x.1 + 1);
+            let r0 = y.0 + u16::try_from(rng.below(u64::from(h.unsigned_abs()))).unwrap_or(0);
+            let r1 = (r0 + 1 + u16::try_from(rng.below(9)).unwrap_or(0)).min(y.1 + 1);
+            let (rows, columns) = (r0..r1, c0..c1);
+            let want = fill_by_pixel(&how, (x, y), (rows.clone(), columns.clone()));
+            let stride = columns.len();
+            let mut got = vec![Rgb888::new(1, 2, 3); want.len()];
+            fill(
+                (&how, x, y),
+                (rows.clone(), columns.clone()),
+                (&mut got, stride, (rows.start, columns.start)),
+            );
+            assert_eq!(
+                got,
+                want,
+                "{} {how:?} {x:?} {y:?} {rows:?} {columns:?}",
+                S::NAME
+            );
+        }
+        assert!(tiled > 2000);
+    }
+
+    #[test]
+    fn a_fill_is_its_pixels_by_definition() {
+        fills_are_the_pixels_definition::<I16F16>(0x5EED_F111_0001);
+        fills_are_the_pixels_definition::<I20F12>(0x5EED_F111_0002);
+        fills_are_the_pixels_definition::<f32>(0x5EED_F111_0003);
     }
 }
