@@ -236,6 +236,85 @@ impl<S: Scalar> Primary<S> {
         Ok(best)
     }
 
+    /// [`Primary::nearest`] at a pixel of a row whose planes [`Primary::level_row`]
+    /// decided once: `level`, the row's plane (its object, `t' = p/q` and `t'`), or
+    /// `None` when no plane is accepted on the row. Only the spheres are tested; the
+    /// level plane takes its place among the terms with its fraction (the other planes
+    /// are farther, or as far and later: never `nearest`'s winner, nor do they change
+    /// which of the others wins), so the winner is `nearest`'s. `Ok(None)`: the
+    /// background; `Ok(Some(None))`: the level plane, whose point `nearest` forms and
+    /// this checks fits without forming it (its `y` and `z` are the row's); `Err(())`
+    /// where `nearest` says `Err`.
+    #[allow(clippy::result_unit_err, clippy::type_complexity)]
+    pub(crate) fn nearest_over_level(
+        &self,
+        scene: &SceneView<'_, S>,
+        row: &Row<S>,
+        level: Option<(usize, (S, S), S)>,
+    ) -> Result<Option<Option<FastHit<S>>>, ()> {
+        let d = row.dir;
+        let mut dd = None;
+        let mut dd = || -> Result<S, ()> {
+            if let Some(v) = dd {
+                return Ok(v);
+            }
+            let v = S::acc_round(S::acc_add(row.yz, S::acc_mul(d.x, d.x).ok_or(())?).ok_or(())?)
+                .ok_or(())?;
+            dd = Some(v);
+            Ok(v)
+        };
+        // The best so far: (its term, or `None` for the level plane; its t' = p/q).
+        let mut best: Option<(Option<&Term<S>>, S, S)> = None;
+        for (term, &nd) in self.terms.iter().zip(&row.nd) {
+            let (candidate, p, q) = if term.sphere {
+                if row.row < term.rows.0
+                    || row.row > term.rows.1
+                    || row.column < term.columns.0
+                    || row.column > term.columns.1
+                {
+                    continue;
+                }
+                match sphere_root(term.num, nd, dd()?)? {
+                    Some((p, q)) => (Some(term), p, q),
+                    None => continue,
+                }
+            } else {
+                match level {
+                    Some((index, (p, q), _)) if index == usize::from(term.index) => (None, p, q),
+                    _ => continue,
+                }
+            };
+            if let Some((_, b_p, b_q)) = best
+                && S::cmp_products(p, b_q, b_p, q) != Some(Ordering::Less)
+            {
+                continue;
+            }
+            best = Some((candidate, p, q));
+        }
+        match best {
+            None => Ok(None),
+            Some((Some(term), p, q)) => self
+                .hit(scene, row, term, p, q, None)
+                .map(|h| Some(Some(h)))
+                .ok_or(()),
+            Some((None, _, _)) => {
+                // As `Primary::point` forms it: `x = eye.x + t'·D.x` and `t'·2|D|∞`.
+                let t = level.map(|(_, _, t)| t).ok_or(())?;
+                let x = t
+                    .checked_mul(d.x)
+                    .and_then(|v| scene.camera.viewpoint.x.checked_add(v));
+                let bound = d
+                    .max_abs()
+                    .checked_add(d.max_abs())
+                    .and_then(|m| t.checked_mul(m));
+                match (x, bound) {
+                    (Some(_), Some(_)) => Ok(Some(None)),
+                    _ => Err(()),
+                }
+            }
+        }
+    }
+
     /// The nearest plane of scanline `row` when every plane's `N·D` is the same at each
     /// of its pixels (`N.x = 0`: the row's `N·D` steps by `N.x × step = 0`) and every
     /// plane's test decides the same at each of them: `Some((object, p, q))` with the

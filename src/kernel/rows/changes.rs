@@ -21,7 +21,7 @@ use core::ops::Range;
 
 use super::super::fast::Primary;
 use super::Rows;
-use super::level::{Level, level};
+use super::level::{RowShadows, row_shadows};
 use crate::shade::stages::DiffuseShadows;
 use crate::{Scalar, SceneView, Shape};
 
@@ -39,11 +39,11 @@ pub(crate) fn changed_columns<S: Scalar>(
     let mut columns: Option<(u16, u16)> = None;
     for (scene, rows) in [before, after] {
         let p = &rows.primary;
-        // A row this kernel does not decide once (`None` from `level`: the fast kernel
+        // A row this kernel does not decide once (`None` from `row_shadows`: the fast kernel
         // draws it), or one whose shadows it cannot bound, may change anywhere.
         let Some(plane) = p
             .row(scene, row, 0)
-            .and_then(|first| level::<S, DiffuseShadows>(scene, p, &first))
+            .and_then(|first| row_shadows::<S, DiffuseShadows>(scene, p, &first))
         else {
             return Some(0..width);
         };
@@ -66,7 +66,7 @@ pub(crate) fn changed_columns<S: Scalar>(
 fn shadows<S: Scalar>(
     scene: &SceneView<'_, S>,
     p: &Primary<S>,
-    plane: &Level<S>,
+    plane: &RowShadows<S>,
     moved: u8,
 ) -> Option<Option<(u16, u16)>> {
     // Without per-row occluders every light takes the general test: every object, at

@@ -4,7 +4,9 @@
 //! [`plane_color`]: [`lean_color`] (the same operations without the general cases, and
 //! on cores where it pays the last light's term by `KernelArith::quick_pixel`),
 //! [`quick_step`] (a pixel of a one-light row outside the spheres' columns, its `D`
-//! stepped alone) and [`Pixels::quick_run`] (up to 32 such pixels a call). Each test
+//! stepped alone) and [`Pixels::quick_run`] (up to 32 such pixels a call). Inside the
+//! spheres' columns a pixel tests the spheres against the row's plane alone
+//! ([`Primary::nearest_over_level`]) instead of every term ([`Primary::nearest`]). Each test
 //! draws the boing ball's frames (`anim::Bounce`) and seeded random level-plane scenes,
 //! and compares every pixel a shortcut returns with the exact one.
 
@@ -429,4 +431,68 @@ fn a_quick_run_draws_the_fast_kernels_pixels() {
     assert!(quick > 100_000, "{quick}");
     let quick = quick_runs_hold::<I20F12>(&all);
     assert!(quick > 100_000, "{quick}");
+}
+
+/// Every pixel inside the spheres' columns of every row the level-plane kernel decides
+/// once, in `scenes` and format `S`: [`Primary::nearest_over_level`] (the spheres and
+/// the row's plane) answers what [`Primary::nearest`] (every term) does: the background,
+/// the row's plane, the same sphere hit, or `Err`. Returns the pixels where the plane
+/// won and where a sphere did.
+fn nearest_over_level_holds<S: Scalar>(scenes: &[(String, String, Option<u16>)]) -> (usize, usize) {
+    let (mut planes, mut spheres) = (0, 0);
+    for (name, text, k) in scenes {
+        let Some(scene) = parse::<S>(text, *k) else {
+            continue;
+        };
+        let Some((view, rows)) = frame(&scene) else {
+            continue;
+        };
+        let p = &rows.primary;
+        for row in 0..view.camera.height {
+            let Some(mut state) = p.row(&view, row, 0) else {
+                continue;
+            };
+            let Some(l) = level::<S, DiffuseShadows>(&view, p, &state) else {
+                continue;
+            };
+            let level = l.as_ref().map(|l| (l.index, l.pq, l.t));
+            let (from, to) = p.sphere_columns_on_row(row);
+            for column in from..=to.min(view.camera.width.saturating_sub(1)) {
+                if p.restart(&view, row, column, &mut state).is_none() {
+                    continue;
+                }
+                let at = || format!("{} {name} at ({column}, {row})\n{text}", S::NAME);
+                let want = p.nearest(&view, &state);
+                let got = p.nearest_over_level(&view, &state, level);
+                match (want, got) {
+                    (Ok(Some(h)), Ok(Some(None))) => {
+                        assert_eq!(Some(h.index), l.as_ref().map(|l| l.index), "{}", at());
+                        planes += 1;
+                    }
+                    (Ok(Some(h)), Ok(Some(Some(g)))) => {
+                        assert_eq!(h, g, "{}", at());
+                        spheres += 1;
+                    }
+                    (Ok(None), Ok(None)) | (Err(()), Err(())) => {}
+                    (want, got) => panic!("{want:?} against {got:?}: {}", at()),
+                }
+            }
+        }
+    }
+    (planes, spheres)
+}
+
+/// [`Primary::nearest_over_level`] is [`Primary::nearest`] wherever the level-plane
+/// kernel asks it (inside the spheres' columns), over eight boing frames and 60 random
+/// level scenes, in every fixed format.
+#[test]
+fn the_spheres_against_the_rows_plane_are_the_nearest_of_every_term() {
+    let all = scenes(2, 60, 0x5EED_0005_0003);
+    for (planes, spheres) in [
+        nearest_over_level_holds::<I16F16>(&all),
+        nearest_over_level_holds::<I20F12>(&all),
+        nearest_over_level_holds::<I32F32>(&all),
+    ] {
+        assert!(planes > 3_000 && spheres > 3_000, "{planes} {spheres}");
+    }
 }

@@ -17,8 +17,10 @@ use crate::{Color, Hit, Light, Scalar, SceneView, Shape, Tiling, Vec3};
 pub(super) struct Level<S: Scalar> {
     /// The object.
     pub(super) index: usize,
-    /// Its parameter `t'` along `D` (the screen at 1).
+    /// Its parameter `t'` along `D` (the screen at 1), and as the fraction `p/q` the
+    /// terms compare.
     pub(super) t: S,
+    pub(super) pq: (S, S),
     /// The hit's `y` and `z` (the same at every pixel).
     pub(super) y: S,
     pub(super) z: S,
@@ -119,6 +121,7 @@ pub(super) fn row_plane<S: Scalar>(
     };
     Some(Some(RowPlane {
         index,
+        pq: (num, den),
         t,
         y,
         z,
@@ -129,6 +132,8 @@ pub(super) fn row_plane<S: Scalar>(
 /// What [`row_plane`] found: the object, `t'`, the hit's `y` and `z`, the facing normal.
 pub(super) struct RowPlane<S> {
     pub(super) index: usize,
+    /// `t'` as the fraction `p/q` (`q > 0`) the terms compare.
+    pub(super) pq: (S, S),
     pub(super) t: S,
     pub(super) y: S,
     pub(super) z: S,
@@ -144,6 +149,7 @@ pub(super) fn level<S: Scalar, T: Stages>(
 ) -> Option<Option<Level<S>>> {
     let Some(RowPlane {
         index,
+        pq,
         t,
         y,
         z,
@@ -152,15 +158,7 @@ pub(super) fn level<S: Scalar, T: Stages>(
     else {
         return Some(None);
     };
-    let mut sides = heapless::Vec::new();
-    let mut side_bits = SideBits::default();
-    if T::SHADOWS && !p.at_lights().is_empty() {
-        match p.sides_at(first, t, &mut sides) {
-            Some(bits) => side_bits = bits,
-            None => sides.clear(),
-        }
-    }
-    let occluders = row_occluders(scene, p, &sides, (y, z))?;
+    let (sides, side_bits, occluders) = row_sides::<S, T>(scene, p, first, (t, y, z))?;
     let object = scene.objects.get(index)?;
     let materials = match object.shape {
         Shape::Tiled { alt, .. } => [object.material, alt],
@@ -179,6 +177,7 @@ pub(super) fn level<S: Scalar, T: Stages>(
     Some(Some(Level {
         tile_row,
         index,
+        pq,
         t,
         y,
         z,
@@ -191,6 +190,56 @@ pub(super) fn level<S: Scalar, T: Stages>(
         overflow,
         lights: row_lights,
     }))
+}
+
+/// Every object's side at a row's hit (`t'`, the hit's `y` and `z`) with their bits,
+/// and the row's occluders per light ([`Level::sides`], [`Level::occluders`]).
+#[allow(clippy::type_complexity)]
+#[inline(always)]
+fn row_sides<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    first: &Row<S>,
+    (t, y, z): (S, S, S),
+) -> Option<(
+    heapless::Vec<S, FAST_OBJECTS>,
+    SideBits,
+    heapless::Vec<u8, ROW_LIGHTS>,
+)> {
+    let mut sides = heapless::Vec::new();
+    let mut side_bits = SideBits::default();
+    if T::SHADOWS && !p.at_lights().is_empty() {
+        match p.sides_at(first, t, &mut sides) {
+            Some(bits) => side_bits = bits,
+            None => sides.clear(),
+        }
+    }
+    let occluders = row_occluders(scene, p, &sides, (y, z))?;
+    Some((sides, side_bits, occluders))
+}
+
+/// What a row's plane tells of its shadows ([`super::changes`]): `t'`, the hit's `y`
+/// and `z`, and the occluders per light, as [`level`] finds them (the same
+/// operations), without the row's colour terms. `Some(None)` when no plane is
+/// accepted, `None` when the row cannot be decided once.
+pub(super) struct RowShadows<S> {
+    pub(super) t: S,
+    pub(super) y: S,
+    pub(super) z: S,
+    pub(super) occluders: heapless::Vec<u8, ROW_LIGHTS>,
+}
+
+/// [`RowShadows`] of the row started at `first`.
+pub(super) fn row_shadows<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    first: &Row<S>,
+) -> Option<Option<RowShadows<S>>> {
+    let Some(RowPlane { t, y, z, .. }) = row_plane(scene, p, first)? else {
+        return Some(None);
+    };
+    let (_, _, occluders) = row_sides::<S, T>(scene, p, first, (t, y, z))?;
+    Some(Some(RowShadows { t, y, z, occluders }))
 }
 
 /// Per light (none with more than [`ROW_LIGHTS`] lights or without every side), the

@@ -273,12 +273,15 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         // What the pixel shows: the row's plane, or what the fast kernel found.
         let found = match stepped {
             None => Err(()),
-            Some(()) if in_spheres => match p.nearest(scene, &self.state) {
-                Ok(Some(h)) if self.level.as_ref().is_some_and(|l| l.index == h.index) => Ok(None),
-                Ok(Some(h)) => Ok(Some(h)),
-                Ok(None) => return to_pixel(scene.rules(), scene.background),
-                Err(()) => Err(()),
-            },
+            Some(()) if in_spheres => {
+                let level = self.level.as_ref().map(|l| (l.index, l.pq, l.t));
+                match p.nearest_over_level(scene, &self.state, level) {
+                    Ok(Some(None)) => Ok(None),
+                    Ok(Some(Some(h))) => Ok(Some(h)),
+                    Ok(None) => return to_pixel(scene.rules(), scene.background),
+                    Err(()) => Err(()),
+                }
+            }
             Some(()) => Ok(None),
         };
         let color = match found {
