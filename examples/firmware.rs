@@ -567,8 +567,9 @@ mod firmware {
     }
 
     /// The frame sampled in blocks (`FIXRAY_FW_SAMPLING`): one report line per mode,
-    /// `sampling=8x8:8 filled=N` added, the frame drawn by `Frame::render_rows` a band of
-    /// [`sampled::BAND`] rows at a time (the band's buffer is static: 5,760 bytes).
+    /// `sampling=8x8:8 filled=N` added, the frame drawn by `Frame::bands` a band of
+    /// [`sampled::BAND`] rows at a time (the band's buffer is static: 5,760 bytes; each
+    /// band's bottom corners are kept for the next).
     #[cfg(fw_sampling)]
     mod sampled {
         use embedded_graphics::pixelcolor::Rgb888;
@@ -603,10 +604,11 @@ mod firmware {
                 let frame = Frame::with_mode(scene, MODE).with_sampling(sampling);
                 let mut filled = 0;
                 let mut top = 0;
+                let mut bands = frame.bands();
                 while top < h {
                     let rows = top..(top + BAND as u16).min(h);
                     let n = usize::from(rows.end - rows.start) * w;
-                    filled += frame.render_rows(rows.clone(), &mut band[..n]);
+                    filled += bands.render_rows(rows.clone(), &mut band[..n]);
                     for c in &band[..n] {
                         hash.push(*c);
                     }

@@ -74,7 +74,7 @@ pub use kernel::flat::PlaneMode;
 #[cfg(feature = "sampling")]
 pub use kernel::sampling::{BlockSize, Sampling, UnknownSampling};
 pub use num::{I16F16, I20F12, I32F32, Scalar};
-pub use render::{Changes, Frame, render, render_line};
+pub use render::{Bands, Changes, Frame, render, render_line};
 pub use scene::{Scene, SceneError};
 
 // Shorthands for the crate's own modules, which name these items from the root; their

@@ -110,6 +110,60 @@ fn every_entry_point_draws_the_same_sampled_pixels() {
     }
 }
 
+/// A frame drawn band by band ([`Frame::bands`]) is the frame `render_rows` draws at
+/// once, in bands of the blocks' side and of other heights, and its corners are traced
+/// once each where a row's corners are kept (up to 64), as `render_rows` over every row
+/// traces them (counted with `stats`); band after band through separate `render_rows`
+/// calls traces each band's top corners again.
+#[test]
+fn bands_draw_the_frame_and_trace_each_corner_once() {
+    use fixray::stats::Counters;
+    let base = Scene::<I16F16>::parse(include_str!("../scenes/boing-240x240.scene")).unwrap();
+    let (w, h) = (base.camera.width, base.camera.height);
+    let (bounce, orbit) = (
+        Bounce::boing(&base.objects).unwrap(),
+        fixray::anim::Orbit::boing(&base.objects).unwrap(),
+    );
+    let mut s = base.clone();
+    bounce.apply(&mut s, 3).unwrap();
+    orbit.apply(&mut s, 3).unwrap();
+    for size in SIZES {
+        let frame = Frame::<I16F16>::new(&s).with_sampling(Sampling::blocks(size, 8));
+        assert!(frame.sampled());
+        let mut at_once = Counters::default();
+        let mut whole = vec![Rgb888::BLACK; usize::from(w) * usize::from(h)];
+        frame.render_rows_counted(0..h, &mut whole, &mut at_once);
+        let side = size.pixels();
+        for band in [side, 3 * side, 5] {
+            let (mut kept, mut again) = (Counters::default(), Counters::default());
+            let mut bands = frame.bands();
+            let mut out = vec![Rgb888::BLACK; usize::from(w) * usize::from(band)];
+            for top in (0..h).step_by(usize::from(band)) {
+                let rows = top..(top + band).min(h);
+                let n = usize::from(w) * rows.len();
+                bands.render_rows_counted(rows.clone(), &mut out[..n], &mut kept);
+                let at = usize::from(top) * usize::from(w);
+                assert_eq!(
+                    out[..n],
+                    whole[at..at + n],
+                    "{size:?}, bands of {band}, row {top}"
+                );
+                frame.render_rows_counted(rows, &mut out[..n], &mut again);
+            }
+            if cfg!(feature = "stats") && band == side {
+                assert_eq!(kept.corners, at_once.corners, "{size:?}");
+                // A row of 2 × 2 blocks at 240 pixels has more corners than are kept
+                // (64): its bands trace their top corners again either way.
+                if size == BlockSize::Two {
+                    assert_eq!(again.corners, kept.corners);
+                } else {
+                    assert!(again.corners > kept.corners, "{size:?}");
+                }
+            }
+        }
+    }
+}
+
 /// Checks a sampled picture against the exact one at `bound`: every pixel within `bound +
 /// 2` levels, except pixels on a tile's edge, which may take the neighbouring tile's
 /// colour (an 8-neighbour of the exact picture within `bound + 2` of it). Returns the

@@ -205,8 +205,9 @@ impl Work {
     }
 }
 
-/// Draws `scene` with `sampling` as the firmware does (bands of 8 rows, `render_rows`) and
-/// counts its [`Work`]; returns the pixels, row after row, with it.
+/// Draws `scene` with `sampling` as the firmware does (bands of 8 rows, [`Frame::bands`]:
+/// each band's bottom corners kept for the next) and counts its [`Work`]; returns the
+/// pixels, row after row, with it.
 pub fn work<S: Scalar>(scene: &impl AsView<S>, sampling: Sampling) -> (Vec<Rgb888>, Work) {
     const BAND: u16 = 8;
     let view = scene.view();
@@ -217,11 +218,12 @@ pub fn work<S: Scalar>(scene: &impl AsView<S>, sampling: Sampling) -> (Vec<Rgb88
     let mut c = [0.0; FEATURES.len()];
     let mut filled = 0usize;
     let mut top = 0;
+    let mut bands = frame.bands();
     while top < h {
         let rows = top..top.saturating_add(BAND).min(h);
         let at = usize::from(top) * usize::from(w);
         let mut counters = Counters::default();
-        filled += frame.render_rows_counted(rows.clone(), &mut pixels[at..], &mut counters);
+        filled += bands.render_rows_counted(rows.clone(), &mut pixels[at..], &mut counters);
         // The band's rays go to the kernel that draws its first row (a row the level-plane
         // kernel cannot decide once goes to the fast kernel, `Frame::row_kernel`).
         let rays = f64::from(counters.primary_rays);

@@ -18,6 +18,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
     /// [`Frame::render_rows`] of a frame sampled in blocks: band by band, each band's
     /// bottom corners kept for the next. Out of line: its corners live in its own stack
     /// frame, not in an exact frame's.
+    /// `kept`: the corners a band before kept (a [`super::Bands`]' own, or a fresh one).
     #[inline(never)]
     pub(super) fn render_rows_sampled(
         &self,
@@ -25,12 +26,12 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
         rows: core::ops::Range<u16>,
         out: &mut [C],
         counters: &mut Counters,
+        kept: &mut Kept<S>,
     ) -> usize {
         let mut filled = 0;
         let width = usize::from(self.scene.camera.width);
         let end = rows.end.min(self.scene.camera.height);
         let band = sampler.size();
-        let mut kept = Kept::default();
         let mut corners = 0;
         let mut row = rows.start;
         while row < end {
@@ -47,7 +48,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                 &mut |r, runs: &[Range<u16>], line: &mut [C]| {
                     self.exact_runs(r, runs, line, 0, counters);
                 },
-                Some(&mut kept),
+                Some(&mut *kept),
                 &mut corners,
             );
             row = next;

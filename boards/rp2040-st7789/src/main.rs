@@ -322,10 +322,12 @@ fn draw_bands(
     let mut pixels = [Rgb565::BLACK; BAND as usize * PANEL_WIDTH as usize];
     let mut slot = 0;
     let mut sent = 0;
+    // Each band's bottom corners are the next band's top ones: traced once.
+    let mut bands = frame.bands();
     for top in (0..height).step_by(usize::from(BAND)) {
         let rows = BAND.min(height - top);
         let n = usize::from(rows) * usize::from(width);
-        frame.render_rows(top..top + rows, &mut pixels[..n]);
+        bands.render_rows(top..top + rows, &mut pixels[..n]);
         // SAFETY: the band in flight is the previous one, from the other slot.
         let bytes = unsafe { &mut *band(slot) };
         for (pair, pixel) in bytes.chunks_exact_mut(2).zip(&pixels[..n]) {
