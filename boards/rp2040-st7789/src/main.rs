@@ -94,9 +94,10 @@
 //!
 //! The default program ([`PROGRAM`]) is the orbit: the ball bouncing before a camera that
 //! circles it ([`fixray::anim::Orbit`]). Every pixel changes, so each frame is sent whole;
-//! core 0 draws it in bands of eight rows ([`fixray::Frame::render_rows`]) in 8×8 blocks
-//! filled where a certificate bounds the error by 8 levels ([`ORBIT_SAMPLING`], the
-//! fastest setting measured within the orbit's budget; exact with the `exact` feature),
+//! core 0 draws it in bands of eight rows ([`fixray::Frame::bands`]: each band's bottom
+//! corners kept for the next) in 8×8 blocks filled where a certificate bounds the error
+//! by 8 levels ([`ORBIT_SAMPLING`], the fastest setting measured within the orbit's
+//! budget; exact with the `exact` feature),
 //! each band sent by DMA while the next is drawn. Its start line ends `orbit, 8x8 blocks,
 //! bound 8` (or `orbit, exact`).
 //!
@@ -311,7 +312,7 @@ fn load(scene: &mut Scene<I16F16>) -> Result<Bounce<I16F16>, Failure> {
 }
 
 /// Draws `frame` (`width` × `height`) on the panel at `(x, y)` band by band
-/// ([`Frame::render_rows`] a band at a time), each band sent by DMA while the next is
+/// ([`Frame::bands`], a band at a time), each band sent by DMA while the next is
 /// drawn. Returns the pixels sent.
 fn draw_bands(
     frame: &Frame<'_, I16F16, Rgb565>,
