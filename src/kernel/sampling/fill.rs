@@ -359,21 +359,12 @@ impl<S: Scalar> Tiles<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::num::Rng;
     use fixed::types::{I16F16, I20F12};
 
-    /// A seeded xorshift.
-    struct Rng(u64);
-
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
-        }
-        fn below(&mut self, n: u64) -> i32 {
-            i32::try_from(self.next() % n).unwrap_or(0)
-        }
+    /// A whole number in `0..n` from the tests' seeded sequence.
+    fn below(rng: &mut Rng, n: u32) -> i32 {
+        i32::try_from(rng.below(n)).unwrap_or(0)
     }
 
     /// The fill as it is defined, pixel by pixel: each pixel's bilinear value from the
@@ -442,8 +433,8 @@ mod tests {
         let mut rng = Rng(seed);
         let mut tiled = 0;
         for _ in 0..4000 {
-            let (w, h) = (1 + rng.below(8), 1 + rng.below(8));
-            let (x0, y0) = (u16::try_from(rng.below(50)).unwrap_or(0), 3u16);
+            let (w, h) = (1 + below(&mut rng, 8), 1 + below(&mut rng, 8));
+            let (x0, y0) = (u16::try_from(below(&mut rng, 50)).unwrap_or(0), 3u16);
             let x = (x0, x0 + u16::try_from(w).unwrap_or(1));
             let y = (y0, y0 + u16::try_from(h).unwrap_or(1));
             let how = if rng.next().is_multiple_of(4) {
@@ -463,15 +454,15 @@ mod tests {
                 Fill::Tiles(Tiles {
                     colors: [corners(&mut rng), corners(&mut rng)],
                     edges,
-                    first: (rng.below(9) - 4, rng.below(9) - 4),
+                    first: (below(&mut rng, 9) - 4, below(&mut rng, 9) - 4),
                     negative: rng.next().is_multiple_of(2),
                 })
             };
             // Whole, or some of its rows and columns.
-            let c0 = x.0 + u16::try_from(rng.below(u64::from(w.unsigned_abs()))).unwrap_or(0);
-            let c1 = (c0 + 1 + u16::try_from(rng.below(9)).unwrap_or(0)).min(x.1 + 1);
-            let r0 = y.0 + u16::try_from(rng.below(u64::from(h.unsigned_abs()))).unwrap_or(0);
-            let r1 = (r0 + 1 + u16::try_from(rng.below(9)).unwrap_or(0)).min(y.1 + 1);
+            let c0 = x.0 + u16::try_from(below(&mut rng, w.unsigned_abs())).unwrap_or(0);
+            let c1 = (c0 + 1 + u16::try_from(below(&mut rng, 9)).unwrap_or(0)).min(x.1 + 1);
+            let r0 = y.0 + u16::try_from(below(&mut rng, h.unsigned_abs())).unwrap_or(0);
+            let r1 = (r0 + 1 + u16::try_from(below(&mut rng, 9)).unwrap_or(0)).min(y.1 + 1);
             let (rows, columns) = (r0..r1, c0..c1);
             let want = fill_by_pixel(&how, (x, y), (rows.clone(), columns.clone()));
             let stride = columns.len();
