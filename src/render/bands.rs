@@ -19,7 +19,7 @@ impl<'a, S: Scalar, C: From<Rgb888>> Frame<'a, S, C> {
     /// use embedded_graphics::pixelcolor::Rgb888;
     /// use fixray::{BlockSize, Frame, Sampling, Scene, I16F16};
     ///
-    /// let scene = Scene::<I16F16>::parse(include_str!("../scenes/spheres.scene"))?;
+    /// let scene = Scene::<I16F16>::parse(include_str!("../../scenes/spheres.scene"))?;
     /// let frame: Frame<'_, I16F16> =
     ///     Frame::new(&scene).with_sampling(Sampling::blocks(BlockSize::Eight, 8));
     /// let (w, h) = (usize::from(scene.camera.width), scene.camera.height);
