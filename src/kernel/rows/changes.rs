@@ -39,8 +39,8 @@ pub(crate) fn changed_columns<S: Scalar>(
     let mut columns: Option<(u16, u16)> = None;
     for (scene, rows) in [before, after] {
         let p = &rows.primary;
-        // A row this kernel does not decide once (`None` from `row_shadows`: the fast kernel
-        // draws it), or one whose shadows it cannot bound, may change anywhere.
+        // A row this kernel does not decide once (`None` from `row_shadows`: the fast
+        // kernel draws it), or one whose shadows it cannot bound, may change anywhere.
         let Some(plane) = p
             .row(scene, row, 0)
             .and_then(|first| row_shadows::<S, DiffuseShadows>(scene, p, &first))

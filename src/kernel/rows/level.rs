@@ -17,9 +17,9 @@ use crate::{Color, Hit, Light, Scalar, SceneView, Shape, Tiling, Vec3};
 pub(super) struct Level<S: Scalar> {
     /// The object.
     pub(super) index: usize,
-    /// Its parameter `t'` along `D` (the screen at 1), and as the fraction `p/q` the
-    /// terms compare.
+    /// Its parameter `t'` along `D` (the screen at 1).
     pub(super) t: S,
+    /// `t'` as the fraction `p/q` (`q > 0`) the terms compare.
     pub(super) pq: (S, S),
     /// The hit's `y` and `z` (the same at every pixel).
     pub(super) y: S,
