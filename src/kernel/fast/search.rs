@@ -130,37 +130,6 @@ pub(super) fn sphere_root<S: Scalar>(c: S, b: S, a: S) -> Result<Option<(S, S)>,
     Ok(Some((c, q)))
 }
 
-/// A sphere term's near root at the row's current pixel ([`sphere_root`]), or `Ok(None)`
-/// outside its box on the screen (the row's or the column's plane of rays passes far
-/// from the sphere: `sphere_rows`, `sphere_columns`). `dd` keeps the pixel's `D·D`,
-/// `D.x²` added to the row's `D.y² + D.z²`, formed for the first sphere that needs it.
-#[inline(always)]
-fn sphere_at<S: Scalar>(
-    row: &Row<S>,
-    term: &Term<S>,
-    nd: S,
-    dd: &mut Option<S>,
-) -> Result<Option<(S, S)>, ()> {
-    if row.row < term.rows.0
-        || row.row > term.rows.1
-        || row.column < term.columns.0
-        || row.column > term.columns.1
-    {
-        return Ok(None);
-    }
-    let a = match *dd {
-        Some(v) => v,
-        None => {
-            let x = row.dir.x;
-            let v = S::acc_round(S::acc_add(row.yz, S::acc_mul(x, x).ok_or(())?).ok_or(())?)
-                .ok_or(())?;
-            *dd = Some(v);
-            v
-        }
-    };
-    sphere_root(term.num, nd, a)
-}
-
 impl<S: Scalar> Primary<S> {
     /// The nearest accepted plane at the row's current pixel: `Ok(None)` for the
     /// background, `Err(())` when the reference path must decide (the winner does not fit
@@ -214,13 +183,32 @@ impl<S: Scalar> Primary<S> {
         } else {
             eps_l1_of(eps, d.x.abs(), d.y, d.z)
         };
-        // `D·D`, for spheres (once, when a sphere on this row asks for it).
+        // `D·D`, for spheres: `D.x²` added to the row's `D.y² + D.z²` (once, when a
+        // sphere on this row asks for it).
         let mut dd = None;
+        let mut dd = || -> Result<S, ()> {
+            if let Some(v) = dd {
+                return Ok(v);
+            }
+            let v = S::acc_round(S::acc_add(row.yz, S::acc_mul(d.x, d.x).ok_or(())?).ok_or(())?)
+                .ok_or(())?;
+            dd = Some(v);
+            Ok(v)
+        };
         // The best so far: (term, its t' as the fraction p/q with q > 0).
         let mut best: Option<(&Term<S>, S, S)> = None;
         for (term, &nd) in self.terms.iter().zip(&row.nd) {
             let (p, q) = if term.sphere {
-                match sphere_at(row, term, nd, &mut dd)? {
+                if row.row < term.rows.0
+                    || row.row > term.rows.1
+                    || row.column < term.columns.0
+                    || row.column > term.columns.1
+                {
+                    // The row's or the column's plane of rays passes far from the
+                    // sphere: `sphere_rows`, `sphere_columns`.
+                    continue;
+                }
+                match sphere_root(term.num, nd, dd()?)? {
                     Some(pq) => pq,
                     None => continue,
                 }
@@ -266,11 +254,27 @@ impl<S: Scalar> Primary<S> {
     ) -> Result<Option<Option<FastHit<S>>>, ()> {
         let d = row.dir;
         let mut dd = None;
+        let mut dd = || -> Result<S, ()> {
+            if let Some(v) = dd {
+                return Ok(v);
+            }
+            let v = S::acc_round(S::acc_add(row.yz, S::acc_mul(d.x, d.x).ok_or(())?).ok_or(())?)
+                .ok_or(())?;
+            dd = Some(v);
+            Ok(v)
+        };
         // The best so far: (its term, or `None` for the level plane; its t' = p/q).
         let mut best: Option<(Option<&Term<S>>, S, S)> = None;
         for (term, &nd) in self.terms.iter().zip(&row.nd) {
             let (candidate, p, q) = if term.sphere {
-                match sphere_at(row, term, nd, &mut dd)? {
+                if row.row < term.rows.0
+                    || row.row > term.rows.1
+                    || row.column < term.columns.0
+                    || row.column > term.columns.1
+                {
+                    continue;
+                }
+                match sphere_root(term.num, nd, dd()?)? {
                     Some((p, q)) => (Some(term), p, q),
                     None => continue,
                 }
