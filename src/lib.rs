@@ -76,6 +76,7 @@ pub use kernel::sampling::{BlockSize, Sampling, UnknownSampling};
 pub use num::{I16F16, I20F12, I32F32, Scalar};
 pub use render::{Bands, Changes, Frame, render, render_line};
 pub use scene::{Scene, SceneError};
+pub use shade::Depth;
 
 // Shorthands for the crate's own modules, which name these items from the root; their
 // public homes are the modules named here.

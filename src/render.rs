@@ -34,6 +34,7 @@ use crate::kernel::flat::PlaneMode;
 use crate::kernel::sampling::{Sampler, Sampling, sampled_rows, sampler};
 
 mod bands;
+mod depth;
 pub use bands::Bands;
 #[cfg(feature = "sampling")]
 mod sampled;

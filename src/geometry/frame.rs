@@ -251,12 +251,26 @@ pub(crate) struct RowTiles<S> {
 
 impl<S: Scalar> RowTiles<S> {
     /// [`PlaneFrame::odd_tile_in_row`] of the row's point with this `x`, bit for bit.
-    #[inline(always)]
+    #[cfg(test)]
     pub(crate) fn odd(&self, x: S) -> Option<bool> {
+        let i = self.column(x)?;
+        Some((i.wrapping_add(self.j)) & 1 == 1)
+    }
+
+    /// The tile column `floor(±(x − corner.x) / W)` of the row's point with this `x`
+    /// ([`RowTiles::odd`]'s): monotone in `x` (a difference, a sign, a truncated quotient
+    /// and a floor), so two points of one tile column have every point between them in it.
+    #[inline(always)]
+    pub(crate) fn column(&self, x: S) -> Option<i32> {
         let a = x.checked_sub(self.corner_x)?;
         let a = if self.negate { a.checked_neg()? } else { a };
-        let i = tile_index(a, self.size)?;
-        Some((i.wrapping_add(self.j)) & 1 == 1)
+        tile_index(a, self.size)
+    }
+
+    /// Whether tile column `i` of the row is an odd tile ([`RowTiles::odd`]).
+    #[inline(always)]
+    pub(crate) fn odd_column(&self, i: i32) -> bool {
+        (i.wrapping_add(self.j)) & 1 == 1
     }
 }
 

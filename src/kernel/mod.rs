@@ -211,7 +211,10 @@ pub(crate) fn select<S: Scalar, T: Stages>(scene: &SceneView<'_, S>, plan: &Plan
     drawing.kernel = match flat.then(|| Flat::new(scene)).flatten() {
         Some(f) => Kernel::Flat(f),
         None => match drawing.handed_back(scene) {
-            Some(primary) if rows => Kernel::Rows(Rows { primary }),
+            Some(primary) if rows => Kernel::Rows(Rows {
+                primary,
+                depth: crate::Depth::RGB888,
+            }),
             Some(primary) => Kernel::Fast(primary),
             None => Kernel::Reference,
         },

@@ -1,6 +1,6 @@
 //! Colours: channel units to pixels, and the saturating sums of colour terms.
 
-use embedded_graphics_core::pixelcolor::Rgb888;
+use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 use super::rules::{Tracer, with_rules};
 use crate::{Color, Rules, Scalar};
@@ -49,4 +49,84 @@ pub(crate) fn term<S: Scalar>(factors: [S; 3]) -> S {
         .skip(1)
         .try_fold(factors[0], |acc, f| acc.checked_mul(*f))
         .unwrap_or(S::MAX)
+}
+
+/// The colour depth a frame's pixels must be exact in ([`crate::Frame::with_depth`]):
+/// each channel's largest value, as an `embedded-graphics` colour type of that depth has
+/// it (`Rgb565`: 31, 63, 31). A pixel of a frame drawn for a depth converts to the colour
+/// the exact pixel converts to, channel by channel as `embedded-graphics` converts from
+/// `Rgb888`: `round(v·max/255)`. The default, [`Depth::RGB888`], asks for the exact
+/// pixels themselves.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+/// use fixray::Depth;
+///
+/// assert_eq!(Depth::of::<Rgb565>(), Depth::RGB565);
+/// // Two pixels of one Rgb565 colour have one key.
+/// let (a, b) = (Rgb888::new(200, 100, 8), Rgb888::new(198, 101, 6));
+/// assert_eq!(Rgb565::from(a), Rgb565::from(b));
+/// assert_eq!(Depth::RGB565.key(a), Depth::RGB565.key(b));
+/// assert_ne!(Depth::RGB888.key(a), Depth::RGB888.key(b));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Depth {
+    max: [u8; 3],
+}
+
+impl Default for Depth {
+    fn default() -> Self {
+        Self::RGB888
+    }
+}
+
+impl Depth {
+    /// Eight bits a channel: the exact pixels.
+    pub const RGB888: Self = Self::new(255, 255, 255);
+    /// Six bits a channel (`Rgb666`, `Bgr666`).
+    pub const RGB666: Self = Self::new(63, 63, 63);
+    /// Five bits of red and blue, six of green (`Rgb565`, `Bgr565`: ST7789 and ILI9341
+    /// panels).
+    pub const RGB565: Self = Self::new(31, 63, 31);
+    /// Five bits a channel (`Rgb555`, `Bgr555`).
+    pub const RGB555: Self = Self::new(31, 31, 31);
+
+    /// The depth whose channels' largest values are `red`, `green` and `blue` (a
+    /// channel of 0 is taken as 1: one bit).
+    pub const fn new(red: u8, green: u8, blue: u8) -> Self {
+        const fn one(v: u8) -> u8 {
+            if v == 0 { 1 } else { v }
+        }
+        Self {
+            max: [one(red), one(green), one(blue)],
+        }
+    }
+
+    /// The depth of an `embedded-graphics` RGB colour type (its `MAX_R`, `MAX_G`,
+    /// `MAX_B`). Its conversion from `Rgb888` must be `embedded-graphics`' own, channel by
+    /// channel, as it is for the crate's types.
+    pub fn of<C: RgbColor>() -> Self {
+        Self::new(C::MAX_R, C::MAX_G, C::MAX_B)
+    }
+
+    /// Each channel's largest value.
+    pub const fn max(self) -> [u8; 3] {
+        self.max
+    }
+
+    /// The pixel's colour in this depth as one number (`red << 16 | green << 8 | blue`,
+    /// each channel `round(v·max/255)`): two pixels have one key exactly where they
+    /// convert to one colour. Each channel's part does not decrease as the channel grows.
+    pub fn key(self, pixel: Rgb888) -> u32 {
+        let [r, g, b] = self.max;
+        let c = |v: u8, max: u8| -> u32 {
+            if max == u8::MAX {
+                return u32::from(v);
+            }
+            // `embedded-graphics`' conversion: `v·(max·2²⁴/255)`, rounded off its 24 bits.
+            let scale = (u32::from(max) << 24) / 255;
+            (u32::from(v) * scale + (1 << 23)) >> 24
+        };
+        (c(pixel.r(), r) << 16) | (c(pixel.g(), g) << 8) | c(pixel.b(), b)
+    }
 }

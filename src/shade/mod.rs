@@ -32,7 +32,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 pub(crate) mod color;
 pub(crate) use crate::scene::light_tolerance;
-pub use color::{to_pixel, to_rgb888};
+pub use color::{Depth, to_pixel, to_rgb888};
 #[cfg(feature = "course")]
 mod course;
 #[cfg(feature = "course")]

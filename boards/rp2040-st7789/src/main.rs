@@ -130,7 +130,7 @@ use embedded_graphics_core::prelude::IntoStorage;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::MODE_3;
 use fixray::anim::{AnimError, Bounce, Orbit};
-use fixray::{BlockSize, Frame, I16F16, Sampling, Scene, SceneError};
+use fixray::{BlockSize, Depth, Frame, I16F16, Sampling, Scene, SceneError};
 use panic_halt as _;
 use rp2040_hal::dma::DMAExt;
 use rp2040_hal::fugit::RateExtU32;
@@ -475,7 +475,7 @@ fn core1() -> ! {
         // `load` placed every frame of the loop.
         let _ = bounce.apply(&mut scene, k);
         let _ = bounce.apply(&mut shown, k.checked_sub(1).unwrap_or(bounce.frames() - 1));
-        let frame = Frame::new(&scene);
+        let frame = panel_frame(&scene);
         let before = (CHANGES_ONLY && !whole).then(|| Frame::new(&shown));
         let (width, height) = (scene.camera.width, scene.camera.height);
         let send = columns_to_send(&frame, before.as_ref(), width);
@@ -498,6 +498,13 @@ fn core1() -> ! {
             slot ^= 1;
         }
     }
+}
+
+/// A frame of `scene` for the panel: exact in its Rgb565 colours (`Frame::with_depth`),
+/// the colours the exact frame's pixels convert to, so that runs of the floor and the wall
+/// whose ends convert to one colour are drawn from their ends.
+fn panel_frame(scene: &Scene<I16F16>) -> Frame<'_, I16F16, Rgb565> {
+    Frame::new(scene).with_depth(Depth::of::<Rgb565>())
 }
 
 /// The orbit's loop: each frame the scene as parsed (`base`, kept here; `scene` is
@@ -526,7 +533,7 @@ fn orbit(
             // `load` placed every frame of the bounce and checked the orbit's turns.
             let _ = bounce.apply(scene, k);
             let _ = orbit.apply(scene, k);
-            let frame = Frame::new(&*scene).with_sampling(ORBIT_SAMPLING);
+            let frame = panel_frame(scene).with_sampling(ORBIT_SAMPLING);
             let pixels = draw_bands(&frame, size, at, panel);
             let us = (timer.get_counter() - start).to_micros();
             let _ = write!(serial, "frame={k} us={us} pixels={pixels}\r\n");
@@ -675,7 +682,7 @@ fn main() -> ! {
                 sio.fifo.write_blocking(frame_start(k, first));
             }
             // What is constant for the frame is computed once, then line by line.
-            let frame = Frame::new(&scene);
+            let frame = panel_frame(&scene);
             let before = (CHANGES_ONLY && !first).then(|| Frame::new(&shown));
             let pixels = draw_frame(
                 &frame,

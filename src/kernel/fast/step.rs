@@ -320,7 +320,13 @@ impl<S: Scalar> Primary<S> {
     /// The `D.x` [`Primary::advance_dir`] would step the row to, without stepping it.
     #[inline(always)]
     pub(crate) fn next_dx(&self, row: &Row<S>) -> Option<S> {
-        row.dir.x.checked_add(self.step_x)
+        self.next_dx_after(row.dir.x)
+    }
+
+    /// The `D.x` one [`Primary::advance_dir`] takes `D.x = dx` to.
+    #[inline(always)]
+    pub(crate) fn next_dx_after(&self, dx: S) -> Option<S> {
+        dx.checked_add(self.step_x)
     }
 
     /// [`Primary::advance`] `m` times in one go, bit for bit in the fixed formats: `D.x`
@@ -391,6 +397,14 @@ impl<S: Scalar> Primary<S> {
         row.dir.x = row.dir.x.checked_add(self.step_x)?;
         row.column = row.column.checked_add(1)?;
         Some(())
+    }
+
+    /// [`Primary::advance_dir`] `m` times in one go, to `dx`: the `D.x` the caller
+    /// stepped to by `m` sums of [`Primary::next_dx_after`].
+    #[inline(always)]
+    pub(crate) fn advance_dir_to(&self, row: &mut Row<S>, m: u16, dx: S) {
+        row.column = row.column.saturating_add(m);
+        row.dir.x = dx;
     }
 
     /// Whether every term of scanline `first` (started at column 0, holding every term)

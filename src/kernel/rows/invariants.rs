@@ -23,6 +23,7 @@ use super::super::{Kernel, select};
 use super::lean::{LeanRow, lean_color, lean_row, quick_step};
 use super::level::{Level, Memo, level, plane_color};
 use super::{Rows, scanline};
+use crate::Depth;
 use crate::anim::Bounce;
 use crate::num::Rng;
 use crate::shade::color::to_pixel;
@@ -306,7 +307,7 @@ fn quick_steps_hold<S: Scalar>(scenes: &[(String, String, Option<u16>)]) -> (usi
             let Some(mut s) = before.cloned() else {
                 return;
             };
-            let Some((pixel, lit)) = quick_step(view, p, l, f, light, &mut s, (row, dy), column)
+            let Some((pixel, lit, _)) = quick_step(view, p, l, f, light, &mut s, (row, dy), column)
             else {
                 return;
             };
@@ -353,15 +354,19 @@ fn a_quick_step_is_the_general_paths_pixel() {
 /// taken where the iterator would take it: every pixel a run returns or draws ahead is
 /// the fast kernel's pixel there (and so is every other). Returns the pixels of quick
 /// runs.
-fn quick_runs_hold<S: Scalar>(scenes: &[(String, String, Option<u16>)]) -> usize {
-    let mut quick = 0;
+fn quick_runs_hold<S: Scalar>(
+    scenes: &[(String, String, Option<u16>)],
+    depth: Depth,
+) -> (usize, usize) {
+    let (mut quick, mut unlike) = (0, 0);
     for (name, text, k) in scenes {
         let Some(scene) = parse::<S>(text, *k) else {
             continue;
         };
-        let Some((view, rows)) = frame(&scene) else {
+        let Some((view, mut rows)) = frame(&scene) else {
             continue;
         };
+        rows.depth = depth;
         let w = view.camera.width;
         for (row, start) in (0..view.camera.height).flat_map(|row| [(row, 0), (row, 7)]) {
             let mut c = Counters::default();
@@ -403,19 +408,22 @@ fn quick_runs_hold<S: Scalar>(scenes: &[(String, String, Option<u16>)]) -> usize
                     }
                     None => px.pixel(column),
                 };
-                assert_eq!(pixel, want_at(column), "{}", at(column));
+                let same = |a: Rgb888, b: Rgb888| depth.key(a) == depth.key(b);
+                assert!(same(pixel, want_at(column)), "{}", at(column));
+                unlike += usize::from(pixel != want_at(column));
                 // The pixels a run drew ahead, the next columns, handed out here.
                 let mut next = column;
                 while px.run_at < px.run_len {
                     next += 1;
                     let ahead = px.run[usize::from(px.run_at)];
-                    assert_eq!(ahead, want_at(next), "drawn ahead: {}", at(next));
+                    assert!(same(ahead, want_at(next)), "drawn ahead: {}", at(next));
+                    unlike += usize::from(ahead != want_at(next));
                     px.run_at += 1;
                 }
             }
         }
     }
-    quick
+    (quick, unlike)
 }
 
 /// Quick runs (`Pixels::quick_run`): on a one-light lean row the pixels outside the
@@ -427,10 +435,50 @@ fn quick_runs_hold<S: Scalar>(scenes: &[(String, String, Option<u16>)]) -> usize
 #[test]
 fn a_quick_run_draws_the_fast_kernels_pixels() {
     let all = scenes(2, 40, 0x5EED_0005_0003);
-    let quick = quick_runs_hold::<I16F16>(&all);
-    assert!(quick > 100_000, "{quick}");
-    let quick = quick_runs_hold::<I20F12>(&all);
-    assert!(quick > 100_000, "{quick}");
+    for (quick, unlike) in [
+        quick_runs_hold::<I16F16>(&all, Depth::RGB888),
+        quick_runs_hold::<I20F12>(&all, Depth::RGB888),
+    ] {
+        assert!(quick > 100_000 && unlike == 0, "{quick} {unlike}");
+    }
+}
+
+/// Quick runs in a depth shallower than Rgb888 (`spans.rs`): every pixel converts to the
+/// fast kernel's pixel's colour in that depth, over the scenes of
+/// [`a_quick_run_draws_the_fast_kernels_pixels`] and 40 random scenes with small tiles
+/// (many tile edges inside a span), in I16F16 and I20F12; and some pixels are drawn from
+/// a span's ends (not the exact Rgb888 pixel), so that the spans are what is checked.
+#[test]
+fn a_quick_run_in_a_depth_converts_to_the_exact_pixels_colour() {
+    let mut all = scenes(2, 40, 0x5EED_0005_0003);
+    let mut rng = Rng(0x5EED_0005_0004);
+    all.extend((0..40).map(|n| {
+        // Every tile a quarter of a unit wide, a few pixels on the screen.
+        let text: Vec<String> = level_scene(&mut rng)
+            .lines()
+            .map(|line| match line.find("dimension ") {
+                Some(at) => format!("{}dimension 0.25 0.3 }}", &line[..at]),
+                None => String::from(line),
+            })
+            .collect();
+        (format!("small tiles {n}"), text.join("\n"), None)
+    }));
+    for depth in [
+        Depth::RGB565,
+        Depth::RGB555,
+        Depth::RGB666,
+        Depth::new(3, 3, 3),
+    ] {
+        for (quick, unlike) in [
+            quick_runs_hold::<I16F16>(&all, depth),
+            quick_runs_hold::<I20F12>(&all, depth),
+        ] {
+            assert!(
+                quick > 100_000 && unlike > quick / 20,
+                "{depth:?} {quick} {unlike}"
+            );
+        }
+    }
 }
 
 /// Every pixel inside the spheres' columns of every row the level-plane kernel decides

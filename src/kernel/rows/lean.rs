@@ -337,9 +337,19 @@ impl<S: Scalar> LeanRow<S> {
     /// plane's odd tiles), as `row_material` chooses it.
     #[inline(always)]
     pub(super) fn parity(&self, x: S) -> usize {
+        self.tile(x).0
+    }
+
+    /// [`LeanRow::parity`] of the row's hit at `x`, with its tile column (`Some(0)` on a
+    /// plain plane; `None` where it does not fit, parity 0 as `row_material` takes it).
+    #[inline(always)]
+    pub(super) fn tile(&self, x: S) -> (usize, Option<i32>) {
         match &self.tiles {
-            Some(tiles) => usize::from(tiles.odd(x) == Some(true)),
-            None => 0,
+            Some(tiles) => {
+                let i = tiles.column(x);
+                (usize::from(i.is_some_and(|i| tiles.odd_column(i))), i)
+            }
+            None => (0, Some(0)),
         }
     }
 
@@ -362,11 +372,11 @@ impl<S: Scalar> LeanRow<S> {
 /// (where the quick term settles it), or by `plane_color` where a sphere's cone does
 /// not clear the pixel (its exact segment test, [`exact_shadow`]: shadowed, the
 /// ambient colour): the same operations in the same order for those cases (the step,
-/// the hit's `x`, the tile's parity, `L.x`, `|L|²`, the cones, `KernelArith::quick_pixel`),
-/// without the general cases' lookups and loops; `state` is stepped to `column`; with
-/// the pixel, whether the light lit it. `None` wherever the case is another, with
-/// `state` unchanged but at a resync column, which is restarted (the general path then
-/// restarts it again, to the same state). The caller counts.
+/// then [`quick_at`]), without the general cases' lookups and loops; `state` is stepped
+/// to `column`; with the pixel, whether the light lit it and its [`Side`]. `None`
+/// wherever the case is another, with `state` unchanged but at a resync column, which is
+/// restarted (the general path then restarts it again, to the same state). The caller
+/// counts.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn quick_step<S: Scalar>(
@@ -378,7 +388,7 @@ pub(super) fn quick_step<S: Scalar>(
     state: &mut Row<S>,
     (row, dy): (u16, S),
     column: u16,
-) -> Option<(Rgb888, bool)> {
+) -> Option<(Rgb888, bool, Side)> {
     let resync = column.is_multiple_of(fast::resync_pixels::<S>());
     let dx = if resync {
         p.restart_dir_in_row(scene, row, dy, column, state)?;
@@ -388,8 +398,36 @@ pub(super) fn quick_step<S: Scalar>(
         (Primary::column(state).checked_add(1) == Some(column)).then_some(())?;
         p.next_dx(state)?
     };
+    let at = quick_at(scene, p, (l, f, light), (dx, dy))?;
+    if !resync {
+        // `next_dx` fitted and the column follows the state's: this step cannot fail.
+        p.advance_dir(state)?;
+    }
+    Some(at)
+}
+
+/// What a quick pixel's colour depends on besides `|L|²`, for the spans that compare
+/// two of them (`spans.rs`): the tile column of its hit (`None` where it does not fit;
+/// `Some(0)` on a plain plane) and whether `L.x < 0`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Side {
+    pub(super) tile: Option<i32>,
+    pub(super) left: bool,
+}
+
+/// The quick pixel of a lean row's hit at `D = (dx, dy, dz)` ([`quick_step`]'s, after
+/// its step): the hit's `x`, its tile, `L.x`, `|L|²`, the cones and
+/// `KernelArith::quick_pixel`; with whether the light lit it and its [`Side`]. Reads
+/// nothing but `dx` of the pixel, so a span may ask it at any column whose `D.x` it knows.
+#[inline(always)]
+pub(super) fn quick_at<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    (l, f, light): (&Level<S>, &LeanRow<S>, &LeanLight<S>),
+    (dx, dy): (S, S),
+) -> Option<(Rgb888, bool, Side)> {
     let x = row_x(scene, l, dx)?;
-    let parity = f.parity(x);
+    let (parity, tile) = f.tile(x);
     let term = light.quick.get(parity)?.as_ref()?;
     if !*f.lit.get(parity)? || light.nl.is_none() {
         return None;
@@ -417,11 +455,11 @@ pub(super) fn quick_step<S: Scalar>(
         let [r, g, b] = S::quick_pixel(color, term, ll)?;
         Rgb888::new(r, g, b)
     };
-    if !resync {
-        // `next_dx` fitted and the column follows the state's: this step cannot fail.
-        p.advance_dir(state)?;
-    }
-    Some((pixel, !shadowed))
+    let side = Side {
+        tile,
+        left: lx < S::ZERO,
+    };
+    Some((pixel, !shadowed, side))
 }
 
 /// Whether the sphere of the light's `cone`-th cone shadows a lean row's hit at `x` from

@@ -36,6 +36,7 @@ mod changes;
 mod invariants;
 mod lean;
 mod level;
+mod spans;
 
 pub(crate) use changes::{changed_columns, moved_spheres};
 
@@ -46,15 +47,19 @@ use super::scanline::{fast_color, reference_color};
 use crate::shade::color::to_pixel;
 use crate::shade::stages::Stages;
 use crate::stats::{Counters, count};
-use crate::{Color, Scalar, SceneView};
+use crate::{Color, Depth, Scalar, SceneView};
 use lean::{LeanRow, count_quick, lean_color, lean_row, quick_step};
 use level::{Level, Memo, level, plane_color, row_plane};
+use spans::{Drew, Span, class};
 
 /// The per-frame part: the fast kernel's (its terms, the lights' sides of every plane,
 /// the spheres' rows and shadow cones).
 #[derive(Debug, Clone)]
 pub(crate) struct Rows<S: Scalar> {
     pub(crate) primary: Primary<S>,
+    /// The depth the pixels must be exact in ([`crate::Frame::with_depth`]): what a
+    /// quick run's spans compare ([`Pixels::quick_run`]).
+    pub(crate) depth: Depth,
 }
 
 /// Whether the stage set `T` is the one this kernel draws with (diffuse point lights and
@@ -126,6 +131,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         counters,
         stages: core::marker::PhantomData,
         run: [Rgb888::new(0, 0, 0); RUN],
+        depth: rows.depth,
         run_at: 0,
         run_len: 0,
         #[cfg(feature = "stats")]
@@ -165,6 +171,8 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     /// Pixels a quick run drew ahead ([`Pixels::quick_run`]): `run[run_at..run_len]`
     /// are the next ones, before `columns`.
     run: [Rgb888; RUN],
+    /// What the pixels must be exact in: a quick run's spans compare its keys.
+    depth: Depth,
     run_at: u8,
     run_len: u8,
     /// Which of `run` were lit (bit `i`: `run[i]`): their counts are added as they are
@@ -314,10 +322,17 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             return None;
         };
         let tiled = u32::from(f.tiles.is_some());
-        let (first, lit) = quick_step(scene, p, l, f, light, &mut self.state, row, column)?;
+        let (first, lit, side) = quick_step(scene, p, l, f, light, &mut self.state, row, column)?;
         // (The first pixel's primary ray was counted by `pixel`, the caller; the others'
         // counts are added as `next` hands them out.)
         count_quick(self.counters, tiled, lit, false);
+        // Spans where no sphere can shadow the row from its light, in a depth shallower
+        // than Rgb888 (`spans.rs`). (In the exact depth a span would draw hardly fewer
+        // pixels than the run: neighbours seldom have one Rgb888 colour, and halving
+        // costs more than it saves.)
+        if self.depth != Depth::RGB888 && light.cones.0 == light.cones.1 {
+            return self.spans(column, (first, side));
+        }
         #[cfg(feature = "stats")]
         {
             self.run_lit = 0;
@@ -329,7 +344,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             if c >= end || (c >= spheres.0 && c <= spheres.1) {
                 break;
             }
-            let Some((pixel, lit)) = quick_step(scene, p, l, f, light, &mut self.state, row, c)
+            let Some((pixel, lit, _)) = quick_step(scene, p, l, f, light, &mut self.state, row, c)
             else {
                 break;
             };
@@ -344,6 +359,72 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             self.columns.start = c + 1;
         }
         (self.run_at, self.run_len) = (0, n);
+        (self.fresh, self.stale, self.valid) = (false, true, true);
+        Some(first)
+    }
+
+    /// [`Pixels::quick_run`]'s run after its first pixel (at `column`, with its side), in
+    /// spans ([`Span::draw`]) up to the column before each restart of the stepping (a
+    /// restart's column is a quick step's); a span that meets a pixel the quick path does
+    /// not draw ends the run before it. Every pixel is lit (no sphere can shadow the row
+    /// from its light).
+    #[inline(never)]
+    fn spans(&mut self, column: u16, (first, side): (Rgb888, lean::Side)) -> Option<Rgb888> {
+        let (scene, p) = (self.scene, self.p);
+        let row = (self.row, Primary::dir(&self.state).y);
+        let (l, f) = (self.level.as_ref()?, &self.lean);
+        let [light] = f.lights.as_slice() else {
+            return None;
+        };
+        // The run's last column: before the row's end, before the spheres' columns, and
+        // within the run's pixels.
+        let (end, spheres) = (self.columns.end, self.spheres);
+        let mut last = end
+            .checked_sub(1)?
+            .min(column.saturating_add(u16::try_from(RUN).ok()?));
+        if column < spheres.0 {
+            last = last.min(spheres.0 - 1);
+        }
+        let resync = fast::resync_pixels::<S>();
+        let mut span = Span {
+            depth: self.depth,
+            from: column,
+            at: (column, first, class(side)),
+            n: 0,
+        };
+        while span.at.0 < last {
+            let c = span.at.0 + 1;
+            if !c.is_multiple_of(resync) {
+                let b = last.min((c / resync + 1).saturating_mul(resync) - 1);
+                if b > c {
+                    let lean = (l, f, light);
+                    match span.draw(scene, p, lean, &mut self.state, row.1, b, &mut self.run) {
+                        Drew::All => continue,
+                        // The run ends before a column the quick path does not draw.
+                        Drew::Before(bad) => {
+                            last = bad - 1;
+                            continue;
+                        }
+                        Drew::Not => {}
+                    }
+                }
+            }
+            let Some((pixel, _, side)) = quick_step(scene, p, l, f, light, &mut self.state, row, c)
+            else {
+                break;
+            };
+            *self.run.get_mut(usize::from(span.n))? = pixel;
+            span.n += 1;
+            span.at = (c, pixel, class(side));
+        }
+        #[cfg(feature = "stats")]
+        {
+            self.run_lit = 1u32
+                .checked_shl(u32::from(span.n))
+                .map_or(u32::MAX, |m| m - 1);
+        }
+        self.columns.start = span.at.0 + 1;
+        (self.run_at, self.run_len) = (0, span.n);
         (self.fresh, self.stale, self.valid) = (false, true, true);
         Some(first)
     }

@@ -242,7 +242,7 @@ pub(crate) fn sampler<S: Scalar>(
     }
     let mut spheres = Vec::new();
     match &drawing.kernel {
-        Kernel::Fast(p) | Kernel::Rows(super::rows::Rows { primary: p }) => {
+        Kernel::Fast(p) | Kernel::Rows(super::rows::Rows { primary: p, .. }) => {
             for b in p.sphere_boxes() {
                 spheres.push(b).ok()?;
             }

@@ -1,0 +1,235 @@
+//! Spans of a quick run: pixels drawn from the two ends of a span where both ends
+//! convert to one colour of the frame's depth ([`crate::Depth`]) and nothing between can
+//! differ from them there.
+//!
+//! Along a lean row with one light, between two restarts of the stepping, a quick pixel's
+//! colour is a function of its tile and `|L|²` alone where no sphere can shadow the row
+//! from the light (the row keeps no cone for it): `D.x` grows by one step a pixel, the
+//! hit's `x = eye.x + t'·D.x` (`t'` the row's) is monotone in it, and so are its tile
+//! column (a difference and a floored quotient), `L.x = light.x − x` and, on one side of
+//! `L.x = 0`, `|L|² = L.x² + (L.y² + L.z²)` (one rounding of a sum that grows with
+//! `|L.x|`). Each channel of the colour is then monotone in `|L|²`: the ambient part is
+//! the tile's, the light's term `w·(255·N·L)/|L|²` (with `N·L` the row's) is a truncated
+//! quotient times a weight, added saturating, rounded and clamped to a channel, and a
+//! depth's channel `round(v·max/255)` is monotone in `v`. So where two pixels of one tile
+//! column with `L.x` of one sign have one key in the depth, every pixel between them has
+//! it too, whichever path would have drawn it (the quick pixel where it settles, the
+//! exact term where it does not): the pixels between are drawn as the left end.
+//!
+//! A span is the run's next pixels up to the column before the next restart; its far
+//! end is drawn first, then it is halved where its ends differ, the left half first, so
+//! that every pixel is drawn at most once. In the exact depth a pixel so drawn is the
+//! exact pixel itself; in a shallower one it converts to the exact pixel's colour
+//! (`tests/depth.rs`, and the quick runs' invariant, `invariants.rs`).
+
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+use super::super::fast::{Primary, Row};
+use super::RUN;
+use super::lean::{LeanLight, LeanRow, Side, quick_at};
+use super::level::Level;
+use crate::{Depth, Scalar, SceneView};
+
+/// A quick run's spans so far ([`Span::draw`]).
+pub(super) struct Span {
+    /// What the pixels must be exact in.
+    pub(super) depth: Depth,
+    /// The run's own pixel's column (`run[0]` is the next one's).
+    pub(super) from: u16,
+    /// The last column drawn (the row's state is there): its pixel and its [`class`].
+    pub(super) at: (u16, Rgb888, Option<i32>),
+    /// The pixels drawn ahead so far: `run[..n]` (every one lit).
+    pub(super) n: u8,
+}
+
+/// The most pixels a span covers: those between two restarts of the stepping.
+const SPAN: usize = super::super::fast::RESYNC_PIXELS as usize;
+
+/// A drawn pixel's [`Side`] as one number (`2·tile + left`), `None` where its tile is
+/// not known or so far out that the number would not tell two tiles apart.
+#[inline(always)]
+pub(super) fn class(side: Side) -> Option<i32> {
+    let tile = side.tile.filter(|t| t.unsigned_abs() < 1 << 29)?;
+    Some(2 * tile + i32::from(side.left))
+}
+
+/// What [`Span::draw`] drew.
+pub(super) enum Drew {
+    /// Every pixel up to the span's end.
+    All,
+    /// The pixels up to one before this column, at most (the column's pixel is not a
+    /// quick pixel: a quick run ends before it).
+    Before(u16),
+    /// Nothing (a quantity out of range: the caller steps one pixel).
+    Not,
+}
+
+/// A span's drawn columns by their offset from its start: each one's key in the depth
+/// and [`class`] (`known`, bit `k`: the class of the column at offset `k` is known).
+struct Drawn {
+    keys: [u32; 32],
+    classes: [i32; 32],
+    known: u32,
+}
+
+impl Drawn {
+    /// Records the column at offset `k`.
+    #[inline(always)]
+    fn mark(&mut self, k: usize, key: u32, class: Option<i32>) {
+        self.keys[k & 31] = key;
+        if let Some(c) = class {
+            self.classes[k & 31] = c;
+            self.known |= 1 << (k & 31);
+        }
+    }
+
+    /// The class of the column at offset `k`.
+    #[inline(always)]
+    fn class(&self, k: usize) -> Option<i32> {
+        (self.known & (1 << (k & 31)) != 0).then(|| self.classes[k & 31])
+    }
+
+    /// Whether the columns at offsets `lo` and `hi` have one key and one known class:
+    /// every column between them is then drawn as `lo` (the module's certificate).
+    #[inline(always)]
+    fn alike(&self, lo: usize, hi: usize) -> bool {
+        let both = (1 << (lo & 31)) | (1 << (hi & 31));
+        self.known & both == both
+            && self.classes[lo & 31] == self.classes[hi & 31]
+            && self.keys[lo & 31] == self.keys[hi & 31]
+    }
+}
+
+impl Span {
+    /// Draws the pixels after the last one drawn up to column `b` (no restart of the
+    /// stepping after the last one, up to `b`; at least two pixels, and a row whose light
+    /// no sphere can shadow: every quick pixel is lit) into `run`, and steps the row's
+    /// `state` to the last pixel drawn ([`Drew`]). Where a pixel is not a quick pixel
+    /// (`quick_at` says `None`) the pixels drawn before it (all of them left of it) are
+    /// kept.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn draw<S: Scalar>(
+        &mut self,
+        scene: &SceneView<'_, S>,
+        p: &Primary<S>,
+        lean: (&Level<S>, &LeanRow<S>, &LeanLight<S>),
+        state: &mut Row<S>,
+        dy: S,
+        b: u16,
+        run: &mut [Rgb888; RUN],
+    ) -> Drew {
+        let a = self.at.0;
+        let len = usize::from(b.saturating_sub(a));
+        // `run[base + k − 1]` is column `a + k`'s (`k ≥ 1`). (Indices are masked to the
+        // arrays' sizes, powers of two, which they stay within.)
+        let base = usize::from(a.saturating_sub(self.from));
+        if !(2..=SPAN).contains(&len) || base + len > RUN {
+            return Drew::Not;
+        }
+        let slot = |k: usize| (base + k - 1) & (RUN - 1);
+        // `D.x` at column `a + k`: `k` sums of the step (`advance_dir`'s, bit for bit: the
+        // fixed formats' sums are exact), as `D.x` plus the step's doublings picked by `k`.
+        let Some(step) = p.next_dx_after(S::ZERO) else {
+            return Drew::Not;
+        };
+        let mut doublings = [step; 5];
+        for i in 1..doublings.len() {
+            let Some(d) = doublings[i - 1].checked_add(doublings[i - 1]) else {
+                return Drew::Not;
+            };
+            doublings[i] = d;
+        }
+        let dx0 = Primary::dir(state).x;
+        let dx = |k: usize| -> Option<S> {
+            let mut d = dx0;
+            for (i, step) in doublings.iter().enumerate() {
+                if k & (1 << i) != 0 {
+                    d = d.checked_add(*step)?;
+                }
+            }
+            Some(d)
+        };
+        let eval = |k: usize| quick_at(scene, p, lean, (dx(k)?, dy));
+        // Every drawn column's key and class by its offset from `a` (`known`, bit `k`:
+        // column `a + k`'s class is known).
+        let mut drawn = Drawn {
+            keys: [0; 32],
+            classes: [0; 32],
+            known: 0,
+        };
+        let colors = self.depth;
+        drawn.mark(0, colors.key(self.at.1), self.at.2);
+        let Some((pixel, _, side)) = eval(len) else {
+            return Drew::Before(b);
+        };
+        run[slot(len)] = pixel;
+        drawn.mark(len, colors.key(pixel), class(side));
+        let pixel_at =
+            |run: &[Rgb888; RUN], k: usize| if k == 0 { self.at.1 } else { run[slot(k)] };
+        // The halves still to draw (offsets from `a`, both ends drawn), the leftmost last.
+        let mut stack = [(0u8, 0u8); 8];
+        let mut depth = 1;
+        stack[0] = (0, len as u8);
+        while depth > 0 {
+            depth -= 1;
+            let (lo, hi) = stack[depth & 7];
+            let (lo, hi) = (usize::from(lo), usize::from(hi));
+            if hi - lo < 2 {
+                continue;
+            }
+            if drawn.alike(lo, hi) {
+                let left = pixel_at(run, lo);
+                for k in lo + 1..hi {
+                    run[slot(k)] = left;
+                }
+                continue;
+            }
+            let m = lo + (hi - lo) / 2;
+            let Some((pixel, _, side)) = eval(m) else {
+                // Every column up to `lo` is drawn (the left halves go first).
+                let left = pixel_at(run, lo);
+                let Some(dx) = dx(lo) else {
+                    return Drew::Not;
+                };
+                self.keep(state, p, (lo, dx), left, drawn.class(lo));
+                return Drew::Before(a + m as u16);
+            };
+            run[slot(m)] = pixel;
+            drawn.mark(m, colors.key(pixel), class(side));
+            // The right half below the left one: the left is drawn first.
+            if depth + 2 > stack.len() {
+                return Drew::Not;
+            }
+            stack[depth & 7] = (m as u8, hi as u8);
+            stack[(depth + 1) & 7] = (lo as u8, m as u8);
+            depth += 2;
+        }
+        let Some(dx) = dx(len) else {
+            return Drew::Not;
+        };
+        self.keep(state, p, (len, dx), pixel, class(side));
+        Drew::All
+    }
+
+    /// Keeps the pixels drawn up to `k` columns after the last one (the one there is
+    /// `pixel`, of class `class`; every one lit), and steps the row's state there (to `D.x = dx`).
+    fn keep<S: Scalar>(
+        &mut self,
+        state: &mut Row<S>,
+        p: &Primary<S>,
+        (k, dx): (usize, S),
+        pixel: Rgb888,
+        class: Option<i32>,
+    ) {
+        // (`k` is at most a span, within the run: `draw` checked.)
+        let k = k as u16;
+        if k == 0 {
+            return;
+        }
+        p.advance_dir_to(state, k, dx);
+        let c = self.at.0 + k;
+        self.n = (c - self.from) as u8;
+        self.at = (c, pixel, class);
+    }
+}
