@@ -11,7 +11,7 @@ use embedded_graphics::pixelcolor::{
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use fixray::anim::{Bounce, Orbit};
-use fixray::{Depth, Frame, Scalar, Scene, I16F16, I20F12};
+use fixray::{Depth, Frame, I16F16, I20F12, Scalar, Scene};
 
 /// `C`'s depth is `Depth::of::<C>()`, and its key is `C`'s conversion: two pixels have
 /// one key exactly where they convert to one `C`, for every value of each channel (the
@@ -131,8 +131,10 @@ fn boing_frames_for_a_panel_are_the_exact_frames_there() {
 /// does not start at x = 0, streamed by `Frame::draw`): the exact frame's colours.
 #[test]
 fn a_frame_streamed_for_its_depth_shows_the_exact_frame() {
-    let text = include_str!("../scenes/boing-240x240.scene")
-        .replace("pixeldim 240 240 worlddim 7 7", "pixeldim 60 60 worlddim 7 7");
+    let text = include_str!("../scenes/boing-240x240.scene").replace(
+        "pixeldim 240 240 worlddim 7 7",
+        "pixeldim 60 60 worlddim 7 7",
+    );
     let scene = Scene::<I16F16>::parse(&text).unwrap();
     let frame: Frame<'_, I16F16, Rgb565> = Frame::new(&scene);
     let shallow: Frame<'_, I16F16, Rgb565> = Frame::new(&scene).with_depth(Depth::RGB565);

@@ -7,7 +7,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::fast::{self, Primary, Row};
 use super::memo::{KernelStages, MemoSlot};
-use super::shading::{lit_plane_color, lit_planes};
+use super::shading::{lit_plane_color, lit_planes, lit_sphere_color};
 use crate::shade::color::to_pixel;
 use crate::shade::stages::Stages;
 use crate::shade::{Incoming, PlaneSides, shade_with, trace_pixel_ray};
@@ -104,11 +104,9 @@ pub(crate) fn scanline_over<'a, S: Scalar, T: KernelStages, C: From<Rgb888>, con
     })
 }
 
-/// The colour of the fast kernel's hit `h` at the row's current pixel by the general
-/// shading (`shade_with`; the scanline tries [`lit_plane_color`] first): shaded with the
-/// unnormalised direction (see `Incoming`; the fast kernel takes only stage sets that
-/// need no more of it than its side), shadow segments taking the planes' sides from the
-/// kernel's terms (`at_hit`: a buffer the scanline keeps).
+/// The colour of the fast kernel's hit `h` at the row's current pixel: a sphere hit by
+/// [`lit_sphere_color`] where it draws one, else by the general shading ([`general_color`];
+/// the scanline tries [`lit_plane_color`] first for plane hits).
 pub(crate) fn fast_color<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     primary: Option<&Primary<S>>,
@@ -116,6 +114,38 @@ pub(crate) fn fast_color<S: Scalar, T: Stages>(
     h: &fast::FastHit<S>,
     at_hit: &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
     counters: &mut Counters,
+) -> Color<S> {
+    shaded::<S, T>(scene, primary, r, h, at_hit, counters, true)
+}
+
+/// [`fast_color`] by the general shading alone (what [`lit_sphere_color`] is tested
+/// against).
+#[cfg(test)]
+pub(crate) fn general_color<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    primary: Option<&Primary<S>>,
+    r: &Row<S>,
+    h: &fast::FastHit<S>,
+    at_hit: &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+    counters: &mut Counters,
+) -> Color<S> {
+    shaded::<S, T>(scene, primary, r, h, at_hit, counters, false)
+}
+
+/// [`fast_color`], with [`lit_sphere_color`] tried first where `spheres`; otherwise the
+/// general shading (`shade_with`): shaded with the unnormalised direction (see
+/// `Incoming`; the fast kernel takes only stage sets that need no more of it than its
+/// side), shadow segments taking the planes' sides from the kernel's terms (`at_hit`: a
+/// buffer the scanline keeps).
+#[inline(always)]
+fn shaded<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    primary: Option<&Primary<S>>,
+    r: &Row<S>,
+    h: &fast::FastHit<S>,
+    at_hit: &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+    counters: &mut Counters,
+    spheres: bool,
 ) -> Color<S> {
     let sides = match primary {
         Some(p) if T::SHADOWS && !p.at_lights().is_empty() => {
@@ -128,6 +158,9 @@ pub(crate) fn fast_color<S: Scalar, T: Stages>(
         }
         _ => None,
     };
+    if spheres && let Some(color) = lit_sphere_color::<S, T>(scene, h, sides, counters) {
+        return color;
+    }
     let incoming = Incoming {
         base: scene.camera.viewpoint,
         dir: h.dir,

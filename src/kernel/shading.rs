@@ -217,6 +217,118 @@ fn lit_plane_with<S: Scalar>(
     )
 }
 
+/// The colour of the fast kernel's hit `h` on a sphere under a diffuse stage set (lights,
+/// with or without shadows: no glint, cone, mirror or translucence; `None` for any other,
+/// in a build without the kernels, or for another shape): the crate's shading of it
+/// (`own_color`, `light_with` and `segment_terms` of `shade/`) flattened to what such a
+/// hit needs, the same operations in the same order, so the same colour bit for bit
+/// (tested against the general shading, `kernel/fast/invariants.rs`): the sphere's own
+/// material, its normal at the hit (`Sphere::normal_at`) turned to face the ray, then
+/// each light's `L`, `|L|²`, `N·L`, shadow segment (`occludes_segment`, with the planes'
+/// sides the caller formed) and term. `None` where the pixel needs the general shading:
+/// a light on a surface, a projector, a light whose `|L|²` does not fit or is not
+/// positive (the general path's ray terms; the statistics then count the earlier lights
+/// twice, as for plane hits), or a segments' tolerance that does not fit.
+#[inline(always)]
+pub(super) fn lit_sphere_color<S: Scalar, T: Stages>(
+    scene: &SceneView<'_, S>,
+    h: &fast::FastHit<S>,
+    sides: Option<PlaneSides<'_, S>>,
+    counters: &mut Counters,
+) -> Option<Color<S>> {
+    let diffuse_set = T::LIGHTING && !T::SPECULAR && !T::CONES && !T::REFLECTION;
+    if !(super::KERNELS && diffuse_set && !T::TRANSPARENCY) {
+        return None;
+    }
+    lit_sphere_with(scene, h, sides, T::SHADOWS && scene.shadows, counters)
+}
+
+/// [`lit_sphere_color`] with the stage set's shadows as a value (`shadows`: the set's
+/// and the scene's, `LightStages::of`): one copy per format.
+#[inline(never)]
+fn lit_sphere_with<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    h: &fast::FastHit<S>,
+    sides: Option<PlaneSides<'_, S>>,
+    shadows: bool,
+    counters: &mut Counters,
+) -> Option<Color<S>> {
+    let object = scene.objects.get(h.index)?;
+    let Shape::Sphere(sphere) = &object.shape else {
+        return None;
+    };
+    if scene.lights_on_surfaces
+        || scene
+            .lights
+            .iter()
+            .any(|l| matches!(l.beam, Beam::Projector(_)))
+    {
+        return None;
+    }
+    // The tolerance `light_with` forms before its loop (`Fixray::segment_tolerance`);
+    // where it does not fit, every light takes the general path's ray terms.
+    let tol = if shadows {
+        segment_tolerance(scene.camera.viewpoint, h.point, h.t_bound, None)?
+    } else {
+        S::ZERO
+    };
+    // As `surface` (a sphere's material is its own; one out of the scene shows black).
+    let Some(material) = scene.materials.get(usize::from(object.material)) else {
+        return Some([S::ZERO; 3]);
+    };
+    let color = material.ambient;
+    if scene.lights.is_empty() {
+        return Some(color);
+    }
+    let Some(normal) = sphere.normal_at(h.point) else {
+        return Some(color);
+    };
+    // The normal facing the incoming ray.
+    let facing = if h.dir.dot_axis(normal).is_some_and(|d| d > S::ZERO) {
+        normal.checked_neg().unwrap_or(normal)
+    } else {
+        normal
+    };
+    if material.diffuse == [S::ZERO; 3] {
+        return Some(color);
+    }
+    let k = channel_max::<S>();
+    let terms = |_: usize, light: &Light<S>| {
+        let Some(to_light) = light.location.diff(h.point) else {
+            return Some(None);
+        };
+        let ll = to_light.dot(to_light).filter(|ll| *ll > S::ZERO)?;
+        Some(
+            to_light
+                .dot_axis(facing)
+                .filter(|c| *c > S::ZERO)
+                .map(|nl| LightTerms {
+                    to_light,
+                    ll,
+                    nl,
+                    knl: None,
+                }),
+        )
+    };
+    let shadowed = |j: usize, light: &Light<S>, t: &LightTerms<S>| {
+        let segment = (h.point, t.to_light, t.ll);
+        shadowed_among(scene, sides, None, (j, light), segment, || Some(tol))
+    };
+    light_plane_hit(
+        scene,
+        color,
+        material.diffuse,
+        shadows,
+        (
+            terms,
+            shadowed,
+            |_| None,
+            |t: &LightTerms<S>| diffuse_falloff_outlined(t.nl, t.nl.checked_mul(k), t.ll),
+        ),
+        counters,
+    )
+}
+
 /// The segments' tolerance at a hit (`Fixray::segment_tolerance`: `surface_tolerance(t,
 /// m)`, `(t + c)·ulp(max(1, t, m))` with `m` the largest coordinate of the eye and the
 /// hit), remembered in `memo` for the last `(t, ulp)` where the caller keeps one

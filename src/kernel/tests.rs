@@ -7,8 +7,8 @@ use std::string::String;
 
 use super::fast::Row;
 use super::memo::PlaneMemo;
-use super::scanline::fast_color;
-use super::shading::{lit_plane_color, quiet_hit};
+use super::scanline::{fast_color, general_color};
+use super::shading::{lit_plane_color, lit_sphere_color, quiet_hit};
 use super::*;
 use crate::Scene;
 use crate::num::Rng;
@@ -167,4 +167,139 @@ fn lit_planes_draw_the_general_shading() {
     assert!(lit_planes_agree::<crate::num::variants::I16F16Recip, DiffuseShadows>(20).0 > 20_000);
     // Not in the float formats (the facing normal would not be the row's `N·D`).
     assert_eq!(lit_planes_agree::<f32, DiffuseShadows>(5).0, 0);
+}
+
+/// A seeded random scene of spheres over a tiled floor before a back wall (plain, or
+/// turned about y), under one or two lights, some materials without a diffuse colour,
+/// now and then a light low beside a sphere (hits on its far side, shadows cast on
+/// other spheres).
+fn sphere_scene(rng: &mut Rng) -> String {
+    let (w, h) = (24 + rng.below(40), 16 + rng.below(24));
+    let mut text = format!(
+        "rules fixray\ncamera c {{ pixeldim {w} {h} worlddim 8 6 viewpoint {:.2} {:.2} {:.2} }}\n",
+        rng.uniform(1.0, 7.0),
+        rng.uniform(1.0, 5.0),
+        rng.uniform(4.0, 10.0)
+    );
+    text += "material a { ambient 0.3 0.2 0.1 diffuse 0.5 0.4 0.3 }\n";
+    text += "material b { ambient 0.1 0.1 0.3 diffuse 0.9 0.2 0.6 }\n";
+    text += "material c { ambient 0.4 0.4 0.4 }\n";
+    for j in 0..1 + rng.below(2) {
+        let y = if rng.below(3) == 0 {
+            0.8
+        } else {
+            rng.uniform(2.0, 10.0)
+        };
+        text += &format!(
+            "light l{j} {{ location {:.2} {y:.2} {:.2} emissivity {:.1} {:.1} {:.1} }}\n",
+            rng.uniform(-3.0, 10.0),
+            rng.uniform(-8.0, 5.0),
+            rng.uniform(2.0, 12.0),
+            rng.uniform(2.0, 12.0),
+            rng.uniform(2.0, 12.0)
+        );
+    }
+    text += "tiled_plane floor { material a altmaterial b normal 0 1 0 point 0 0 0 xdir 1 0 0 dimension 1 1 }\n";
+    let wall = if rng.below(2) == 0 {
+        "0 0 1"
+    } else {
+        "0.2 0 1"
+    };
+    text += &format!("plane wall {{ material b normal {wall} point 0 0 -9 }}\n");
+    for i in 0..1 + rng.below(3) {
+        let r = rng.uniform(0.3, 1.8);
+        let m = ["a", "b", "c"][usize::try_from(rng.below(3)).unwrap_or(0)];
+        text += &format!(
+            "sphere s{i} {{ material {m} center {:.2} {:.2} {:.2} radius {r:.2} }}\n",
+            rng.uniform(-1.0, 9.0),
+            r + rng.uniform(0.0, 3.0),
+            rng.uniform(-7.0, 1.0)
+        );
+    }
+    text
+}
+
+/// At every sphere hit of the fast kernel in `scenes` random sphere scenes and the boing
+/// ball's frames, in format `S` with the stage set `T`: [`lit_sphere_color`] draws the
+/// general shading's colour ([`general_color`]) with the same counts, wherever it draws
+/// one. Returns how many it drew.
+fn lit_spheres_agree<S: Scalar, T: Stages>(scenes: usize) -> usize {
+    let mut rng = Rng(0x5EED_2026_1207);
+    let mut drawn = 0;
+    let boing = String::from(include_str!("../../scenes/boing.scene"));
+    let texts = (0..scenes)
+        .map(|_| (sphere_scene(&mut rng), None))
+        .chain((0..16).map(|k| (boing.clone(), Some(k))));
+    for (case, (text, frame)) in texts.enumerate() {
+        let Ok(mut scene) = Scene::<S>::parse(&text) else {
+            continue;
+        };
+        if let Some(k) = frame
+            && crate::anim::Bounce::boing(&scene.objects)
+                .ok()
+                .and_then(|b| b.apply(&mut scene, k).ok())
+                .is_none()
+        {
+            continue;
+        }
+        let mut view = scene.view();
+        view.lights_on_surfaces = view.plan().lights_on_surfaces;
+        let Some(p) = Primary::new(&view) else {
+            continue;
+        };
+        let mut at_hit = heapless::Vec::new();
+        for row in 0..view.camera.height {
+            let mut state: Option<Row<S>> = None;
+            for column in 0..view.camera.width {
+                let stepped = match state.as_mut() {
+                    Some(r) if column % fast::resync_pixels::<S>() != 0 => p.advance(r).is_some(),
+                    _ => {
+                        state = p.row(&view, row, column);
+                        state.is_some()
+                    }
+                };
+                let Some(r) = state.as_ref().filter(|_| stepped) else {
+                    state = None;
+                    continue;
+                };
+                let Ok(Some(h)) = p.nearest(&view, r) else {
+                    continue;
+                };
+                let (mut c1, mut c2) = (Counters::default(), Counters::default());
+                let general = general_color::<S, T>(&view, Some(&p), r, &h, &mut at_hit, &mut c2);
+                let sides = p.sides_at(r, h.param, &mut at_hit);
+                let sides = sides.filter(|_| T::SHADOWS && !p.at_lights().is_empty());
+                let sides = sides.map(|bits| crate::shade::PlaneSides {
+                    at_hit: &at_hit,
+                    at_lights: p.at_lights(),
+                    cones: p.cones(),
+                    bits,
+                });
+                if let Some(lit) = lit_sphere_color::<S, T>(&view, &h, sides, &mut c1) {
+                    drawn += 1;
+                    let at = || format!("{} case {case} ({column}, {row}):\n{text}", S::NAME);
+                    assert_eq!(lit, general, "{}", at());
+                    assert_eq!(c1, c2, "{}", at());
+                }
+            }
+        }
+    }
+    drawn
+}
+
+/// The fast kernel's flattened sphere shading (`lit_sphere_color`) draws the general
+/// shading's colours and counts, with shadows and without, in every main format.
+#[test]
+fn lit_spheres_draw_the_general_shading() {
+    use crate::shade::stages::{Diffuse, Full};
+    let counts = [
+        lit_spheres_agree::<fixed::types::I16F16, DiffuseShadows>(60),
+        lit_spheres_agree::<fixed::types::I16F16, Diffuse>(20),
+        lit_spheres_agree::<fixed::types::I20F12, DiffuseShadows>(30),
+        lit_spheres_agree::<fixed::types::I32F32, DiffuseShadows>(20),
+        lit_spheres_agree::<f32, DiffuseShadows>(20),
+    ];
+    assert!(counts.iter().all(|n| *n > 5_000), "{counts:?}");
+    // Not for a stage set with more than diffuse lights.
+    assert_eq!(lit_spheres_agree::<fixed::types::I16F16, Full>(5), 0);
 }

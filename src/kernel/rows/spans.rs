@@ -42,8 +42,13 @@ pub(super) struct Span {
     pub(super) n: u8,
 }
 
-/// The most pixels a span covers: those between two restarts of the stepping.
-const SPAN: usize = super::super::fast::RESYNC_PIXELS as usize;
+/// The most pixels a span covers: those after a restart of the stepping, up to the next.
+const SPAN: usize = super::super::fast::RESYNC_PIXELS as usize - 1;
+
+/// The drawn columns a span keeps: its start and [`SPAN`] more (a power of two, so
+/// that an offset masked to it needs no bounds check).
+const KEPT: usize = SPAN + 1;
+const _: () = assert!(KEPT.is_power_of_two());
 
 /// A drawn pixel's [`Side`] as one number (`2·tile + left`), `None` where its tile is
 /// not known or so far out that the number would not tell two tiles apart.
@@ -67,8 +72,8 @@ pub(super) enum Drew {
 /// A span's drawn columns by their offset from its start: each one's key in the depth
 /// and [`class`] (`known`, bit `k`: the class of the column at offset `k` is known).
 struct Drawn {
-    keys: [u32; 32],
-    classes: [i32; 32],
+    keys: [u32; KEPT],
+    classes: [i32; KEPT],
     known: u32,
 }
 
@@ -76,27 +81,28 @@ impl Drawn {
     /// Records the column at offset `k`.
     #[inline(always)]
     fn mark(&mut self, k: usize, key: u32, class: Option<i32>) {
-        self.keys[k & 31] = key;
+        self.keys[k & (KEPT - 1)] = key;
         if let Some(c) = class {
-            self.classes[k & 31] = c;
-            self.known |= 1 << (k & 31);
+            self.classes[k & (KEPT - 1)] = c;
+            self.known |= 1 << (k & (KEPT - 1));
         }
     }
 
     /// The class of the column at offset `k`.
     #[inline(always)]
     fn class(&self, k: usize) -> Option<i32> {
-        (self.known & (1 << (k & 31)) != 0).then(|| self.classes[k & 31])
+        (self.known & (1 << (k & (KEPT - 1))) != 0).then(|| self.classes[k & (KEPT - 1)])
     }
 
     /// Whether the columns at offsets `lo` and `hi` have one key and one known class:
     /// every column between them is then drawn as `lo` (the module's certificate).
     #[inline(always)]
     fn alike(&self, lo: usize, hi: usize) -> bool {
-        let both = (1 << (lo & 31)) | (1 << (hi & 31));
+        let (lo, hi) = (lo & (KEPT - 1), hi & (KEPT - 1));
+        let both = (1 << lo) | (1 << hi);
         self.known & both == both
-            && self.classes[lo & 31] == self.classes[hi & 31]
-            && self.keys[lo & 31] == self.keys[hi & 31]
+            && self.classes[lo] == self.classes[hi]
+            && self.keys[lo] == self.keys[hi]
     }
 }
 
@@ -154,8 +160,8 @@ impl Span {
         // Every drawn column's key and class by its offset from `a` (`known`, bit `k`:
         // column `a + k`'s class is known).
         let mut drawn = Drawn {
-            keys: [0; 32],
-            classes: [0; 32],
+            keys: [0; KEPT],
+            classes: [0; KEPT],
             known: 0,
         };
         let colors = self.depth;
