@@ -271,19 +271,32 @@ impl<S: Scalar> Sphere<S> {
     /// direction carries the point's error divided by `r`.
     #[inline(never)]
     pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
+        self.normal_and_excess(point).map(|(normal, _)| normal)
+    }
+
+    /// [`Sphere::normal_at`], with `r² − |P − C|²` (one rounding) where the normal is
+    /// the three products' (`1/r` kept, the point on the surface): then `1/r ≥ 256·DELTA`,
+    /// `r² ≥ 1024·DELTA` and `|P − C| ≤ 1.0093·r`, so that each component of the normal
+    /// lies within `1/64` of `(P − C)/r` in a fixed format (`1/r`'s truncation at most
+    /// `1.0093/256`, the product's rounding a DELTA, the clamp at most `0.0093` and a
+    /// DELTA: the fast kernel's own-sphere shadow test rests on it, `kernel/shading.rs`).
+    #[inline(always)]
+    pub(crate) fn normal_and_excess(&self, point: Vec3<S>) -> Option<(Vec3<S>, Option<S>)> {
         let (d, k) = (point.diff(self.center)?, self.inv_radius);
+        if k <= S::ZERO {
+            return Some((d.unit()?, None));
+        }
         // |d|² within r²/64 of r² (one rounding): the point is on the surface.
-        let on_surface = || {
-            S::sub_dot3(self.radius_sq, d.to_array(), d.to_array())
-                .and_then(|excess| excess.abs().checked_mul_int(64))
-                .is_some_and(|e| e <= self.radius_sq)
-        };
-        if k <= S::ZERO || !on_surface() {
-            return d.unit();
+        let excess = S::sub_dot3(self.radius_sq, d.to_array(), d.to_array());
+        let on_surface = excess
+            .and_then(|e| e.abs().checked_mul_int(64))
+            .is_some_and(|e| e <= self.radius_sq);
+        if !on_surface {
+            return Some((d.unit()?, None));
         }
         let (one, minus_one) = (S::ONE, S::ONE.checked_neg()?);
         let c = |v: S| -> Option<S> { Some(v.checked_mul(k)?.min(one).max(minus_one)) };
-        Some(Vec3::new(c(d.x)?, c(d.y)?, c(d.z)?))
+        Some((Vec3::new(c(d.x)?, c(d.y)?, c(d.z)?), excess))
     }
 
     fn magnitude(&self, ray: &Ray<S>, hit: &Hit<S>) -> S {

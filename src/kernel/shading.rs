@@ -280,15 +280,19 @@ fn lit_sphere_with<S: Scalar>(
     if scene.lights.is_empty() {
         return Some(color);
     }
-    let Some(normal) = sphere.normal_at(h.point) else {
+    let Some((normal, excess)) = sphere.normal_and_excess(h.point) else {
         return Some(color);
     };
     // The normal facing the incoming ray.
-    let facing = if h.dir.dot_axis(normal).is_some_and(|d| d > S::ZERO) {
+    let turned = h.dir.dot_axis(normal).is_some_and(|d| d > S::ZERO);
+    let facing = if turned {
         normal.checked_neg().unwrap_or(normal)
     } else {
         normal
     };
+    // Where the sphere's own segment test is decided without it ([`own_sphere_clear`]),
+    // the other objects alone are tested.
+    let own = excess.filter(|_| S::EXACT_PRODUCTS && !turned);
     if material.diffuse == [S::ZERO; 3] {
         return Some(color);
     }
@@ -312,7 +316,13 @@ fn lit_sphere_with<S: Scalar>(
     };
     let shadowed = |j: usize, light: &Light<S>, t: &LightTerms<S>| {
         let segment = (h.point, t.to_light, t.ll);
-        shadowed_among(scene, sides, None, (j, light), segment, || Some(tol))
+        let candidates = match (sides, own) {
+            (Some(s), Some(excess)) if own_sphere_clear(sphere, excess, tol, t) => {
+                Some(s.bits.candidates(j) & !object_bit(h.index))
+            }
+            _ => None,
+        };
+        shadowed_among(scene, sides, candidates, (j, light), segment, || Some(tol))
     };
     light_plane_hit(
         scene,
@@ -327,6 +337,39 @@ fn lit_sphere_with<S: Scalar>(
         ),
         counters,
     )
+}
+
+/// Whether the segment from a hit on `sphere` towards a light (`t`: `L`, `|L|²` and
+/// `N·L` with the sphere's normal, not turned, from its three products in a fixed format,
+/// [`Sphere::normal_and_excess`] with `excess = r² − |P − C|²`; `tol` the segments'
+/// tolerance) is certainly not stopped by the sphere itself: `Sphere::meets_segment`
+/// says no. With `N` within `1/64` of `(P − C)/r` per component and `N·L` rounded once,
+/// `64·(N·L − DELTA) > ‖L‖₁` makes `(P − C)·L` positive, so its `b` is not negative;
+/// with `f₀ = −excess ≥ −(2r + tol)·tol` (on the surface within the tolerance, or
+/// outside it) and `b ≥ 0` the test says no wherever its quantities fit, which `4·|L|²`
+/// and `4·r²` fitting ensures (`|f₁| ≤ |f₀| + |P − C|² + 2|L|²`). Tested with the
+/// sphere's shading against the general one (`kernel/tests.rs`).
+#[inline(always)]
+pub(super) fn own_sphere_clear<S: Scalar>(
+    sphere: &crate::Sphere<S>,
+    excess: S,
+    tol: S,
+    t: &LightTerms<S>,
+) -> bool {
+    let clear = || -> Option<bool> {
+        let band = sphere
+            .radius()
+            .checked_add(sphere.radius())?
+            .checked_add(tol)?
+            .checked_mul(tol)?;
+        t.ll.checked_mul_int(4)?;
+        sphere.radius_sq().checked_mul_int(4)?;
+        let l1 = t.to_light.x.abs().checked_add(t.to_light.y.abs())?;
+        let l1 = l1.checked_add(t.to_light.z.abs())?;
+        let margin = t.nl.checked_sub(S::DELTA)?.checked_mul_int(64)?;
+        Some(excess <= band && margin > l1)
+    };
+    clear() == Some(true)
 }
 
 /// The segments' tolerance at a hit (`Fixray::segment_tolerance`: `surface_tolerance(t,
