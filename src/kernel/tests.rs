@@ -329,7 +329,10 @@ fn own_sphere_holds<S: Scalar>(cases: usize, seed: u64) -> (usize, usize) {
             continue;
         };
         // A unit direction `u` from the centre and one `w` across it.
-        let (theta, phi) = (rng.uniform(0.0, 6.2832), rng.uniform(-1.0, 1.0));
+        let (theta, phi) = (
+            rng.uniform(0.0, core::f64::consts::TAU),
+            rng.uniform(-1.0, 1.0),
+        );
         let s = (1.0 - phi * phi).sqrt();
         let u = [s * theta.cos(), s * theta.sin(), phi];
         let a = if u[0].abs() < 0.9 {
