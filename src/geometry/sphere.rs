@@ -269,7 +269,6 @@ impl<S: Scalar> Sphere<S> {
     /// I20F12), `(P − C)` normalised ([`Vec3::unit`]: a square root and three to six
     /// divisions, which on a Cortex-M0 cost about twenty times as much). Either way the
     /// direction carries the point's error divided by `r`.
-    #[inline(never)]
     pub fn normal_at(&self, point: Vec3<S>) -> Option<Vec3<S>> {
         self.normal_and_excess(point).map(|(normal, _)| normal)
     }
@@ -280,7 +279,8 @@ impl<S: Scalar> Sphere<S> {
     /// lies within `1/64` of `(P − C)/r` in a fixed format (`1/r`'s truncation at most
     /// `1.0093/256`, the product's rounding a DELTA, the clamp at most `0.0093` and a
     /// DELTA: the fast kernel's own-sphere shadow test rests on it, `kernel/shading.rs`).
-    #[inline(always)]
+    /// Out of line: one copy for both (flash).
+    #[inline(never)]
     pub(crate) fn normal_and_excess(&self, point: Vec3<S>) -> Option<(Vec3<S>, Option<S>)> {
         let (d, k) = (point.diff(self.center)?, self.inv_radius);
         if k <= S::ZERO {

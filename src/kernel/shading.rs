@@ -19,6 +19,11 @@ use crate::shade::{
 use crate::stats::{Counters, count};
 use crate::{Beam, Color, Light, Scalar, SceneView, Shape, Vec3};
 
+mod sphere;
+pub(super) use sphere::lit_sphere_color;
+#[cfg(test)]
+pub(super) use sphere::own_sphere_clear;
+
 /// Whether [`lit_plane_color`] draws the fast kernel's plane hits with the stage set `T`
 /// in format `S` (in a build with the kernels: without them its code is not linked):
 /// diffuse lights (with or without shadows: no glint, cone, mirror or
@@ -198,7 +203,7 @@ fn lit_plane_with<S: Scalar>(
         if quiet {
             return Some(false);
         }
-        plane_hit_shadowed(scene, sides, h, (j, light), t)
+        shadowed_but_own(scene, sides, h, (j, light), t)
     };
     let weight = |j: usize| {
         let (w, overflow) = weights.and_then(|m| m.weight(scene, j))?;
@@ -215,161 +220,6 @@ fn lit_plane_with<S: Scalar>(
         }),
         counters,
     )
-}
-
-/// The colour of the fast kernel's hit `h` on a sphere under a diffuse stage set (lights,
-/// with or without shadows: no glint, cone, mirror or translucence; `None` for any other,
-/// in a build without the kernels, or for another shape): the crate's shading of it
-/// (`own_color`, `light_with` and `segment_terms` of `shade/`) flattened to what such a
-/// hit needs, the same operations in the same order, so the same colour bit for bit
-/// (tested against the general shading, `kernel/fast/invariants.rs`): the sphere's own
-/// material, its normal at the hit (`Sphere::normal_at`) turned to face the ray, then
-/// each light's `L`, `|L|²`, `N·L`, shadow segment (`occludes_segment`, with the planes'
-/// sides the caller formed) and term. `None` where the pixel needs the general shading:
-/// a light on a surface, a projector, a light whose `|L|²` does not fit or is not
-/// positive (the general path's ray terms; the statistics then count the earlier lights
-/// twice, as for plane hits), or a segments' tolerance that does not fit.
-#[inline(always)]
-pub(super) fn lit_sphere_color<S: Scalar, T: Stages>(
-    scene: &SceneView<'_, S>,
-    h: &fast::FastHit<S>,
-    sides: Option<PlaneSides<'_, S>>,
-    counters: &mut Counters,
-) -> Option<Color<S>> {
-    let diffuse_set = T::LIGHTING && !T::SPECULAR && !T::CONES && !T::REFLECTION;
-    if !(super::KERNELS && diffuse_set && !T::TRANSPARENCY) {
-        return None;
-    }
-    lit_sphere_with(scene, h, sides, T::SHADOWS && scene.shadows, counters)
-}
-
-/// [`lit_sphere_color`] with the stage set's shadows as a value (`shadows`: the set's
-/// and the scene's, `LightStages::of`): one copy per format.
-#[inline(never)]
-fn lit_sphere_with<S: Scalar>(
-    scene: &SceneView<'_, S>,
-    h: &fast::FastHit<S>,
-    sides: Option<PlaneSides<'_, S>>,
-    shadows: bool,
-    counters: &mut Counters,
-) -> Option<Color<S>> {
-    let object = scene.objects.get(h.index)?;
-    let Shape::Sphere(sphere) = &object.shape else {
-        return None;
-    };
-    if scene.lights_on_surfaces
-        || scene
-            .lights
-            .iter()
-            .any(|l| matches!(l.beam, Beam::Projector(_)))
-    {
-        return None;
-    }
-    // The tolerance `light_with` forms before its loop (`Fixray::segment_tolerance`);
-    // where it does not fit, every light takes the general path's ray terms.
-    let tol = if shadows {
-        segment_tolerance(scene.camera.viewpoint, h.point, h.t_bound, None)?
-    } else {
-        S::ZERO
-    };
-    // As `surface` (a sphere's material is its own; one out of the scene shows black).
-    let Some(material) = scene.materials.get(usize::from(object.material)) else {
-        return Some([S::ZERO; 3]);
-    };
-    let color = material.ambient;
-    if scene.lights.is_empty() {
-        return Some(color);
-    }
-    let Some((normal, excess)) = sphere.normal_and_excess(h.point) else {
-        return Some(color);
-    };
-    // The normal facing the incoming ray.
-    let turned = h.dir.dot_axis(normal).is_some_and(|d| d > S::ZERO);
-    let facing = if turned {
-        normal.checked_neg().unwrap_or(normal)
-    } else {
-        normal
-    };
-    // Where the sphere's own segment test is decided without it ([`own_sphere_clear`]),
-    // the other objects alone are tested.
-    let own = excess.filter(|_| S::EXACT_PRODUCTS && !turned);
-    if material.diffuse == [S::ZERO; 3] {
-        return Some(color);
-    }
-    let k = channel_max::<S>();
-    let terms = |_: usize, light: &Light<S>| {
-        let Some(to_light) = light.location.diff(h.point) else {
-            return Some(None);
-        };
-        let ll = to_light.dot(to_light).filter(|ll| *ll > S::ZERO)?;
-        Some(
-            to_light
-                .dot_axis(facing)
-                .filter(|c| *c > S::ZERO)
-                .map(|nl| LightTerms {
-                    to_light,
-                    ll,
-                    nl,
-                    knl: None,
-                }),
-        )
-    };
-    let shadowed = |j: usize, light: &Light<S>, t: &LightTerms<S>| {
-        let segment = (h.point, t.to_light, t.ll);
-        let candidates = match (sides, own) {
-            (Some(s), Some(excess)) if own_sphere_clear(sphere, excess, tol, t) => {
-                Some(s.bits.candidates(j) & !object_bit(h.index))
-            }
-            _ => None,
-        };
-        shadowed_among(scene, sides, candidates, (j, light), segment, || Some(tol))
-    };
-    light_plane_hit(
-        scene,
-        color,
-        material.diffuse,
-        shadows,
-        (
-            terms,
-            shadowed,
-            |_| None,
-            |t: &LightTerms<S>| diffuse_falloff_outlined(t.nl, t.nl.checked_mul(k), t.ll),
-        ),
-        counters,
-    )
-}
-
-/// Whether the segment from a hit on `sphere` towards a light (`t`: `L`, `|L|²` and
-/// `N·L` with the sphere's normal, not turned, from its three products in a fixed format,
-/// [`Sphere::normal_and_excess`] with `excess = r² − |P − C|²`; `tol` the segments'
-/// tolerance) is certainly not stopped by the sphere itself: `Sphere::meets_segment`
-/// says no. With `N` within `1/64` of `(P − C)/r` per component and `N·L` rounded once,
-/// `64·(N·L − DELTA) > ‖L‖₁` makes `(P − C)·L` positive, so its `b` is not negative;
-/// with `f₀ = −excess ≥ −(2r + tol)·tol` (on the surface within the tolerance, or
-/// outside it) and `b ≥ 0` the test says no wherever its quantities fit, which `4·|L|²`
-/// and `4·r²` fitting ensures (`|f₁| ≤ |f₀| + |P − C|² + 2|L|²`). Tested with the
-/// sphere's shading against the general one (`kernel/tests.rs`).
-#[inline(always)]
-pub(super) fn own_sphere_clear<S: Scalar>(
-    sphere: &crate::Sphere<S>,
-    excess: S,
-    tol: S,
-    t: &LightTerms<S>,
-) -> bool {
-    let clear = || -> Option<bool> {
-        let band = sphere
-            .radius()
-            .checked_add(sphere.radius())?
-            .checked_add(tol)?
-            .checked_mul(tol)?;
-        t.ll.checked_mul_int(4)?;
-        sphere.radius_sq().checked_mul_int(4)?;
-        let l1 = t.to_light.x.abs().checked_add(t.to_light.y.abs())?;
-        let l1 = l1.checked_add(t.to_light.z.abs())?;
-        let margin = t.nl.checked_sub(S::DELTA)?.checked_mul_int(64)?;
-        Some(excess <= band && margin > l1)
-    };
-    clear() == Some(true)
 }
 
 /// The segments' tolerance at a hit (`Fixray::segment_tolerance`: `surface_tolerance(t,
@@ -532,16 +382,19 @@ pub(super) fn add_weighted<S: Scalar>(
     ]
 }
 
-/// Whether the shadow segment from the fast kernel's plane hit `h` towards light `j` is
-/// stopped ([`shadowed_among`]). The objects that may stand between the hit and the
-/// light are the ones `occludes_segment` picks, less the hit's own plane where quotients
-/// are exact: its side at the hit is `num − t'·(N·D)` with `t'` within a DELTA of
-/// `num/(N·D)`, so it lies within `(|N·D| + 1)·DELTA` of zero, inside the tolerance
+/// Whether the shadow segment from the fast kernel's hit `h` towards light `j` is stopped
+/// ([`shadowed_among`]), its own object left out. The objects that may stand between the
+/// hit and the light are the ones `occludes_segment` picks, less the hit's own object
+/// where it cannot stop the segment: a plane hit's own plane where quotients are exact
+/// (its side at the hit is `num − t'·(N·D)` with `t'` within a DELTA of `num/(N·D)`, so
+/// it lies within `(|N·D| + 1)·DELTA` of zero, inside the tolerance
 /// `(t'·2|D|∞ + 12)·DELTA` (`t' ≥ 1`, `|N·D| ≤ √3|D|∞`), and `sides_differ` passes it
-/// over. Out of line: the pixels that take it are few (the others are quiet,
-/// `quiet_hit`).
+/// over), a sphere hit's own sphere where its caller's certificate says so
+/// ([`own_sphere_clear`]; the fixed formats, whose quotients are exact). Out of line:
+/// the plane pixels that take it are few (the others are quiet, `quiet_hit`), and the
+/// sphere hits' shading calls it rather than holding a copy (flash).
 #[inline(never)]
-fn plane_hit_shadowed<S: Scalar>(
+fn shadowed_but_own<S: Scalar>(
     scene: &SceneView<'_, S>,
     sides: Option<PlaneSides<'_, S>>,
     h: &fast::FastHit<S>,

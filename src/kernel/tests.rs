@@ -288,7 +288,7 @@ fn lit_spheres_agree<S: Scalar, T: Stages>(scenes: usize) -> usize {
 }
 
 /// The fast kernel's flattened sphere shading (`lit_sphere_color`) draws the general
-/// shading's colours and counts, with shadows and without, in every main format.
+/// shading's colours and counts, with shadows and without, in the fixed formats.
 #[test]
 fn lit_spheres_draw_the_general_shading() {
     use crate::shade::stages::{Diffuse, Full};
@@ -297,9 +297,11 @@ fn lit_spheres_draw_the_general_shading() {
         lit_spheres_agree::<fixed::types::I16F16, Diffuse>(20),
         lit_spheres_agree::<fixed::types::I20F12, DiffuseShadows>(30),
         lit_spheres_agree::<fixed::types::I32F32, DiffuseShadows>(20),
-        lit_spheres_agree::<f32, DiffuseShadows>(20),
+        lit_spheres_agree::<crate::num::variants::I16F16Recip, DiffuseShadows>(20),
     ];
     assert!(counts.iter().all(|n| *n > 5_000), "{counts:?}");
+    // Not in the float formats (flash: they keep the general shading).
+    assert_eq!(lit_spheres_agree::<f32, DiffuseShadows>(5), 0);
     // Not for a stage set with more than diffuse lights.
     assert_eq!(lit_spheres_agree::<fixed::types::I16F16, Full>(5), 0);
 }

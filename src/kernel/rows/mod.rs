@@ -327,10 +327,11 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         // counts are added as `next` hands them out.)
         count_quick(self.counters, tiled, lit, false);
         // Spans where no sphere can shadow the row from its light, in a depth shallower
-        // than Rgb888 (`spans.rs`). (In the exact depth a span would draw hardly fewer
-        // pixels than the run: neighbours seldom have one Rgb888 colour, and halving
-        // costs more than it saves.)
-        if self.depth != Depth::RGB888 && light.cones.0 == light.cones.1 {
+        // than Rgb888, with the cargo feature `depth` (`spans.rs`). (In the exact depth a
+        // span would draw hardly fewer pixels than the run: neighbours seldom have one
+        // Rgb888 colour, and halving costs more than it saves.)
+        if cfg!(feature = "depth") && self.depth != Depth::RGB888 && light.cones.0 == light.cones.1
+        {
             return self.spans(column, (first, side));
         }
         #[cfg(feature = "stats")]
