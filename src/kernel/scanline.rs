@@ -105,7 +105,7 @@ pub(crate) fn scanline_over<'a, S: Scalar, T: KernelStages, C: From<Rgb888>, con
 }
 
 /// The colour of the fast kernel's hit `h` at the row's current pixel: a sphere hit by
-/// [`lit_sphere_color`] where it draws one, else by the general shading ([`general_color`];
+/// [`lit_sphere_color`] where it draws one, else by the general shading ([`shaded`];
 /// the scanline tries [`lit_plane_color`] first for plane hits).
 pub(crate) fn fast_color<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
@@ -118,27 +118,14 @@ pub(crate) fn fast_color<S: Scalar, T: Stages>(
     shaded::<S, T>(scene, primary, r, h, at_hit, counters, true)
 }
 
-/// [`fast_color`] by the general shading alone (what [`lit_sphere_color`] is tested
-/// against).
-#[cfg(test)]
-pub(crate) fn general_color<S: Scalar, T: Stages>(
-    scene: &SceneView<'_, S>,
-    primary: Option<&Primary<S>>,
-    r: &Row<S>,
-    h: &fast::FastHit<S>,
-    at_hit: &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
-    counters: &mut Counters,
-) -> Color<S> {
-    shaded::<S, T>(scene, primary, r, h, at_hit, counters, false)
-}
-
-/// [`fast_color`], with [`lit_sphere_color`] tried first where `spheres`; otherwise the
+/// [`fast_color`], with [`lit_sphere_color`] tried first where `spheres` (without it: the
+/// general shading alone, what `lit_sphere_color` is tested against); otherwise the
 /// general shading (`shade_with`): shaded with the unnormalised direction (see
 /// `Incoming`; the fast kernel takes only stage sets that need no more of it than its
 /// side), shadow segments taking the planes' sides from the kernel's terms (`at_hit`: a
 /// buffer the scanline keeps).
 #[inline(always)]
-fn shaded<S: Scalar, T: Stages>(
+pub(super) fn shaded<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     primary: Option<&Primary<S>>,
     r: &Row<S>,

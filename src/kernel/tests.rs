@@ -5,9 +5,8 @@ extern crate std;
 use std::format;
 use std::string::String;
 
-use super::fast::Row;
 use super::memo::PlaneMemo;
-use super::scanline::{fast_color, general_color};
+use super::scanline::{fast_color, shaded};
 use super::shading::{LightTerms, lit_plane_color, lit_sphere_color, own_sphere_clear, quiet_hit};
 use super::*;
 use crate::num::Rng;
@@ -80,6 +79,16 @@ pub(super) fn random_scene(rng: &mut Rng) -> String {
     text
 }
 
+/// The view of `scene` as a frame sets it up (`render.rs`: a light on a surface is the
+/// plan's to find) and the fast kernel's per-frame part (`None` where it cannot be
+/// formed).
+fn fast_frame<S: Scalar>(scene: &Scene<S>) -> Option<(SceneView<'_, S>, Primary<S>)> {
+    let mut view = scene.view();
+    view.lights_on_surfaces = view.plan().lights_on_surfaces;
+    let p = Primary::new(&view)?;
+    Some((view, p))
+}
+
 /// Every fast-kernel hit of `scenes` random plane scenes (and the default scene) in
 /// format `S`, lit by the stage set `T`: the hits found with a scanline's memo of its
 /// still planes (`fast::HitMemo`) are the hits, and [`lit_plane_color`]'s colour is
@@ -95,11 +104,7 @@ fn lit_planes_agree<S: Scalar, T: Stages>(scenes: usize) -> (usize, usize) {
         let Ok(scene) = Scene::<S>::parse(&text) else {
             continue;
         };
-        // As a frame sets its view up (`render.rs`): a light on a surface is the
-        // plan's to find.
-        let mut view = scene.view();
-        view.lights_on_surfaces = view.plan().lights_on_surfaces;
-        let Some(p) = Primary::new(&view) else {
+        let Some((view, p)) = fast_frame(&scene) else {
             continue;
         };
         let mut at_hit = heapless::Vec::new();
@@ -107,25 +112,14 @@ fn lit_planes_agree<S: Scalar, T: Stages>(scenes: usize) -> (usize, usize) {
         let mut memo = PlaneMemo::default();
         let mut hits = fast::HitMemo::default();
         for row in 0..view.camera.height {
-            let mut state: Option<Row<S>> = None;
-            for column in 0..view.camera.width {
-                let stepped = match state.as_mut() {
-                    Some(r) if column % fast::resync_pixels::<S>() != 0 => p.advance(r).is_some(),
-                    _ => {
-                        state = p.row(&view, row, column);
-                        state.is_some()
-                    }
-                };
-                let Some(r) = state.as_ref().filter(|_| stepped) else {
-                    state = None;
-                    continue;
-                };
+            fast::each_pixel(&view, &p, row, |r| {
+                let column = Primary::column(r);
                 // The still planes' hits from the memo are the hits themselves.
                 let found = p.nearest(&view, r);
                 let memoized = p.nearest_with(&view, r, Some(&mut hits));
                 assert_eq!(found, memoized, "{} case {case} ({row}, {column})", S::NAME);
                 let Ok(Some(h)) = found else {
-                    continue;
+                    return;
                 };
                 let (mut c1, mut c2) = (Counters::default(), Counters::default());
                 let at = (&mut at_hit, Some(&mut memo));
@@ -144,7 +138,7 @@ fn lit_planes_agree<S: Scalar, T: Stages>(scenes: usize) -> (usize, usize) {
                         S::NAME
                     );
                 }
-            }
+            });
         }
     }
     (drawn, quiet)
@@ -242,31 +236,18 @@ fn lit_spheres_agree<S: Scalar, T: Stages>(scenes: usize) -> usize {
         {
             continue;
         }
-        let mut view = scene.view();
-        view.lights_on_surfaces = view.plan().lights_on_surfaces;
-        let Some(p) = Primary::new(&view) else {
+        let Some((view, p)) = fast_frame(&scene) else {
             continue;
         };
         let mut at_hit = heapless::Vec::new();
         for row in 0..view.camera.height {
-            let mut state: Option<Row<S>> = None;
-            for column in 0..view.camera.width {
-                let stepped = match state.as_mut() {
-                    Some(r) if column % fast::resync_pixels::<S>() != 0 => p.advance(r).is_some(),
-                    _ => {
-                        state = p.row(&view, row, column);
-                        state.is_some()
-                    }
-                };
-                let Some(r) = state.as_ref().filter(|_| stepped) else {
-                    state = None;
-                    continue;
-                };
+            fast::each_pixel(&view, &p, row, |r| {
+                let column = Primary::column(r);
                 let Ok(Some(h)) = p.nearest(&view, r) else {
-                    continue;
+                    return;
                 };
                 let (mut c1, mut c2) = (Counters::default(), Counters::default());
-                let general = general_color::<S, T>(&view, Some(&p), r, &h, &mut at_hit, &mut c2);
+                let general = shaded::<S, T>(&view, Some(&p), r, &h, &mut at_hit, &mut c2, false);
                 let sides = p.sides_at(r, h.param, &mut at_hit);
                 let sides = sides.filter(|_| T::SHADOWS && !p.at_lights().is_empty());
                 let sides = sides.map(|bits| crate::shade::PlaneSides {
@@ -281,7 +262,7 @@ fn lit_spheres_agree<S: Scalar, T: Stages>(scenes: usize) -> usize {
                     assert_eq!(lit, general, "{}", at());
                     assert_eq!(c1, c2, "{}", at());
                 }
-            }
+            });
         }
     }
     drawn

@@ -165,7 +165,7 @@ fn root_of_range<S: Scalar>() -> f64 {
 /// (`Primary::advance`, restarted from the exact screen x every `resync_pixels` and
 /// after a step that fails), handed to `f`; a pixel whose row cannot be formed is
 /// skipped.
-fn each_pixel<S: Scalar>(
+pub(in crate::kernel) fn each_pixel<S: Scalar>(
     view: &SceneView<'_, S>,
     p: &Primary<S>,
     row: u16,

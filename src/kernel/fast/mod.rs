@@ -37,6 +37,8 @@ mod blocks;
 mod boxes;
 #[cfg(test)]
 mod invariants;
+#[cfg(test)]
+pub(super) use invariants::each_pixel;
 mod search;
 mod shadows;
 mod step;
