@@ -32,6 +32,7 @@
 //! (the last δ for the division): small for steep rays, large near the epsilon.
 //! `tests/precision.rs` checks every pixel of the shipped scenes against it.
 
+mod cone;
 mod frame;
 mod plane;
 mod revsurf;
@@ -41,6 +42,7 @@ mod sphere;
 mod triangle;
 mod vec3;
 
+pub(crate) use cone::{RowCone, ShadowCone};
 pub(crate) use frame::RowTiles;
 pub use frame::{PlaneFrame, PlaneFrameError, Slide, TexMode, Tiling};
 #[cfg(feature = "course")]
@@ -53,7 +55,6 @@ pub use shape::Shape;
 pub(crate) use shape::{SPHERES, unit_ray};
 pub use spawn::{RESIDUAL_ULPS, SPAWN_MARGIN_ULPS};
 pub(crate) use spawn::{surface_tolerance, surface_tolerance_fits};
-pub(crate) use sphere::{RowCone, ShadowCone};
 pub use sphere::{Sphere, SphereError};
 pub use triangle::{EDGE_SLACK_ULPS, Triangle, TriangleError};
 pub use vec3::{Normalized, Vec3};

@@ -233,6 +233,13 @@ pub(crate) fn xorshift(seed: u64) -> impl FnMut() -> u64 {
     move || rng.next()
 }
 
+/// [`Rng`]'s sequence as reals in `[0, 1)`, 53 bits each.
+#[cfg(test)]
+pub(crate) fn unit_reals(seed: u64) -> impl FnMut() -> f64 {
+    let mut next = xorshift(seed);
+    move || (next() >> 11) as f64 / (1u64 << 53) as f64
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

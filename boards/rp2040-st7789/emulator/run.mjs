@@ -5,6 +5,7 @@
 //
 //   node run.mjs ELF [--frames N] [--out DIR] [--instant-spi] [--patch OLD=NEW]...
 //                    [--max-mcycles M] [--profile] [--profile-after K]
+//                    [--callers NAME]
 //
 // The ELF's loadable segments go into the flash at their load addresses and the core starts
 // at the second-stage bootloader (0x1000_0000) with LR = 0, as the boot ROM leaves it: boot2
@@ -26,7 +27,8 @@
 // it up. --patch replaces bytes of the flash image (the scene text, say) before the run.
 // --profile attributes the frames' cycles to the ELF's functions (from its symbol table)
 // and prints the costliest; --profile-after K counts only the frames after frame K (the
-// frames a loop repeats, without the first whole one).
+// frames a loop repeats, without the first whole one); --callers NAME also counts the calls
+// of the functions whose name holds NAME by calling function (from LR at their entry).
 
 import { readFileSync, writeFileSync, mkdirSync } from 'node:fs';
 import { RP2040 } from 'rp2040js';
@@ -39,7 +41,7 @@ const DC_PIN = 16;
 function usage(message) {
   process.stderr.write(`error: ${message}\n`);
   process.stderr.write(
-    'usage: node run.mjs ELF [--frames N] [--out DIR] [--instant-spi] [--patch OLD=NEW]... [--max-mcycles M] [--profile] [--profile-after K]\n',
+    'usage: node run.mjs ELF [--frames N] [--out DIR] [--instant-spi] [--patch OLD=NEW]... [--max-mcycles M] [--profile] [--profile-after K] [--callers NAME]\n',
   );
   process.exit(2);
 }
@@ -53,6 +55,7 @@ function parseArgs(argv) {
     maxCycles: 4e9,
     profile: false,
     profileAfter: -1,
+    callers: null,
     elf: null,
   };
   for (let i = 0; i < argv.length; i++) {
@@ -72,6 +75,7 @@ function parseArgs(argv) {
     } else if (a === '--max-mcycles') args.maxCycles = Number(value()) * 1e6;
     else if (a === '--profile') args.profile = true;
     else if (a === '--profile-after') args.profileAfter = Number(argv[++i]);
+    else if (a === '--callers') args.callers = argv[++i];
     else if (a.startsWith('--')) usage(`unknown option ${a}`);
     else if (args.elf === null) args.elf = a;
     else usage(`one ELF file, not ${a}`);
@@ -174,6 +178,7 @@ class Profile {
     this.cycles = new Map();
     this.calls = new Map();
     this.last = null;
+    this.callers = null;
   }
 
   add(pc, cycles) {
@@ -197,7 +202,28 @@ class Profile {
     }
     this.cycles.set(f.name, (this.cycles.get(f.name) ?? 0) + cycles);
     // An instruction at a function's first address is a call (or a loop back to it).
-    if (pc === f.start) this.calls.set(f.name, (this.calls.get(f.name) ?? 0) + 1);
+    if (pc === f.start) {
+      this.calls.set(f.name, (this.calls.get(f.name) ?? 0) + 1);
+      if (this.callers !== null && f.name.includes(this.callers.of)) {
+        const from = this.lookup((this.callers.lr() & ~1) - 2);
+        const key = `${f.name} <- ${from}`;
+        this.callers.counts.set(key, (this.callers.counts.get(key) ?? 0) + 1);
+      }
+    }
+  }
+
+  /** The name of the function holding `pc`. */
+  lookup(pc) {
+    let lo = 0;
+    let hi = this.symbols.length - 1;
+    while (lo <= hi) {
+      const mid = (lo + hi) >> 1;
+      const s = this.symbols[mid];
+      if (pc < s.start) hi = mid - 1;
+      else if (pc >= s.end) lo = mid + 1;
+      else return s.name;
+    }
+    return `0x${pc.toString(16)}`;
   }
 
   print(total, top = 60) {
@@ -208,6 +234,12 @@ class Profile {
       process.stdout.write(
         `${((100 * c) / total).toFixed(2).padStart(6)} % ${String(Math.round(c)).padStart(11)} ${String(calls).padStart(9)}  ${name}\n`,
       );
+    }
+    if (this.callers !== null) {
+      process.stdout.write(`callers of functions named *${this.callers.of}* (calls, callee <- caller)\n`);
+      for (const [key, n] of [...this.callers.counts].sort((a, b) => b[1] - a[1]).slice(0, top)) {
+        process.stdout.write(`${String(n).padStart(9)}  ${key}\n`);
+      }
     }
   }
 }
@@ -315,6 +347,9 @@ function main() {
   const elf = readFileSync(args.elf);
   const loaded = loadElf(elf, mcu.flash);
   const profile = args.profile ? new Profile(functions(elf)) : null;
+  if (profile !== null && args.callers !== null) {
+    profile.callers = { of: args.callers, lr: () => mcu.core.LR, counts: new Map() };
+  }
   let profiling = false;
   let profiled = 0;
   for (const [from, to] of args.patches) patchFlash(mcu.flash, from, to);

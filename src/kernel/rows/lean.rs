@@ -122,7 +122,7 @@ pub(super) fn lean_row<S: Scalar>(
         .max_abs()
         .max(Vec3::new(x_lo, y, z).max_abs())
         .max(x_hi.abs());
-    surface_tolerance(t_bound, m)?;
+    let tol = surface_tolerance(t_bound, m)?;
     let mut slot = [0; 2];
     for (k, m) in [object.material, alt].into_iter().enumerate() {
         let material = scene.materials.get(usize::from(m))?;
@@ -161,7 +161,9 @@ pub(super) fn lean_row<S: Scalar>(
                 return None;
             };
             let row_cone = match rl.l {
-                Some((ly, lz)) if ly.abs() <= half && lz.abs() <= half => cone.in_row(ly, lz)?,
+                Some((ly, lz)) if ly.abs() <= half && lz.abs() <= half => {
+                    cone.in_row(ly, lz, tol)?
+                }
                 // No pixel of the row reaches this light's cones.
                 None => continue,
                 Some(_) => return None,
@@ -213,8 +215,8 @@ pub(super) fn lean_row<S: Scalar>(
 /// caller then draws it with `plane_color`. Those cases: the hit's `x` or `L.x` out of
 /// the format's range, a light whose `|L|²` does not fit or is not positive, a pixel
 /// whose `|L.x|` is beyond half the range where a cone must be tested, and a sphere whose
-/// shadow cone does not clear the pixel (its exact segment test needs the tolerance,
-/// `occluded_among`).
+/// shadow cone neither clears the pixel nor blocks its light certainly (its umbra,
+/// `RowCone::blocks`; its exact segment test needs the tolerance, `occluded_among`).
 ///
 /// Its colour (`Err`), or its pixel (`Ok`) where the last light's term
 /// `w·(255·N·L/|L|²)` was taken quickly, by `KernelArith::quick_pixel` (on cores where it
@@ -258,12 +260,22 @@ pub(super) fn lean_color<S: Scalar>(
             continue;
         };
         shadow_rays += 1;
-        // Only spheres can shadow a lean row: each cleared by its cone, or the pixel
-        // takes the exact test (`plane_color`).
+        // Only spheres can shadow a lean row: each cleared by its cone, or blocking the
+        // segment certainly (its umbra: the light adds nothing), or the pixel takes the
+        // exact test (`plane_color`).
+        let mut blocked = false;
         for cone in f.cones_at(light, lx)? {
-            if !cone.clears(lx, ll) {
+            if cone.clears(lx, ll) {
+                continue;
+            }
+            if !cone.blocks(lx, ll) {
                 return None;
             }
+            blocked = true;
+            break;
+        }
+        if blocked {
+            continue;
         }
         diffuse += 1;
         let last = index + 1 == f.lights.len();
@@ -333,6 +345,7 @@ impl<S: Scalar> LeanRow<S> {
             runs: false,
         }
     }
+
     /// The tile parity of the row's hit at `x` (0: the plane's own material, 1: a tiled
     /// plane's odd tiles), as `row_material` chooses it.
     #[inline(always)]
@@ -439,11 +452,15 @@ pub(super) fn quick_at<S: Scalar>(
     }
     let cones = f.cones_at(light, lx)?;
     // A sphere whose cone does not clear the pixel takes its exact segment test, as
-    // `plane_color` takes it (`occluded_among`, with the tolerance `lit` gives it): where it
-    // meets the segment the light adds nothing and the pixel is the ambient colour's.
+    // `plane_color` takes it (`occluded_among`, with the tolerance `lit` gives it), unless
+    // its umbra says what the test would (`RowCone::blocks`): where it meets the segment
+    // the light adds nothing and the pixel is the ambient colour's.
     let mut shadowed = false;
     for (k, cone) in cones.iter().enumerate() {
-        if !cone.clears(lx, ll) && exact_shadow(scene, p, l, (dx, dy), x, (lx, ll), k)? {
+        if cone.clears(lx, ll) {
+            continue;
+        }
+        if cone.blocks(lx, ll) || exact_shadow(scene, p, l, (dx, dy), x, (lx, ll), k)? {
             shadowed = true;
             break;
         }
