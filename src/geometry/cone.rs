@@ -36,13 +36,8 @@ pub(crate) struct ShadowCone<S> {
     k: S,
     /// `|u|²/4`, rounded down: the nearest `ll` the shortcut takes.
     near: S,
-    /// `r²`, for [`ShadowCone::clears_line`] and the umbra's band ([`ShadowCone::in_row`]).
+    /// `r²`, for [`ShadowCone::clears_line`] and the umbra ([`ShadowCone::in_row`]).
     rr: S,
-    /// The umbra's `|u|² − (7/8)·r²` ([`RowCone::blocks`]); `S::MAX` where `16·|u|²` does
-    /// not fit the format (the exact test's quantities are then not bounded).
-    k_in: S,
-    /// `(|u|² − r²)/2`: the most the segments' tolerance band may be for the umbra.
-    power: S,
 }
 
 impl<S: Scalar> ShadowCone<S> {
@@ -61,10 +56,6 @@ impl<S: Scalar> ShadowCone<S> {
         let rr = sphere.radius_sq();
         let k = uu.checked_sub(rr.mul_ratio(9, 8)?)?;
         (k >= min_k && rr >= min_rr).then_some(())?;
-        let k_in = uu
-            .checked_mul_int(16)
-            .and_then(|_| uu.checked_sub(rr.mul_ratio(7, 8)?))
-            .unwrap_or(S::MAX);
         Some(ShadowCone {
             light: u8::try_from(index).ok()?,
             object,
@@ -72,8 +63,6 @@ impl<S: Scalar> ShadowCone<S> {
             k,
             near: uu.mul_ratio(1, 4)?.checked_sub(S::DELTA)?,
             rr,
-            k_in,
-            power: uu.checked_sub(rr)?.mul_ratio(1, 2)?,
         })
     }
 
@@ -91,25 +80,24 @@ impl<S: Scalar> ShadowCone<S> {
             near: self.near,
             ux: u.x,
             k: self.k,
-            k_in: if self.band_fits(tol) {
-                self.k_in
-            } else {
-                S::MAX
-            },
+            k_in: self.umbra(tol).unwrap_or(S::MAX),
             yz,
         })
     }
 
-    /// Whether the tolerance band on the sphere of hits whose segment tolerance is at
-    /// most `tol`, `(2r + tol)·tol`, is at most `(|u|² − r²)/2` (the umbra's condition,
-    /// [`RowCone::blocks`]): checked as `(r² + 1 + tol)·tol`, no less (`2r ≤ r² + 1`).
-    fn band_fits(&self, tol: S) -> bool {
-        let band = self
-            .rr
-            .checked_add(S::ONE)
-            .and_then(|v| v.checked_add(tol))
-            .and_then(|v| v.checked_mul(tol));
-        band.is_some_and(|b| b <= self.power)
+    /// The umbra's `|u|² − (7/8)·r²` ([`RowCone::blocks`]) for hits whose segment
+    /// tolerance is at most `tol`: `None` where `16·|u|²` does not fit the format (the
+    /// exact test's quantities are then not bounded) or the tolerance's band on the
+    /// sphere, `(2r + tol)·tol`, may be more than `(|u|² − r²)/2` (checked as
+    /// `(r² + 1 + tol)·tol`, no less: `2r ≤ r² + 1`). `|u|²` is `k + (9/8)r²` to a
+    /// rounding, far inside the umbra's margin.
+    fn umbra(&self, tol: S) -> Option<S> {
+        let rr = self.rr;
+        let uu = self.k.checked_add(rr.mul_ratio(9, 8)?)?;
+        uu.checked_mul_int(16)?;
+        let band = rr.checked_add(S::ONE)?.checked_add(tol)?.checked_mul(tol)?;
+        (band <= uu.checked_sub(rr)?.mul_ratio(1, 2)?).then_some(())?;
+        uu.checked_sub(rr.mul_ratio(7, 8)?)
     }
 
     /// Whether every point `P` of the line `P = light + (s, wy, wz)` (any `s`: a

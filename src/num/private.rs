@@ -20,7 +20,7 @@ pub trait KernelArith: Copy {
     /// that steps a dot product along a scanline adds a per-frame product to it instead
     /// of forming three products per pixel: in the fixed formats bit for bit the
     /// [`Scalar::dot3`] of the stepped vector.
-    type Acc: Copy + Debug + Send + Sync;
+    type Acc: Copy + Debug + Send + Sync + PartialOrd + Default;
 
     /// Whether sums of [`KernelArith::Acc`] are exact (the fixed formats: integers), so that a
     /// kernel may add a dot product's terms in any order, e.g. a per-row `y² + z²` and a
@@ -45,6 +45,14 @@ pub trait KernelArith: Copy {
     /// Rounds a sum to the format as [`Scalar::dot3`] does (to nearest in the fixed
     /// formats): `dot3(a, b)` is `acc_round` of the sum of the three `acc_mul`s.
     fn acc_round(x: Self::Acc) -> Option<Self>;
+
+    /// Whether a sum is below zero (its default is zero): the exact sign of `a·b − c·d`
+    /// from `acc_mul(a, b)` and `acc_mul(c, −d)` where products are exact
+    /// ([`KernelArith::EXACT_PRODUCTS`]), as [`Scalar::cmp_products`] compares them.
+    #[inline]
+    fn acc_negative(x: Self::Acc) -> bool {
+        x < Self::Acc::default()
+    }
 
     /// `x + y` and its [`KernelArith::acc_round`], for a caller that knows both fit (a
     /// scanline stepping `N·D` between two values it checked once): the same values,

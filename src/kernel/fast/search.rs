@@ -112,12 +112,21 @@ pub(super) fn accepts_bounded<S: Scalar>(
 /// the format (the reference path decides).
 #[inline]
 pub(super) fn sphere_root<S: Scalar>(c: S, b: S, a: S) -> Result<Option<(S, S)>, ()> {
-    if b >= S::ZERO || S::cmp_products(b, b, a, c) == Some(Ordering::Less) {
+    if b >= S::ZERO {
+        return Ok(None);
+    }
+    // Where products are exact, the sum's sign is the comparison's (`b² ≥ 0 ≥ −a·c`: it
+    // cannot overflow), from the two products the discriminant needs anyway.
+    if !S::EXACT_PRODUCTS && S::cmp_products(b, b, a, c) == Some(Ordering::Less) {
         return Ok(None);
     }
     let bb = S::acc_mul(b, b).ok_or(())?;
     let ac = S::acc_mul(a, c.checked_neg().ok_or(())?).ok_or(())?;
-    let disc = S::acc_round(S::acc_add(bb, ac).ok_or(())?).ok_or(())?;
+    let sum = S::acc_add(bb, ac).ok_or(())?;
+    if S::EXACT_PRODUCTS && S::acc_negative(sum) {
+        return Ok(None);
+    }
+    let disc = S::acc_round(sum).ok_or(())?;
     let q = disc
         .max(S::ZERO)
         .checked_sqrt()

@@ -70,14 +70,25 @@ pub(super) enum Drew {
 }
 
 /// A span's drawn columns by their offset from its start: each one's key in the depth
-/// and [`class`] (`known`, bit `k`: the class of the column at offset `k` is known).
-struct Drawn {
+/// and [`class`] (`known`, bit `k`: the class of the column at offset `k` is known; only
+/// a known column's key and class are read, so a run's spans share one, cleared by
+/// `known` alone).
+pub(super) struct Drawn {
     keys: [u32; KEPT],
     classes: [i32; KEPT],
     known: u32,
 }
 
 impl Drawn {
+    /// No column drawn.
+    pub(super) fn new() -> Self {
+        Self {
+            keys: [0; KEPT],
+            classes: [0; KEPT],
+            known: 0,
+        }
+    }
+
     /// Records the column at offset `k`.
     #[inline(always)]
     fn mark(&mut self, k: usize, key: u32, class: Option<i32>) {
@@ -123,7 +134,7 @@ impl Span {
         state: &mut Row<S>,
         dy: S,
         b: u16,
-        run: &mut [Rgb888; RUN],
+        (run, drawn): (&mut [Rgb888; RUN], &mut Drawn),
     ) -> Drew {
         let a = self.at.0;
         let len = usize::from(b.saturating_sub(a));
@@ -159,11 +170,7 @@ impl Span {
         let eval = |k: usize| quick_at(scene, p, lean, (dx(k)?, dy));
         // Every drawn column's key and class by its offset from `a` (`known`, bit `k`:
         // column `a + k`'s class is known).
-        let mut drawn = Drawn {
-            keys: [0; KEPT],
-            classes: [0; KEPT],
-            known: 0,
-        };
+        drawn.known = 0;
         let colors = self.depth;
         drawn.mark(0, colors.key(self.at.1), self.at.2);
         let Some((pixel, _, side)) = eval(len) else {
