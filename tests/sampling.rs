@@ -415,6 +415,41 @@ fn shadow_edges_and_silhouettes_are_caught() {
     }
 }
 
+/// A light bright enough to clamp the room's colour: where a channel passes 255 inside a
+/// block, the clamped colour's stray is bounded from how far past it the channel may go,
+/// or by its range over the block; blocks clamped throughout stray by nothing. Every
+/// pixel stays within the bound, and most of the room is filled (refusing every block a
+/// channel may clamp in fills a seventh of it at 20 units of emissivity, none at 40).
+#[test]
+fn a_clamped_colour_is_filled_within_its_bound() {
+    let base = include_str!("../scenes/boing-240x240.scene");
+    for emissivity in ["20 20 20", "40 40 40"] {
+        let text = base.replace("emissivity 9 9 9", &format!("emissivity {emissivity}"));
+        let scene = Scene::<I16F16>::parse(&text).unwrap();
+        let (w, h) = (scene.camera.width, scene.camera.height);
+        let exact = rows(&Frame::<I16F16>::new(&scene), w, h);
+        let clamped = exact
+            .iter()
+            .filter(|p| p.r() == 255 || p.g() == 255 || p.b() == 255)
+            .count();
+        assert!(clamped > exact.len() / 2, "{emissivity}: {clamped} clamped");
+        for size in SIZES {
+            for bound in [1, 4, 8] {
+                let frame =
+                    Frame::<I16F16>::new(&scene).with_sampling(Sampling::blocks(size, bound));
+                let mut sampled = vec![Rgb888::BLACK; exact.len()];
+                let filled = frame.render_rows(0..h, &mut sampled);
+                let what = format!("emissivity {emissivity}, {size:?}, bound {bound}");
+                let (worst, _) = within_bound(&sampled, &exact, usize::from(w), bound, &what);
+                assert!(worst <= bound + 2, "{what}: {worst} levels");
+                if bound >= 4 && size != BlockSize::Two {
+                    assert!(filled > exact.len() / 2, "{what}: {filled} filled");
+                }
+            }
+        }
+    }
+}
+
 /// Frames the certificates do not cover are drawn exact: a mirror (the moved ball seen
 /// in it), a glint, a light lying on a surface, the course's rules.
 #[test]

@@ -86,10 +86,9 @@ impl<S: Scalar> Sampler<S> {
 
     /// A bound, per channel, on how far the colour of plane `object` strays from the
     /// bilinear interpolation of its values at the corners over the block whose corner
-    /// pixels are at columns and rows `corners` and hit it at `points`, given each light's occluders common to all
-    /// corners (`all`) and found at any (`any`); `None` where the shadow state may change
-    /// inside the block, a channel may reach 255 (where it is clamped, the colour is not
-    /// smooth) or a quantity leaves the format.
+    /// pixels are at columns and rows `corners` and hit it at `points`, given each light's
+    /// occluders common to all corners (`all`) and found at any (`any`); `None` where the
+    /// shadow state may change inside the block or a quantity leaves the format.
     ///
     /// **Shadows.** The block's points lie within `ρ` of the corners' centroid `m` (the
     /// largest distance from it to a corner: the block is their convex hull). A segment
@@ -106,6 +105,12 @@ impl<S: Scalar> Sampler<S> {
     /// interpolation over `w × h` pixels strays by at most `w²/8·|f_xx| + h²/8·|f_yy|`.
     /// The bounds take `|β|` at its smallest (a corner: `β` is affine and does not
     /// change sign over the block) and `ρ` at its smallest (`|L − m| − ρ`).
+    ///
+    /// **Clamping.** Each channel's value over the block lies between its sums with every
+    /// term at its least and at its largest (from `ρ`'s extremes over the block, or from
+    /// the term's values at the corners, within its stray); where that range reaches
+    /// past `0..=255` the pixel is clamped, and [`clamped_error`] bounds the stray of the
+    /// clamped colour from the stray of the unclamped one and the range.
     fn interpolation_error(
         &self,
         scene: &SceneView<'_, S>,
@@ -134,7 +139,7 @@ impl<S: Scalar> Sampler<S> {
             rho_sq = rho_sq.max(d.dot(d)?);
         }
         let rho = rho_sq.checked_sqrt()?.checked_add(S::DELTA)?;
-        let (diffuse, ambient) = materials_bound(scene, o)?;
+        let materials = materials(scene, o)?;
         let slopes = self.slopes.get(usize::from(object))?;
         // `β` is affine over the block and keeps its sign: its smallest size is at a corner.
         let beta = betas.iter().fold(S::MAX, |m, b| m.min(b.abs()));
@@ -144,9 +149,10 @@ impl<S: Scalar> Sampler<S> {
             w.checked_mul(w)?.mul_ratio(1, 8)?,
             h.checked_mul(h)?.mul_ratio(1, 8)?,
         ];
-        let mut error = [S::ZERO; 3];
-        let mut top = ambient;
-        for (j, light) in scene.lights.iter().enumerate() {
+        // Per light lighting the whole block: its term's least and largest value over the
+        // block, and the bound on its interpolation's stray.
+        let mut terms = [None; LIGHTS];
+        for (j, (light, term)) in scene.lights.iter().zip(terms.iter_mut()).enumerate() {
             if all[j] != 0 {
                 continue; // shadowed (or facing away) everywhere in the block
             }
@@ -164,16 +170,22 @@ impl<S: Scalar> Sampler<S> {
                     return None;
                 }
             }
-            let near = to_m.dot(to_m)?.checked_sqrt()?.checked_sub(rho)?;
+            let centre = to_m.dot(to_m)?.checked_sqrt()?;
+            let near = centre.checked_sub(rho)?;
             if near <= S::ZERO {
                 return None;
             }
-            let mut nl = S::ZERO;
+            let far = centre.checked_add(rho)?.checked_add(S::DELTA)?;
+            // `N·L` is affine over the plane and keeps its sign over the block (no corner
+            // faces away): its extremes are at corners.
+            let (mut nl_lo, mut nl_hi) = (S::MAX, S::ZERO);
             for p in points {
-                nl = nl.max(n.dot(light.location.diff(*p)?)?.abs());
+                let nl = n.dot(light.location.diff(*p)?)?.abs();
+                (nl_lo, nl_hi) = (nl_lo.min(nl), nl_hi.max(nl));
             }
-            // The term at its largest.
-            let f = nl.checked_mul(k)?.checked_div(near.checked_mul(near)?)?;
+            // The term at its largest and at its least over the block.
+            let f = nl_hi.checked_mul(k)?.checked_div(near.checked_mul(near)?)?;
+            let least = nl_lo.checked_mul(k)?.checked_div(far.checked_mul(far)?)?;
             let mut curvature = S::ZERO;
             for ((a1, beta1), size) in slopes[j]?.into_iter().zip(sizes) {
                 let a = a1.checked_div(beta)?;
@@ -191,42 +203,95 @@ impl<S: Scalar> Sampler<S> {
                 curvature = curvature.checked_add(size.checked_mul(second)?)?;
             }
             let stray = f.checked_mul(curvature)?;
-            for (((e, t), c), d) in error
-                .iter_mut()
-                .zip(top.iter_mut())
-                .zip(light.emissivity)
-                .zip(diffuse)
-            {
-                let weight = c.abs().checked_mul(d)?;
-                *e = e.checked_add(weight.checked_mul(stray)?)?;
-                *t = t.checked_add(weight.checked_mul(f)?)?;
+            let slack = S::DELTA.checked_mul_int(4)?;
+            let least = least.checked_sub(slack)?.max(S::ZERO);
+            *term = Some((least, f.checked_add(slack)?, stray));
+        }
+        let error = channel_errors(scene, materials, &terms)?;
+        if error.iter().all(|e| *e <= self.bound) {
+            return Some(error);
+        }
+        // Where a channel may be clamped, its range decides: narrow each term's to its
+        // values at the corners, widened by its stray (the term strays from its
+        // interpolation by at most that, and the interpolation lies between them).
+        for (light, term) in scene.lights.iter().zip(terms.iter_mut()) {
+            let Some((least, most, stray)) = term else {
+                continue;
+            };
+            let (mut lo, mut hi) = (S::MAX, S::ZERO);
+            for p in points {
+                let l = light.location.diff(*p)?;
+                let at = n.dot(l)?.abs().checked_mul(k)?.checked_div(l.dot(l)?)?;
+                (lo, hi) = (lo.min(at), hi.max(at));
             }
+            let slack = S::DELTA.checked_mul_int(4)?;
+            *least = (*least).max(lo.checked_sub(*stray)?.checked_sub(slack)?);
+            *most = (*most).min(hi.checked_add(*stray)?.checked_add(slack)?);
         }
-        if top.iter().any(|t| *t >= k) {
-            return None;
-        }
-        Some(error)
+        channel_errors(scene, materials, &terms)
     }
 }
 
-/// The larger per-channel diffuse and ambient of an object's materials (a tiled plane
-/// has two).
-fn materials_bound<S: Scalar>(
+/// Per channel, the largest over `materials` of a bound on how far the clamped colour
+/// strays from its interpolation over a block, given each light's term there (`None`:
+/// the light lights none of the block) as its least and largest value and its stray.
+fn channel_errors<S: Scalar>(
     scene: &SceneView<'_, S>,
-    o: &crate::Object<S>,
-) -> Option<([S; 3], [S; 3])> {
-    let first = scene.materials.get(usize::from(o.material))?;
-    let (mut d, mut a) = (first.diffuse.map(S::abs), first.ambient.map(S::abs));
-    if let Shape::Tiled { alt, .. } = o.shape {
-        let alt = scene.materials.get(usize::from(alt))?;
-        for (x, y) in d.iter_mut().zip(alt.diffuse) {
-            *x = x.max(y.abs());
-        }
-        for (x, y) in a.iter_mut().zip(alt.ambient) {
-            *x = x.max(y.abs());
+    materials: [&crate::Material<S>; 2],
+    terms: &[Option<(S, S, S)>; LIGHTS],
+) -> Option<[S; 3]> {
+    let mut error = [S::ZERO; 3];
+    for material in materials {
+        for (c, e) in error.iter_mut().enumerate() {
+            let ambient = material.ambient[c];
+            let (mut stray, mut lo, mut hi) = (S::ZERO, ambient, ambient);
+            for (light, term) in scene.lights.iter().zip(terms) {
+                let Some((least, most, curvature)) = term else {
+                    continue;
+                };
+                let weight = light.emissivity[c].checked_mul(material.diffuse[c])?;
+                stray = stray.checked_add(weight.abs().checked_mul(*curvature)?)?;
+                let (a, b) = (weight.checked_mul(*least)?, weight.checked_mul(*most)?);
+                lo = lo.checked_add(a.min(b))?;
+                hi = hi.checked_add(a.max(b))?;
+            }
+            *e = e.max(clamped_error(stray, (lo, hi), S::from_i32(255)?)?);
         }
     }
-    Some((d, a))
+    Some(error)
+}
+
+/// A bound on how far the bilinear interpolation of a channel clamped to `0..=max` strays
+/// from it, over a block where the unclamped channel `f` lies in `lo..=hi` and its own
+/// interpolation strays by at most `stray`.
+///
+/// With `g = clamp(f)`, `g = f − (f − max)⁺ + (−f)⁺`: each of the two cut-off terms and
+/// its interpolation lie in `0..=(hi − max)⁺` (or `(−lo)⁺`), so `g`'s interpolation
+/// strays by at most `stray + (hi − max)⁺ + (−lo)⁺`. And `g` and its interpolation (a
+/// weighted mean of its values at the corners) both lie in `clamp(lo)..=clamp(hi)`, so
+/// it strays by at most their difference. Where the channel is not clamped in the block
+/// this is `stray` (or less); where it is clamped everywhere, nothing.
+fn clamped_error<S: Scalar>(stray: S, (lo, hi): (S, S), max: S) -> Option<S> {
+    let cut = hi
+        .checked_sub(max)?
+        .max(S::ZERO)
+        .checked_add(S::ZERO.checked_sub(lo)?.max(S::ZERO))?;
+    let clamp = |v: S| v.max(S::ZERO).min(max);
+    let range = clamp(hi).checked_sub(clamp(lo))?;
+    Some(stray.checked_add(cut)?.min(range))
+}
+
+/// The materials of an object (a tiled plane has two; a plain one its own twice).
+fn materials<'s, S: Scalar>(
+    scene: &'s SceneView<'_, S>,
+    o: &crate::Object<S>,
+) -> Option<[&'s crate::Material<S>; 2]> {
+    let first = scene.materials.get(usize::from(o.material))?;
+    let second = match o.shape {
+        Shape::Tiled { alt, .. } => scene.materials.get(usize::from(alt))?,
+        _ => first,
+    };
+    Some([first, second])
 }
 
 /// The squared distance from `c` to the segment from `a` to `a + v`.
@@ -243,4 +308,49 @@ fn distance_sq_to_segment<S: Scalar>(c: Vec3<S>, a: Vec3<S>, v: Vec3<S>) -> Opti
     };
     let d = w.diff(v.scale(s)?)?;
     d.dot(d)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::clamped_error;
+    use crate::num::unit_reals;
+    use fixed::types::I16F16;
+
+    /// Seeded functions on a segment, each its linear interpolation plus a bump within
+    /// `stray` that vanishes at the ends, around 0 or around 255, some crossing a limit:
+    /// the interpolation of the clamped function's end values stays within
+    /// `clamped_error` of the clamped function everywhere (the range given is the
+    /// function's over the segment, or wider).
+    #[test]
+    fn a_clamped_function_strays_within_its_bound() {
+        let mut real = unit_reals(0x5EED_C1A3_0001);
+        let clamp = |v: f64| v.clamp(0.0, 255.0);
+        let (mut crossing, mut checked) = (0, 0);
+        for _ in 0..20_000 {
+            let limit = if real() < 0.5 { 0.0 } else { 255.0 };
+            let (a, b) = (limit + 60.0 * real() - 30.0, limit + 60.0 * real() - 30.0);
+            let stray = 10.0 * real() * real();
+            let bump = stray * (2.0 * real() - 1.0);
+            let f = |u: f64| a + (b - a) * u + bump * 4.0 * u * (1.0 - u);
+            let samples: Vec<f64> = (0..=64).map(|i| f(f64::from(i) / 64.0)).collect();
+            let widen = 5.0 * real();
+            let lo = samples.iter().copied().fold(f64::MAX, f64::min) - widen;
+            let hi = samples.iter().copied().fold(f64::MIN, f64::max) + widen;
+            let s = |v: f64| I16F16::from_num(v);
+            let bound = clamped_error(s(stray), (s(lo), s(hi)), s(255.0))
+                .unwrap()
+                .to_num::<f64>();
+            if (lo < 0.0 && hi > 0.0) || (lo < 255.0 && hi > 255.0) {
+                crossing += 1;
+            }
+            for (i, v) in samples.iter().enumerate() {
+                let u = i as f64 / 64.0;
+                let interpolated = clamp(a) + (clamp(b) - clamp(a)) * u;
+                let off = (interpolated - clamp(*v)).abs();
+                assert!(off <= bound + 1e-3, "{a} {b} {bump}: {off} > {bound}");
+                checked += 1;
+            }
+        }
+        assert!(crossing > 5_000 && checked > 1_000_000);
+    }
 }

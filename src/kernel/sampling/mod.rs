@@ -29,8 +29,10 @@
 //!   strays from that by at most `w²/8·|f_xx| + h²/8·|f_yy|` over `w × h` pixels,
 //!   bounded from the ray's terms, which are affine in the pixel
 //!   ([`Sampler::interpolation_error`]); the sum over the lit lights of `emissivity ·
-//!   diffuse ·` that bound, per channel, must be at most the mode's `bound` in levels,
-//!   and no channel may reach 255 (where it is clamped, the colour is not smooth).
+//!   diffuse ·` that bound, per channel, must be at most the mode's `bound` in levels;
+//!   where a channel may pass 255 (or 0) inside the block it is clamped there, and the
+//!   bound grows by how far past it may go, or is the channel's whole range over the
+//!   block where that is less (a block clamped to 255 everywhere strays by nothing).
 //!
 //! Any other block is drawn by the frame's kernel, pixel by pixel, as the exact frame
 //! draws it. A filled pixel differs from the exact frame's by at most `bound` levels plus
