@@ -10,6 +10,11 @@ use super::corners::plane_color;
 use crate::geometry::Tiling;
 use crate::{Scalar, SceneView, Shape, Vec3};
 
+/// Per axis of a tiled block, an edge's interpolated side at the left and right ends of
+/// a row ([`Tiles::row_edges`]; `None`: the block does not cross that axis's edge, or
+/// the side does not fit).
+type RowEdges<S> = [Option<(S, S)>; 2];
+
 /// How a certified block is filled.
 #[derive(Debug, Clone, Copy)]
 pub(super) enum Fill<S> {
@@ -154,6 +159,9 @@ pub(super) fn fill<S: Scalar, C: From<Rgb888>>(
     let round = Rounding::new(w * h);
     let channels = |c: Rgb888| [i32::from(c.r()), i32::from(c.g()), i32::from(c.b())];
     let u0 = i32::from(columns.start - x.0);
+    // A tiled block's edges on the row before (its `v`), stepped a row by an addition
+    // where the format's sums are exact (the same values as `row_edges`).
+    let mut before: Option<(i32, RowEdges<S>)> = None;
     for r in rows {
         let v = i32::from(r - y.0).min(h);
         let row = usize::from(r - origin.0) * stride;
@@ -179,7 +187,14 @@ pub(super) fn fill<S: Scalar, C: From<Rgb888>>(
                 let starts = t
                     .colors
                     .map(|set| row_start(&set.map(channels), (v, h), (u0, w)));
-                let edges = t.row_edges(v, h);
+                let edges = match before {
+                    Some((b, edges)) if b + 1 == v => t.step_edges(edges),
+                    _ => None,
+                }
+                .unwrap_or_else(|| t.row_edges(v, h));
+                if S::EXACT_SUMS {
+                    before = Some((v, edges));
+                }
                 let mut stepped = EdgeSteps::new(t, &edges, (u0, w));
                 for (k, p) in (0i32..).zip(line.iter_mut()) {
                     let odd = match stepped.as_mut() {
@@ -263,7 +278,7 @@ struct EdgeSteps<S> {
 }
 
 impl<S: Scalar> EdgeSteps<S> {
-    fn new(t: &Tiles<S>, edges: &[Option<(S, S)>; 2], (u0, w): (i32, i32)) -> Option<Self> {
+    fn new(t: &Tiles<S>, edges: &RowEdges<S>, (u0, w): (i32, i32)) -> Option<Self> {
         if !(S::EXACT_SUMS && S::EXACT_PRODUCTS) {
             return None;
         }
@@ -274,9 +289,7 @@ impl<S: Scalar> EdgeSteps<S> {
             }
             // As `odd` at `u0`; a side that does not fit there is `odd`'s to decide.
             let (left, right) = (*edge)?;
-            let start = left
-                .checked_mul_int(w - u0)?
-                .checked_add(right.checked_mul_int(u0)?)?;
+            let start = times(left, w - u0)?.checked_add(times(right, u0)?)?;
             *side = Some((start, right.checked_sub(left)?));
         }
         Some(Self {
@@ -312,10 +325,50 @@ impl<S: Scalar> EdgeSteps<S> {
     }
 }
 
+/// `x·n`, as `checked_mul_int` (its value, and `None` where it overflows), by additions
+/// where `n` is 0 or a power of two up to 8 (a block's side: `x` doubled, exact in the
+/// formats this is called in, whose sums are exact).
+#[inline(always)]
+fn times<S: Scalar>(x: S, n: i32) -> Option<S> {
+    match n {
+        0 => Some(S::ZERO),
+        1 => Some(x),
+        2 => x.checked_add(x),
+        4 => {
+            let d = x.checked_add(x)?;
+            d.checked_add(d)
+        }
+        8 => {
+            let d = x.checked_add(x)?;
+            let q = d.checked_add(d)?;
+            q.checked_add(q)
+        }
+        _ => x.checked_mul_int(n),
+    }
+}
+
 impl<S: Scalar> Tiles<S> {
+    /// [`Tiles::row_edges`] of the next row from this row's: each end's value steps by
+    /// its bottom corner's minus its top corner's (`top·(h − v) + bottom·v`, one more
+    /// `v`), exact where the format's sums are. `None` where a step does not fit or a
+    /// side of this row did not.
+    fn step_edges(&self, edges: RowEdges<S>) -> Option<RowEdges<S>> {
+        let mut next = [None; 2];
+        for ((slot, edge), corners) in next.iter_mut().zip(edges).zip(self.edges) {
+            let Some([tl, tr, bl, br]) = corners else {
+                continue;
+            };
+            // A row whose side did not fit is `row_edges`' to redo.
+            let (left, right) = edge?;
+            let left = left.checked_add(bl.checked_sub(tl)?)?;
+            *slot = Some((left, right.checked_add(br.checked_sub(tr)?)?));
+        }
+        Some(next)
+    }
+
     /// Each edge's interpolated `(a − A)·β` at the left and right ends of the block's row
     /// `v` (of `h`), times `h`.
-    fn row_edges(&self, v: i32, h: i32) -> [Option<(S, S)>; 2] {
+    fn row_edges(&self, v: i32, h: i32) -> RowEdges<S> {
         self.edges.map(|e| {
             let [tl, tr, bl, br] = e?;
             let side = |top: S, bottom: S| {
@@ -331,7 +384,7 @@ impl<S: Scalar> Tiles<S> {
     /// its interpolated `(a − A)·β` gives (exact for a function affine on the screen).
     /// `a ≥ A` puts it on the upper tile (as `floor` puts a point on the edge): `(a −
     /// A)·β` has `β`'s sign there, or is zero.
-    fn odd(&self, edges: &[Option<(S, S)>; 2], u: i32, w: i32) -> bool {
+    fn odd(&self, edges: &RowEdges<S>, u: i32, w: i32) -> bool {
         let mut tile = [self.first.0, self.first.1];
         for ((index, edge), crosses) in tile.iter_mut().zip(edges).zip(self.edges) {
             if crosses.is_none() {
