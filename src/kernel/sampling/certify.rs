@@ -1,6 +1,6 @@
 //! Whether a block may be filled: its certificate ([`Sampler::certifies`]).
 
-use super::corners::{Corner, Sees};
+use super::corners::{Corner, CornerTerms, Sees};
 use super::fill::{Fill, tiles_fill};
 use super::{LIGHTS, Sampler};
 use crate::{Scalar, SceneView, Shape, Vec3};
@@ -39,13 +39,20 @@ impl<S: Scalar> Sampler<S> {
         };
         let mut points = [Vec3::new(S::ZERO, S::ZERO, S::ZERO); 4];
         let mut tiles = [(0, 0); 4];
+        let mut terms = [[S::ZERO; LIGHTS]; 4];
         let (mut all, mut any) = ([u32::MAX; LIGHTS], [0; LIGHTS]);
-        for ((slot, tile), seen) in points.iter_mut().zip(tiles.iter_mut()).zip(seen) {
+        for (((slot, tile), at), seen) in points
+            .iter_mut()
+            .zip(tiles.iter_mut())
+            .zip(terms.iter_mut())
+            .zip(seen)
+        {
             let Sees::Plane {
                 object: o,
                 tile: t,
                 point,
                 shadows,
+                terms: here,
             } = seen
             else {
                 return None;
@@ -53,7 +60,7 @@ impl<S: Scalar> Sampler<S> {
             if o != object {
                 return None;
             }
-            (*slot, *tile) = (point, t);
+            (*slot, *tile, *at) = (point, t, here);
             for ((a, n), s) in all.iter_mut().zip(any.iter_mut()).zip(shadows) {
                 *a &= s;
                 *n |= s;
@@ -68,7 +75,8 @@ impl<S: Scalar> Sampler<S> {
             .plane()?
             .normal();
         let beta = super::fill::corner_betas(scene, n, (x, y))?;
-        let error = self.interpolation_error(scene, object, &points, (all, any), (x, y), &beta)?;
+        let error =
+            self.interpolation_error(scene, object, (&points, &terms), (all, any), (x, y), &beta)?;
         if error.iter().any(|c| *c > self.bound) {
             return None;
         }
@@ -78,7 +86,7 @@ impl<S: Scalar> Sampler<S> {
         // Across a tile's edge: only with a bound (the colours are this module's own).
         let lit = core::array::from_fn(|j| all[j] == 0);
         if self.bound > S::ZERO {
-            tiles_fill(scene, object, (&points, &tiles), lit, (x, y), beta)
+            tiles_fill(scene, object, (&points, &tiles), &terms, lit, (x, y), beta)
         } else {
             None
         }
@@ -86,8 +94,9 @@ impl<S: Scalar> Sampler<S> {
 
     /// A bound, per channel, on how far the colour of plane `object` strays from the
     /// bilinear interpolation of its values at the corners over the block whose corner
-    /// pixels are at columns and rows `corners` and hit it at `points`, given each light's
-    /// occluders common to all corners (`all`) and found at any (`any`); `None` where the
+    /// pixels are at columns and rows `corners` and hit it at `points` (each light's term
+    /// there: `corner_terms`), given each light's occluders common to all corners (`all`)
+    /// and found at any (`any`); `None` where the
     /// shadow state may change inside the block or a quantity leaves the format.
     ///
     /// **Shadows.** The block's points lie within `ρ` of the corners' centroid `m` (the
@@ -115,7 +124,7 @@ impl<S: Scalar> Sampler<S> {
         &self,
         scene: &SceneView<'_, S>,
         object: u8,
-        points: &[Vec3<S>; 4],
+        (points, corner_terms): (&[Vec3<S>; 4], &CornerTerms<S>),
         (all, any): ([u32; LIGHTS], [u32; LIGHTS]),
         corners: ((u16, u16), (u16, u16)),
         betas: &[S; 4],
@@ -214,15 +223,14 @@ impl<S: Scalar> Sampler<S> {
         // Where a channel may be clamped, its range decides: narrow each term's to its
         // values at the corners, widened by its stray (the term strays from its
         // interpolation by at most that, and the interpolation lies between them).
-        for (light, term) in scene.lights.iter().zip(terms.iter_mut()) {
+        for (j, term) in terms.iter_mut().enumerate() {
             let Some((least, most, stray)) = term else {
                 continue;
             };
+            // The corners' own terms (each corner is lit by this light).
             let (mut lo, mut hi) = (S::MAX, S::ZERO);
-            for p in points {
-                let l = light.location.diff(*p)?;
-                let at = n.dot(l)?.abs().checked_mul(k)?.checked_div(l.dot(l)?)?;
-                (lo, hi) = (lo.min(at), hi.max(at));
+            for at in corner_terms.iter().filter_map(|t| t.get(j)) {
+                (lo, hi) = (lo.min(*at), hi.max(*at));
             }
             let slack = S::DELTA.checked_mul_int(4)?;
             *least = (*least).max(lo.checked_sub(*stray)?.checked_sub(slack)?);

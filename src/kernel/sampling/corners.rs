@@ -26,8 +26,14 @@ pub(super) enum Sees<S> {
         /// Per light: the occluders between the point and the light (bit `k`: object
         /// `k`), or [`FACES_AWAY`].
         shadows: [u32; LIGHTS],
+        /// Per light lighting the point: its diffuse term there ([`light_terms`]);
+        /// zero for the others.
+        terms: [S; LIGHTS],
     },
 }
+
+/// A block's four corners' light terms ([`light_terms`]), in the corners' order.
+pub(super) type CornerTerms<S> = [[S; LIGHTS]; 4];
 
 /// A traced corner: its colour and what it sees.
 #[derive(Debug, Clone, Copy)]
@@ -97,11 +103,11 @@ fn plane_seen<S: Scalar>(
         }
     }
     let lit = shadows.map(|s| s == 0);
+    let terms = light_terms(scene, plane, point, lit)?;
     let color = plane_color(
         scene,
-        plane,
         scene.materials.get(usize::from(material))?,
-        point,
+        &terms,
         lit,
     )?;
     Some(Corner {
@@ -111,31 +117,56 @@ fn plane_seen<S: Scalar>(
             tile,
             point,
             shadows,
+            terms,
         },
     })
 }
 
-/// The colour of `material` at `point` on `plane` under the lights `lit`: its ambient
-/// plus each light's `emissivity · diffuse · 255·|N·L|/|L|²` (the crate's diffuse model,
-/// each term rounded in its own order: within a level of the kernels' pixel).
-pub(super) fn plane_color<S: Scalar>(
+/// Each light's diffuse term at `point` of `plane`, `255·|N·L|/|L|²` in channel units per
+/// unit of emissivity and diffuse, for the lights `lit` (zero for the others); `None`
+/// where one leaves the format.
+pub(super) fn light_terms<S: Scalar>(
     scene: &SceneView<'_, S>,
     plane: &crate::geometry::Plane<S>,
-    material: &crate::Material<S>,
     point: Vec3<S>,
     lit: [bool; LIGHTS],
-) -> Option<Rgb888> {
-    let mut c = material.ambient;
-    for (light, _) in scene.lights.iter().zip(lit).filter(|(_, l)| *l) {
+) -> Option<[S; LIGHTS]> {
+    let mut terms = [S::ZERO; LIGHTS];
+    for ((light, lit), f) in scene.lights.iter().zip(lit).zip(terms.iter_mut()) {
+        if !lit {
+            continue;
+        }
         let l = light.location.diff(point)?;
         let k = plane
             .normal()
             .dot(l)?
             .abs()
             .checked_mul(S::from_i32(255)?)?;
-        let f = k.checked_div(l.dot(l)?)?;
+        *f = k.checked_div(l.dot(l)?)?;
+    }
+    Some(terms)
+}
+
+/// The colour of `material` under the lights `lit`, whose diffuse terms at the point are
+/// `terms` ([`light_terms`]): its ambient plus each light's `emissivity · diffuse ·
+/// term` (the crate's diffuse model, each term rounded in its own order: within a level
+/// of the kernels' pixel).
+pub(super) fn plane_color<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    material: &crate::Material<S>,
+    terms: &[S; LIGHTS],
+    lit: [bool; LIGHTS],
+) -> Option<Rgb888> {
+    let mut c = material.ambient;
+    for ((light, _), f) in scene
+        .lights
+        .iter()
+        .zip(lit)
+        .zip(terms)
+        .filter(|((_, l), _)| *l)
+    {
         for ((c, e), d) in c.iter_mut().zip(light.emissivity).zip(material.diffuse) {
-            *c = c.checked_add(e.checked_mul(d)?.checked_mul(f)?)?;
+            *c = c.checked_add(e.checked_mul(d)?.checked_mul(*f)?)?;
         }
     }
     Some(to_pixel(scene.rules, c))

@@ -6,7 +6,7 @@ use core::ops::Range;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::LIGHTS;
-use super::corners::plane_color;
+use super::corners::{CornerTerms, plane_color};
 use crate::geometry::Tiling;
 use crate::{Scalar, SceneView, Shape, Vec3};
 
@@ -67,14 +67,16 @@ pub(super) fn corner_betas<S: Scalar>(
     same.then_some(beta)
 }
 
-/// The fill of a block of tiled plane `object` whose corners (at `points`, in `tiles`)
-/// lie in at most two tiles along each axis, under the lights `lit` (lit everywhere in
+/// The fill of a block of tiled plane `object` whose corners (at `points`, in `tiles`,
+/// each light's term there `terms`) lie in at most two tiles along each axis, under the
+/// lights `lit` (lit everywhere in
 /// the block; the others light none of it), over columns `x` and rows `y`, with `β` at
 /// its corner pixels ([`corner_betas`]).
 pub(super) fn tiles_fill<S: Scalar>(
     scene: &SceneView<'_, S>,
     object: u8,
     (points, tiles): (&[Vec3<S>; 4], &[(i32, i32); 4]),
+    terms: &CornerTerms<S>,
     lit: [bool; LIGHTS],
     (x, y): ((u16, u16), (u16, u16)),
     beta: [S; 4],
@@ -130,8 +132,8 @@ pub(super) fn tiles_fill<S: Scalar>(
     let other = scene.materials.get(usize::from(*alt))?;
     let mut colors = [[Rgb888::new(0, 0, 0); 4]; 2];
     for (material, out) in [own, other].into_iter().zip(colors.iter_mut()) {
-        for (slot, p) in out.iter_mut().zip(points) {
-            *slot = plane_color(scene, frame.plane(), material, *p, lit)?;
+        for (slot, terms) in out.iter_mut().zip(terms) {
+            *slot = plane_color(scene, material, terms, lit)?;
         }
     }
     Some(Fill::Tiles(Tiles {
