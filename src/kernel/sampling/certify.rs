@@ -103,7 +103,9 @@ impl<S: Scalar> Sampler<S> {
     /// largest distance from it to a corner: the block is their convex hull). A segment
     /// from the light to such a point lies within `ρ` of the segment to `m` (point for
     /// point), so a sphere farther than `r·17/16 + ρ` from that segment shadows none of
-    /// them (the sixteenth: the shadow test's rounding at its edge).
+    /// them (the sixteenth: the shadow test's rounding at its edge); nor does a sphere
+    /// clear of the pyramid from the light through the corners ([`pyramid_clear`]),
+    /// which decides where that tube is too wide (a block beside a shadow's edge).
     ///
     /// **Colour.** A light's term is `f = K/ρ²` with `K = 255·(N·L)`, the same at every
     /// point of a plane, and `ρ = |L − P|`. Along a scanline the ray's `β = N·D` and
@@ -175,7 +177,9 @@ impl<S: Scalar> Sampler<S> {
             }) {
                 let margin = sphere.radius().mul_ratio(17, 16)?.checked_add(rho)?;
                 let d = distance_sq_to_segment(sphere.center(), light.location, to_m)?;
-                if d <= margin.checked_mul(margin)? {
+                if d <= margin.checked_mul(margin)?
+                    && !pyramid_clear(light.location, points, sphere.center(), sphere.radius())
+                {
                     return None;
                 }
             }
@@ -302,6 +306,61 @@ fn materials<'s, S: Scalar>(
     Some([first, second])
 }
 
+/// Whether a sphere (`centre`, `radius`) lies clear of the pyramid from `apex` through
+/// the four `points` (a block's corners: top left, top right, bottom left, bottom right),
+/// with a sixteenth of its radius to spare: every segment from the apex to a point of
+/// the points' convex hull then misses it, as the shadow test decides at its edge (its
+/// rounding is within the sixteenth, as in the segment test above).
+///
+/// A side of the pyramid is the plane through the apex and two neighbouring points; the
+/// sphere lies clear of it where its centre lies beyond that plane, on the side away from
+/// the other points, by more than `r·17/16`. Beside an edge of the pyramid (the ray to a
+/// point), the plane through that ray facing the centre's nearest point `m` of its line
+/// separates them where every point lies on or behind it and `|m| > r·17/16`.
+pub(super) fn pyramid_clear<S: Scalar>(
+    apex: Vec3<S>,
+    points: &[Vec3<S>; 4],
+    centre: Vec3<S>,
+    radius: S,
+) -> bool {
+    let (Some(c), Some(margin)) = (centre.diff(apex), radius.mul_ratio(17, 16)) else {
+        return false;
+    };
+    // The rays in turn round the block.
+    let mut d = [c; 4];
+    for (ray, k) in d.iter_mut().zip([0, 1, 3, 2]) {
+        match points[k].diff(apex) {
+            Some(v) => *ray = v,
+            None => return false,
+        }
+    }
+    let side = |i: usize| -> Option<bool> {
+        let (a, b) = (d[i], d[(i + 1) % 4]);
+        let n = a.cross(b.diff(a)?)?;
+        // The other two points lie on the inner side.
+        let inner = n.dot(d[(i + 2) % 4].sum(d[(i + 3) % 4])?)?;
+        if inner == S::ZERO {
+            return Some(false);
+        }
+        let beyond = n.dot(c)?;
+        let beyond = if inner > S::ZERO {
+            S::ZERO.checked_sub(beyond)?
+        } else {
+            beyond
+        };
+        let length = n.dot(n)?.checked_sqrt()?.checked_add(S::DELTA)?;
+        Some(beyond > margin.checked_mul(length)?)
+    };
+    let edge = |i: usize| -> Option<bool> {
+        let a = d[i];
+        let t = c.dot(a)?.checked_div(a.dot(a)?)?;
+        let m = c.diff(a.scale(t)?)?;
+        let behind = d.iter().all(|q| m.dot(*q).is_some_and(|v| v <= S::ZERO));
+        Some(behind && t > S::ZERO && m.dot(m)? > margin.checked_mul(margin)?)
+    };
+    (0..4).any(|i| side(i) == Some(true) || edge(i) == Some(true))
+}
+
 /// The squared distance from `c` to the segment from `a` to `a + v`.
 fn distance_sq_to_segment<S: Scalar>(c: Vec3<S>, a: Vec3<S>, v: Vec3<S>) -> Option<S> {
     let w = c.diff(a)?;
@@ -320,7 +379,8 @@ fn distance_sq_to_segment<S: Scalar>(c: Vec3<S>, a: Vec3<S>, v: Vec3<S>) -> Opti
 
 #[cfg(test)]
 mod tests {
-    use super::clamped_error;
+    use super::{clamped_error, pyramid_clear};
+    use crate::Vec3;
     use crate::num::unit_reals;
     use fixed::types::I16F16;
 
@@ -360,5 +420,70 @@ mod tests {
             }
         }
         assert!(crossing > 5_000 && checked > 1_000_000);
+    }
+
+    /// Seeded lights, blocks (a rectangle's corners on a plane of any slope) and spheres:
+    /// where `pyramid_clear` says a sphere is clear, no segment from the light to a point
+    /// of the block (a grid over it, corners included) passes within the radius and most
+    /// of its sixteenth of the centre; and most spheres that clear every segment by the
+    /// whole sixteenth are found clear.
+    #[test]
+    fn a_sphere_clear_of_the_light_pyramid_shadows_no_point_of_the_block() {
+        let mut real = unit_reals(0x5EED_C1EA_0002);
+        let s = |v: f64| I16F16::from_num(v);
+        let v3 = |v: [f64; 3]| Vec3::new(s(v[0]), s(v[1]), s(v[2]));
+        let (mut clear, mut missed, mut free) = (0, 0, 0);
+        for _ in 0..20_000 {
+            let r3 = |real: &mut dyn FnMut() -> f64, scale: f64| {
+                [0; 3].map(|_| scale * (2.0 * real() - 1.0))
+            };
+            let light = r3(&mut real, 8.0);
+            let origin = r3(&mut real, 4.0);
+            let (u, v) = (r3(&mut real, 1.0), r3(&mut real, 1.0));
+            let (wu, wv) = (0.05 + 0.5 * real(), 0.05 + 0.5 * real());
+            let at = |a: f64, b: f64| [0, 1, 2].map(|i| origin[i] + a * wu * u[i] + b * wv * v[i]);
+            let corners = [at(0.0, 0.0), at(1.0, 0.0), at(0.0, 1.0), at(1.0, 1.0)];
+            // A sphere near the segments: on one of them, pushed aside.
+            let (ta, pa, pb) = (0.2 + 0.7 * real(), real(), real());
+            let p = at(pa, pb);
+            let push = r3(&mut real, 1.0);
+            let centre = [0, 1, 2].map(|i| light[i] + ta * (p[i] - light[i]) + push[i]);
+            let r = 0.1 + 0.6 * real();
+            let quantised = |x: [f64; 3]| [0, 1, 2].map(|i| s(x[i]).to_num::<f64>());
+            let (l, c) = (quantised(light), quantised(centre));
+            let r = s(r).to_num::<f64>();
+            // The least distance from the centre to the segments to a grid of the block.
+            let mut least = f64::MAX;
+            for i in 0..=8 {
+                for j in 0..=8 {
+                    let q = at(f64::from(i) / 8.0, f64::from(j) / 8.0);
+                    let d = [0, 1, 2].map(|k| q[k] - l[k]);
+                    let w = [0, 1, 2].map(|k| c[k] - l[k]);
+                    let dd: f64 = d.iter().map(|x| x * x).sum();
+                    let t =
+                        (d.iter().zip(&w).map(|(a, b)| a * b).sum::<f64>() / dd).clamp(0.0, 1.0);
+                    let gap: f64 = (0..3).map(|k| (w[k] - t * d[k]).powi(2)).sum();
+                    least = least.min(gap.sqrt());
+                }
+            }
+            let points = corners.map(v3);
+            if pyramid_clear(v3(light), &points, v3(centre), s(r)) {
+                clear += 1;
+                assert!(
+                    least > r * (1.0 + 1.0 / 20.0),
+                    "{light:?} {corners:?} {centre:?} {r}: {least}"
+                );
+            } else if least > r * 1.5 {
+                missed += 1;
+            }
+            if least > r * 1.5 {
+                free += 1;
+            }
+        }
+        assert!(clear > 4_000, "{clear} clear");
+        assert!(
+            missed * 4 < free,
+            "{missed} of {free} clear spheres not found"
+        );
     }
 }
