@@ -118,8 +118,9 @@ impl<S: Scalar> Sampler<S> {
     /// change sign over the block) and `ρ` at its smallest (`|L − m| − ρ`).
     ///
     /// **Clamping.** Each channel's value over the block lies between its sums with every
-    /// term at its least and at its largest (from `ρ`'s extremes over the block, or from
-    /// the term's values at the corners, within its stray); where that range reaches
+    /// term at its least and at its largest (0 and its value at `ρ`'s least, or, where
+    /// a channel may be clamped, the term's values at the corners widened by its stray);
+    /// where that range reaches
     /// past `0..=255` the pixel is clamped, and [`clamped_error`] bounds the stray of the
     /// clamped colour from the stray of the unclamped one and the range.
     fn interpolation_error(
@@ -177,8 +178,10 @@ impl<S: Scalar> Sampler<S> {
             }) {
                 let margin = sphere.radius().mul_ratio(17, 16)?.checked_add(rho)?;
                 let d = distance_sq_to_segment(sphere.center(), light.location, to_m)?;
+                // Where the segment to the centroid meets the sphere, no plane parts them.
                 if d <= margin.checked_mul(margin)?
-                    && !pyramid_clear(light.location, points, sphere.center(), sphere.radius())
+                    && (d <= sphere.radius().checked_mul(sphere.radius())?
+                        || !pyramid_clear(light.location, points, sphere.center(), sphere.radius()))
                 {
                     return None;
                 }
@@ -188,17 +191,14 @@ impl<S: Scalar> Sampler<S> {
             if near <= S::ZERO {
                 return None;
             }
-            let far = centre.checked_add(rho)?.checked_add(S::DELTA)?;
             // `N·L` is affine over the plane and keeps its sign over the block (no corner
             // faces away): its extremes are at corners.
-            let (mut nl_lo, mut nl_hi) = (S::MAX, S::ZERO);
+            let mut nl_hi = S::ZERO;
             for p in points {
-                let nl = n.dot(light.location.diff(*p)?)?.abs();
-                (nl_lo, nl_hi) = (nl_lo.min(nl), nl_hi.max(nl));
+                nl_hi = nl_hi.max(n.dot(light.location.diff(*p)?)?.abs());
             }
-            // The term at its largest and at its least over the block.
+            // The term at its largest over the block (at its least it is no less than 0).
             let f = nl_hi.checked_mul(k)?.checked_div(near.checked_mul(near)?)?;
-            let least = nl_lo.checked_mul(k)?.checked_div(far.checked_mul(far)?)?;
             let mut curvature = S::ZERO;
             for ((a1, beta1), size) in slopes[j]?.into_iter().zip(sizes) {
                 let a = a1.checked_div(beta)?;
@@ -217,11 +217,10 @@ impl<S: Scalar> Sampler<S> {
             }
             let stray = f.checked_mul(curvature)?;
             let slack = S::DELTA.checked_mul_int(4)?;
-            let least = least.checked_sub(slack)?.max(S::ZERO);
-            *term = Some((least, f.checked_add(slack)?, stray));
+            *term = Some((S::ZERO, f.checked_add(slack)?, stray));
         }
-        let error = channel_errors(scene, materials, &terms)?;
-        if error.iter().all(|e| *e <= self.bound) {
+        let (error, clamped) = channel_errors(scene, materials, &terms)?;
+        if !clamped || error.iter().all(|e| *e <= self.bound) {
             return Some(error);
         }
         // Where a channel may be clamped, its range decides: narrow each term's to its
@@ -240,20 +239,29 @@ impl<S: Scalar> Sampler<S> {
             *least = (*least).max(lo.checked_sub(*stray)?.checked_sub(slack)?);
             *most = (*most).min(hi.checked_add(*stray)?.checked_add(slack)?);
         }
-        channel_errors(scene, materials, &terms)
+        channel_errors(scene, materials, &terms).map(|(error, _)| error)
     }
 }
 
 /// Per channel, the largest over `materials` of a bound on how far the clamped colour
 /// strays from its interpolation over a block, given each light's term there (`None`:
-/// the light lights none of the block) as its least and largest value and its stray.
+/// the light lights none of the block) as its least and largest value and its stray;
+/// and whether a channel may be clamped in the block (only then can a narrower range of
+/// the terms narrow the bound).
 fn channel_errors<S: Scalar>(
     scene: &SceneView<'_, S>,
     materials: [&crate::Material<S>; 2],
     terms: &[Option<(S, S, S)>; LIGHTS],
-) -> Option<[S; 3]> {
-    let mut error = [S::ZERO; 3];
-    for material in materials {
+) -> Option<([S; 3], bool)> {
+    let (mut error, mut clamped) = ([S::ZERO; 3], false);
+    let max = S::from_i32(255)?;
+    // A plain plane's one material once.
+    let distinct = if core::ptr::eq(materials[0], materials[1]) {
+        1
+    } else {
+        2
+    };
+    for material in &materials[..distinct] {
         for (c, e) in error.iter_mut().enumerate() {
             let ambient = material.ambient[c];
             let (mut stray, mut lo, mut hi) = (S::ZERO, ambient, ambient);
@@ -267,10 +275,11 @@ fn channel_errors<S: Scalar>(
                 lo = lo.checked_add(a.min(b))?;
                 hi = hi.checked_add(a.max(b))?;
             }
-            *e = e.max(clamped_error(stray, (lo, hi), S::from_i32(255)?)?);
+            clamped |= lo < S::ZERO || hi > max;
+            *e = e.max(clamped_error(stray, (lo, hi), max)?);
         }
     }
-    Some(error)
+    Some((error, clamped))
 }
 
 /// A bound on how far the bilinear interpolation of a channel clamped to `0..=max` strays
