@@ -382,7 +382,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
         let mut corners = 0;
         sampled_rows(
             &self.scene,
-            sampler,
+            (sampler, self.drawing.primary()),
             (row..row + 1, 0..n),
             (line, stride),
             &mut |r, runs: &[Range<u16>], line: &mut [C]| {
@@ -483,7 +483,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
                 let stride = out.len();
                 sampled_rows(
                     &self.scene,
-                    sampler,
+                    (sampler, self.drawing.primary()),
                     (row..row + 1, columns.clone()),
                     (out, stride),
                     &mut |r, runs: &[Range<u16>], line: &mut [C]| {

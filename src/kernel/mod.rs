@@ -135,6 +135,16 @@ impl<S: Scalar> Drawing<S> {
         }
     }
 
+    /// The fast kernel's per-frame part where the frame is drawn by it or by the
+    /// level-plane kernel (which keeps one), for what must find a pixel's hit as they do.
+    #[cfg(feature = "sampling")]
+    pub(crate) fn primary(&self) -> Option<&Primary<S>> {
+        match &self.kernel {
+            Kernel::Fast(p) | Kernel::Rows(rows::Rows { primary: p, .. }) => Some(p),
+            Kernel::Flat(_) | Kernel::Reference => None,
+        }
+    }
+
     /// The chain after the flat kernel, written once: the fast kernel's per-frame part
     /// where it draws the scene ([`select`] decided) and can be formed, otherwise `None`
     /// (the reference path). What a frame falls to when the flat kernel does not apply,

@@ -42,7 +42,7 @@ impl<S: Scalar, C: From<Rgb888>> Frame<'_, S, C> {
             };
             filled += sampled_rows(
                 &self.scene,
-                sampler,
+                (sampler, self.drawing.primary()),
                 (row..next, 0..self.scene.camera.width),
                 (slice, width),
                 &mut |r, runs: &[Range<u16>], line: &mut [C]| {

@@ -6,6 +6,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::{FACES_AWAY, LIGHTS};
 use crate::geometry::{Tiling, surface_tolerance};
+use crate::kernel::fast::Primary;
 use crate::shade::color::to_pixel;
 use crate::shade::nearest;
 use crate::shade::rules::Fixray;
@@ -42,40 +43,68 @@ pub(super) struct Corner<S> {
     pub(super) sees: Sees<S>,
 }
 
-/// Pixel (`column`, `row`): its primary ray's nearest hit on the reference path (the
-/// definition's normalised ray), what it sees there and, on a plane, its colour by the
-/// diffuse model the certificates bound ([`plane_color`]).
-pub(super) fn corner<S: Scalar>(scene: &SceneView<'_, S>, column: u16, row: u16) -> Corner<S> {
+/// Pixel (`column`, `row`): its nearest hit, what it sees there and, on a plane, its
+/// colour by the diffuse model the certificates bound ([`plane_color`]). The hit is the
+/// one the frame's kernel finds there where it has the fast kernel's per-frame part
+/// (`primary`: its search of the pixel's unnormalised ray, the point and the shadow
+/// segments' tolerance its shading takes), otherwise, or where that search hands the
+/// pixel on, the reference path's (the definition's normalised ray).
+pub(super) fn corner<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    primary: Option<&Primary<S>>,
+    column: u16,
+    row: u16,
+) -> Corner<S> {
     let other = Corner {
         color: Rgb888::new(0, 0, 0),
         sees: Sees::Other,
     };
+    let background = Corner {
+        color: to_pixel(scene.rules, scene.background),
+        sees: Sees::Background,
+    };
+    if let Some(p) = primary
+        && let Some(r) = p.row(scene, row, column)
+        && let Ok(found) = p.nearest(scene, &r)
+    {
+        let Some(h) = found else {
+            return background;
+        };
+        let eye = scene.camera.viewpoint;
+        let m = eye.max_abs().max(h.point.max_abs());
+        return surface_tolerance(h.t_bound, m)
+            .and_then(|tol| plane_seen(scene, primary, h.index, h.point, tol))
+            .unwrap_or(other);
+    }
     let Some(ray) = scene.camera.primary_ray(column, row) else {
         return other;
     };
     match nearest::<S, Fixray>(scene, &ray, None) {
-        None => Corner {
-            color: to_pixel(scene.rules, scene.background),
-            sees: Sees::Background,
-        },
-        Some((index, hit)) => plane_seen(scene, index, hit).unwrap_or(other),
+        None => background,
+        Some((index, hit)) => surface_tolerance(hit.t, hit.point.max_abs())
+            .and_then(|tol| plane_seen(scene, None, index, hit.point, tol))
+            .unwrap_or(other),
     }
 }
 
-/// A corner whose ray met `objects[index]` at `hit`, if it is a plane: its tile, its
-/// occluders per light, and its colour.
+/// A corner whose ray met `objects[index]` at `point`, if it is a plane: its tile, its
+/// occluders per light (each object's exact segment test with tolerance `tol`, but where
+/// a sphere's shadow cone from the fast kernel's `primary` clears the segment, which that
+/// test then finds clear: `ShadowCone::clears`), and its colour.
 fn plane_seen<S: Scalar>(
     scene: &SceneView<'_, S>,
+    primary: Option<&Primary<S>>,
     index: usize,
-    hit: crate::Hit<S>,
+    point: Vec3<S>,
+    tol: S,
 ) -> Option<Corner<S>> {
     let object = scene.objects.get(index)?;
     let (tile, material) = match &object.shape {
         Shape::Plane(_) => ((0, 0), object.material),
         Shape::Tiled { frame, tiling, alt } => {
             let tile = match tiling {
-                Tiling::Frame => frame.tile(hit.point)?,
-                Tiling::WorldXz => frame.tile_world_xz(hit.point)?,
+                Tiling::Frame => frame.tile(point)?,
+                Tiling::WorldXz => frame.tile_world_xz(point)?,
             };
             let odd = (tile.0.wrapping_add(tile.1)) & 1 == 1;
             (tile, if odd { *alt } else { object.material })
@@ -83,12 +112,11 @@ fn plane_seen<S: Scalar>(
         _ => return None,
     };
     let plane = object.shape.plane()?;
-    let point = hit.point;
     // The side the eye sees: a light lights the point only from that side.
     let eye_side = plane.normal().dot(scene.camera.viewpoint.diff(point)?)?;
-    let tol = surface_tolerance(hit.t, point.max_abs())?;
+    let cones = primary.map_or(&[][..], |p| p.cones());
     let mut shadows = [0; LIGHTS];
-    for (state, light) in shadows.iter_mut().zip(scene.lights) {
+    for (j, (state, light)) in shadows.iter_mut().zip(scene.lights).enumerate() {
         let l = light.location.diff(point)?;
         let nl = plane.normal().dot(l)?;
         if nl == S::ZERO || (nl > S::ZERO) != (eye_side > S::ZERO) {
@@ -97,7 +125,12 @@ fn plane_seen<S: Scalar>(
         }
         let ll = l.dot(l)?;
         for (k, o) in scene.objects.iter().enumerate() {
-            if k != index && o.shape.meets_segment(point, l, ll, tol, scene.epsilon) {
+            let cleared = || {
+                cones.iter().any(|c| {
+                    usize::from(c.light) == j && usize::from(c.object) == k && c.clears(l, ll)
+                })
+            };
+            if k != index && !cleared() && o.shape.meets_segment(point, l, ll, tol, scene.epsilon) {
                 *state |= 1 << k;
             }
         }

@@ -2,8 +2,9 @@
 //! them where a certificate says what the block holds ([`Sampling::Blocks`]).
 //!
 //! A block of `B × B` pixels (`B` = 2, 4 or 8) is traced at its four corners (each
-//! corner's nearest hit on the reference path, the definition's normalised ray, its
-//! occluders towards each light, and on a plane its colour by the diffuse model below),
+//! corner's nearest hit as the frame's kernel finds it, or on the reference path where
+//! the kernel hands the pixel on, its occluders towards each light, and on a plane its
+//! colour by the diffuse model below),
 //! and filled from them only where all of these hold:
 //! - **no sphere's box** on the screen meets the block (the kernels' boxes, outside
 //!   which no primary ray meets a sphere): a sphere smaller than the block is never
@@ -40,9 +41,9 @@
 //! every pixel off the tiles' edges within the bound plus 2 levels, and measures at most
 //! 1 level in the boing frames at every bound). With `bound` 0 only blocks of one colour
 //! are filled (the background, a surface every light's shadow covers) and never across a
-//! tile's edge: the exact frame bit for bit, but for a corner pixel whose centre lies
-//! within the rounding of a tile's edge, which the reference ray and a kernel may put in
-//! different tiles (none in the tests' frames).
+//! tile's edge: the exact frame bit for bit, but for a corner pixel traced on the
+//! reference path whose centre lies within the rounding of a tile's edge, which the
+//! reference ray and a kernel may put in different tiles (none in the tests' frames).
 //!
 //! Only frames of the crate's rules whose objects are infinite planes (plain or tiled)
 //! and spheres, lit by point lights without glints, mirrors, translucency, spotlights,
@@ -59,6 +60,7 @@ mod certify;
 mod corners;
 mod fill;
 
+use super::fast::Primary;
 use super::{Drawing, Kernel};
 use crate::{Plan, Rules, Scalar, SceneView, Shape, Vec3};
 use corners::{Corner, corner};
@@ -355,7 +357,7 @@ impl<S> Default for Kept<S> {
 /// column `columns.start`). Returns how many pixels were filled.
 pub(crate) fn sampled_rows<S: Scalar, C: From<Rgb888>>(
     scene: &SceneView<'_, S>,
-    sampler: &Sampler<S>,
+    (sampler, primary): (&Sampler<S>, Option<&Primary<S>>),
     (rows, columns): (Range<u16>, Range<u16>),
     (out, stride): (&mut [C], usize),
     exact: &mut impl FnMut(u16, &[Range<u16>], &mut [C]),
@@ -377,7 +379,7 @@ pub(crate) fn sampled_rows<S: Scalar, C: From<Rgb888>>(
     let traced = core::cell::Cell::new(0u32);
     let trace = |x: u16, y: u16| {
         traced.set(traced.get().wrapping_add(1));
-        corner(scene, x, y)
+        corner(scene, primary, x, y)
     };
     // The traced blocks' runs of columns, drawn row by row when the list is full and at
     // the end.
