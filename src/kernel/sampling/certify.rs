@@ -40,11 +40,13 @@ impl<S: Scalar> Sampler<S> {
         let mut points = [Vec3::new(S::ZERO, S::ZERO, S::ZERO); 4];
         let mut tiles = [(0, 0); 4];
         let mut terms = [[S::ZERO; LIGHTS]; 4];
+        let mut states = [[0; LIGHTS]; 4];
         let (mut all, mut any) = ([u32::MAX; LIGHTS], [0; LIGHTS]);
-        for (((slot, tile), at), seen) in points
+        for ((((slot, tile), at), state), seen) in points
             .iter_mut()
             .zip(tiles.iter_mut())
             .zip(terms.iter_mut())
+            .zip(states.iter_mut())
             .zip(seen)
         {
             let Sees::Plane {
@@ -60,7 +62,7 @@ impl<S: Scalar> Sampler<S> {
             if o != object {
                 return None;
             }
-            (*slot, *tile, *at) = (point, t, here);
+            (*slot, *tile, *at, *state) = (point, t, here, shadows);
             for ((a, n), s) in all.iter_mut().zip(any.iter_mut()).zip(shadows) {
                 *a &= s;
                 *n |= s;
@@ -84,9 +86,20 @@ impl<S: Scalar> Sampler<S> {
             return Some(Fill::Smooth(colors));
         }
         // Across a tile's edge: only with a bound (the colours are this module's own).
-        let lit = core::array::from_fn(|j| all[j] == 0);
+        let lit: [bool; LIGHTS] = core::array::from_fn(|j| all[j] == 0);
+        // A corner lit as the block is has its own tile's colour already.
+        let known =
+            core::array::from_fn(|i| (states[i].map(|s| s == 0) == lit).then_some(colors[i]));
         if self.bound > S::ZERO {
-            tiles_fill(scene, object, (&points, &tiles), &terms, lit, (x, y), beta)
+            tiles_fill(
+                scene,
+                object,
+                (&points, &tiles, known),
+                &terms,
+                lit,
+                (x, y),
+                beta,
+            )
         } else {
             None
         }

@@ -15,6 +15,10 @@ use crate::{Scalar, SceneView, Shape, Vec3};
 /// the side does not fit).
 type RowEdges<S> = [Option<(S, S)>; 2];
 
+/// A tiled block's corners for [`tiles_fill`]: their points, their tiles, and each one's
+/// colour in its own tile's material where the caller has it.
+pub(super) type TiledCorners<'a, S> = (&'a [Vec3<S>; 4], &'a [(i32, i32); 4], [Option<Rgb888>; 4]);
+
 /// How a certified block is filled.
 #[derive(Debug, Clone, Copy)]
 pub(super) enum Fill<S> {
@@ -71,11 +75,13 @@ pub(super) fn corner_betas<S: Scalar>(
 /// each light's term there `terms`) lie in at most two tiles along each axis, under the
 /// lights `lit` (lit everywhere in
 /// the block; the others light none of it), over columns `x` and rows `y`, with `β` at
-/// its corner pixels ([`corner_betas`]).
+/// its corner pixels ([`corner_betas`]). `known`: a corner's colour in its own tile's
+/// material under the lights `lit`, where its caller has it ([`plane_color`]'s, not
+/// formed again).
 pub(super) fn tiles_fill<S: Scalar>(
     scene: &SceneView<'_, S>,
     object: u8,
-    (points, tiles): (&[Vec3<S>; 4], &[(i32, i32); 4]),
+    (points, tiles, known): TiledCorners<'_, S>,
     terms: &CornerTerms<S>,
     lit: [bool; LIGHTS],
     (x, y): ((u16, u16), (u16, u16)),
@@ -131,9 +137,13 @@ pub(super) fn tiles_fill<S: Scalar>(
     let own = scene.materials.get(usize::from(o.material))?;
     let other = scene.materials.get(usize::from(*alt))?;
     let mut colors = [[Rgb888::new(0, 0, 0); 4]; 2];
-    for (material, out) in [own, other].into_iter().zip(colors.iter_mut()) {
-        for (slot, terms) in out.iter_mut().zip(terms) {
-            *slot = plane_color(scene, material, terms, lit)?;
+    for (parity, (material, out)) in [own, other].into_iter().zip(colors.iter_mut()).enumerate() {
+        for (((slot, terms), tile), known) in out.iter_mut().zip(terms).zip(tiles).zip(known) {
+            let odd = usize::from((tile.0.wrapping_add(tile.1)) & 1 == 1);
+            *slot = match known {
+                Some(color) if odd == parity => color,
+                _ => plane_color(scene, material, terms, lit)?,
+            };
         }
     }
     Some(Fill::Tiles(Tiles {
