@@ -155,7 +155,7 @@ pub(super) fn tiles_fill<S: Scalar>(
 }
 
 /// Fills the pixels `rows × columns` of a block over columns `x` and rows `y` (its
-/// corners') as `how` says: each pixel the bilinear interpolation of four corner colours
+/// corners', first and last inclusive; `rows × columns` lie between them) as `how` says: each pixel the bilinear interpolation of four corner colours
 /// (rounded to nearest), in a tiled block those of the pixel's tile's material. Along a
 /// row the interpolation is affine: each channel steps by one addition a pixel, and so
 /// does each tile edge's side ([`EdgeSteps`]), in integers where the format's sums and
@@ -186,6 +186,7 @@ pub(super) fn fill<S: Scalar, C: From<Rgb888>>(
         match how {
             Fill::Smooth(colors) => {
                 let (mut value, step) = row_start(&colors.map(channels), (v, h), (u0, w));
+                value = value.map(|c| c + round.half());
                 for p in line.iter_mut() {
                     *p = round.pixel(value);
                     for (a, b) in value.iter_mut().zip(step) {
@@ -196,9 +197,10 @@ pub(super) fn fill<S: Scalar, C: From<Rgb888>>(
             Fill::Tiles(t) => {
                 // Each set's start and step; a pixel takes its set's `start + k·step` (two
                 // sets stepped together would not stay in a small core's registers).
-                let starts = t
-                    .colors
-                    .map(|set| row_start(&set.map(channels), (v, h), (u0, w)));
+                let starts = t.colors.map(|set| {
+                    let (start, step) = row_start(&set.map(channels), (v, h), (u0, w));
+                    (start.map(|c| c + round.half()), step)
+                });
                 let edges = match before {
                     Some((b, edges)) if b + 1 == v => t.step_edges(edges),
                     _ => None,
@@ -241,7 +243,7 @@ fn row_start(set: &[[i32; 3]; 4], (v, h): (i32, i32), (u0, w): (i32, i32)) -> ([
 }
 
 /// Rounding an interpolated channel (times the block's area) to a pixel value: to
-/// nearest, by a shift where the area is a power of two (a whole block), clamped to 0..=255.
+/// nearest, by a shift where the area is a power of two (a whole block).
 #[derive(Clone, Copy)]
 struct Rounding {
     area: i32,
@@ -256,14 +258,23 @@ impl Rounding {
         }
     }
 
+    /// A channel's value `v` (times the area, plus half the area: [`Rounding::half`])
+    /// rounded. `v` lies in `0..=255·area + area/2` (the interpolation of values in
+    /// `0..=255` at a point of the block, a weighted mean), so the quotient is in
+    /// `0..=255`.
     #[inline(always)]
     fn channel(self, v: i32) -> u8 {
-        let v = v + self.area / 2;
         let q = match self.shift {
             Some(s) => v >> s,
             None => v / self.area,
         };
-        u8::try_from(q.clamp(0, 255)).unwrap_or(u8::MAX)
+        q as u8
+    }
+
+    /// Half the area, added once to a row's start values so that [`Rounding::channel`]
+    /// rounds to nearest.
+    fn half(self) -> i32 {
+        self.area / 2
     }
 
     #[inline(always)]
