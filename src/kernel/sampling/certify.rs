@@ -165,6 +165,8 @@ impl<S: Scalar> Sampler<S> {
         }
         let rho = rho_sq.checked_sqrt()?.checked_add(S::DELTA)?;
         let materials = materials(scene, o)?;
+        // A few DELTAs over each bound below: the roundings of its own steps.
+        let slack = S::DELTA.checked_mul_int(4)?;
         let slopes = self.slopes.get(usize::from(object))?;
         // `β` is affine over the block and keeps its sign: its smallest size is at a corner.
         let beta = betas.iter().fold(S::MAX, |m, b| m.min(b.abs()));
@@ -225,14 +227,13 @@ impl<S: Scalar> Sampler<S> {
                     .checked_add(b.checked_mul(b)?.checked_mul_int(6)?)?;
                 let second = p.checked_mul(p)?.checked_mul_int(2)?.checked_add(q)?;
                 // Each rounding above is at most a DELTA: a few more keep the bound one.
-                let second = second.checked_add(S::DELTA.checked_mul_int(4)?)?;
+                let second = second.checked_add(slack)?;
                 curvature = curvature.checked_add(size.checked_mul(second)?)?;
             }
             let stray = f.checked_mul(curvature)?;
-            let slack = S::DELTA.checked_mul_int(4)?;
             *term = Some((S::ZERO, f.checked_add(slack)?, stray));
         }
-        let (error, clamped) = channel_errors(scene, materials, &terms)?;
+        let (error, clamped) = channel_errors(scene, &materials, &terms)?;
         if !clamped || error.iter().all(|e| *e <= self.bound) {
             return Some(error);
         }
@@ -248,11 +249,10 @@ impl<S: Scalar> Sampler<S> {
             for at in corner_terms.iter().filter_map(|t| t.get(j)) {
                 (lo, hi) = (lo.min(*at), hi.max(*at));
             }
-            let slack = S::DELTA.checked_mul_int(4)?;
             *least = (*least).max(lo.checked_sub(*stray)?.checked_sub(slack)?);
             *most = (*most).min(hi.checked_add(*stray)?.checked_add(slack)?);
         }
-        channel_errors(scene, materials, &terms).map(|(error, _)| error)
+        channel_errors(scene, &materials, &terms).map(|(error, _)| error)
     }
 }
 
@@ -263,27 +263,21 @@ impl<S: Scalar> Sampler<S> {
 /// the terms narrow the bound).
 fn channel_errors<S: Scalar>(
     scene: &SceneView<'_, S>,
-    materials: [&crate::Material<S>; 2],
+    materials: &[&crate::Material<S>],
     terms: &[Option<(S, S, S)>; LIGHTS],
 ) -> Option<([S; 3], bool)> {
     let (mut error, mut clamped) = ([S::ZERO; 3], false);
     let max = S::from_i32(255)?;
-    // A plain plane's one material once.
-    let distinct = if core::ptr::eq(materials[0], materials[1]) {
-        1
-    } else {
-        2
-    };
-    for material in &materials[..distinct] {
+    for material in materials {
         for (c, e) in error.iter_mut().enumerate() {
             let ambient = material.ambient[c];
             let (mut stray, mut lo, mut hi) = (S::ZERO, ambient, ambient);
             for (light, term) in scene.lights.iter().zip(terms) {
-                let Some((least, most, curvature)) = term else {
+                let Some((least, most, own)) = term else {
                     continue;
                 };
                 let weight = light.emissivity[c].checked_mul(material.diffuse[c])?;
-                stray = stray.checked_add(weight.abs().checked_mul(*curvature)?)?;
+                stray = stray.checked_add(weight.abs().checked_mul(*own)?)?;
                 let (a, b) = (weight.checked_mul(*least)?, weight.checked_mul(*most)?);
                 lo = lo.checked_add(a.min(b))?;
                 hi = hi.checked_add(a.max(b))?;
@@ -315,17 +309,21 @@ fn clamped_error<S: Scalar>(stray: S, (lo, hi): (S, S), max: S) -> Option<S> {
     Some(stray.checked_add(cut)?.min(range))
 }
 
-/// The materials of an object (a tiled plane has two; a plain one its own twice).
+/// The materials of an object: a tiled plane's two (one where both are the same), a
+/// plain one's own.
 fn materials<'s, S: Scalar>(
     scene: &'s SceneView<'_, S>,
     o: &crate::Object<S>,
-) -> Option<[&'s crate::Material<S>; 2]> {
-    let first = scene.materials.get(usize::from(o.material))?;
-    let second = match o.shape {
-        Shape::Tiled { alt, .. } => scene.materials.get(usize::from(alt))?,
-        _ => first,
-    };
-    Some([first, second])
+) -> Option<heapless::Vec<&'s crate::Material<S>, 2>> {
+    let mut all = heapless::Vec::new();
+    all.push(scene.materials.get(usize::from(o.material))?)
+        .ok()?;
+    if let Shape::Tiled { alt, .. } = o.shape
+        && alt != o.material
+    {
+        all.push(scene.materials.get(usize::from(alt))?).ok()?;
+    }
+    Some(all)
 }
 
 /// Whether a sphere (`centre`, `radius`) lies clear of the pyramid from `apex` through

@@ -27,13 +27,13 @@ pub(super) enum Sees<S> {
         /// Per light: the occluders between the point and the light (bit `k`: object
         /// `k`), or [`FACES_AWAY`].
         shadows: [u32; LIGHTS],
-        /// Per light lighting the point: its diffuse term there ([`light_terms`]);
-        /// zero for the others.
+        /// Per light lighting the point: its diffuse term there, `255·|N·L|/|L|²` in
+        /// channel units per unit of emissivity and diffuse; zero for the others.
         terms: [S; LIGHTS],
     },
 }
 
-/// A block's four corners' light terms ([`light_terms`]), in the corners' order.
+/// A block's four corners' light terms (`Sees::Plane`'s), in the corners' order.
 pub(super) type CornerTerms<S> = [[S; LIGHTS]; 4];
 
 /// A traced corner: its colour and what it sees.
@@ -115,8 +115,17 @@ fn plane_seen<S: Scalar>(
     // The side the eye sees: a light lights the point only from that side.
     let eye_side = plane.normal().dot(scene.camera.viewpoint.diff(point)?)?;
     let cones = primary.map_or(&[][..], |p| p.cones());
-    let mut shadows = [0; LIGHTS];
-    for (j, (state, light)) in shadows.iter_mut().zip(scene.lights).enumerate() {
+    // Per light: its occluders, and where none stands between, its diffuse term,
+    // `255·|N·L|/|L|²` in channel units per unit of emissivity and diffuse (zero for the
+    // others).
+    let (mut shadows, mut terms) = ([0; LIGHTS], [S::ZERO; LIGHTS]);
+    let channel = S::from_i32(255)?;
+    for (j, ((state, term), light)) in shadows
+        .iter_mut()
+        .zip(terms.iter_mut())
+        .zip(scene.lights)
+        .enumerate()
+    {
         let l = light.location.diff(point)?;
         let nl = plane.normal().dot(l)?;
         if nl == S::ZERO || (nl > S::ZERO) != (eye_side > S::ZERO) {
@@ -134,9 +143,11 @@ fn plane_seen<S: Scalar>(
                 *state |= 1 << k;
             }
         }
+        if *state == 0 {
+            *term = nl.abs().checked_mul(channel)?.checked_div(ll)?;
+        }
     }
     let lit = shadows.map(|s| s == 0);
-    let terms = light_terms(scene, plane, point, lit)?;
     let color = plane_color(
         scene,
         scene.materials.get(usize::from(material))?,
@@ -155,33 +166,8 @@ fn plane_seen<S: Scalar>(
     })
 }
 
-/// Each light's diffuse term at `point` of `plane`, `255·|N·L|/|L|²` in channel units per
-/// unit of emissivity and diffuse, for the lights `lit` (zero for the others); `None`
-/// where one leaves the format.
-pub(super) fn light_terms<S: Scalar>(
-    scene: &SceneView<'_, S>,
-    plane: &crate::geometry::Plane<S>,
-    point: Vec3<S>,
-    lit: [bool; LIGHTS],
-) -> Option<[S; LIGHTS]> {
-    let mut terms = [S::ZERO; LIGHTS];
-    for ((light, lit), f) in scene.lights.iter().zip(lit).zip(terms.iter_mut()) {
-        if !lit {
-            continue;
-        }
-        let l = light.location.diff(point)?;
-        let k = plane
-            .normal()
-            .dot(l)?
-            .abs()
-            .checked_mul(S::from_i32(255)?)?;
-        *f = k.checked_div(l.dot(l)?)?;
-    }
-    Some(terms)
-}
-
 /// The colour of `material` under the lights `lit`, whose diffuse terms at the point are
-/// `terms` ([`light_terms`]): its ambient plus each light's `emissivity · diffuse ·
+/// `terms` (`Sees::Plane`'s): its ambient plus each light's `emissivity · diffuse ·
 /// term` (the crate's diffuse model, each term rounded in its own order: within a level
 /// of the kernels' pixel).
 pub(super) fn plane_color<S: Scalar>(
