@@ -38,18 +38,35 @@ pub(super) type Facing = (bool, Option<(u8, bool)>);
 /// stack on a 16 KB chip, the course's, would have almost nothing to spare with two).
 const MEMO_LIGHTS: usize = 1;
 
+/// The material last shaded and, for the first [`MEMO_LIGHTS`] lights, `emissivity ×
+/// diffuse` per channel, the first product of every diffuse term, the same for every hit
+/// that shows that material (bit `3 × light + channel` of `overflow`: the product does
+/// not fit, the term saturates): what a scanline keeps from pixel to pixel for its lit
+/// hits, planes' and spheres' (`kernel::shading`).
+#[derive(Debug, Clone)]
+pub struct Weights<S> {
+    /// The material (`None`: none yet).
+    material: Option<u8>,
+    overflow: u8,
+    weights: [[S; 3]; MEMO_LIGHTS],
+}
+
+impl<S: Scalar> Default for Weights<S> {
+    fn default() -> Self {
+        Self {
+            material: None,
+            overflow: 0,
+            weights: [[S::ZERO; 3]; MEMO_LIGHTS],
+        }
+    }
+}
+
 /// What a fast-kernel scanline of a diffuse stage set keeps from pixel to pixel for its
-/// lit plane hits (`kernel::shading`; `KernelStages::Memo`): the material last shaded and,
-/// for the first [`MEMO_LIGHTS`] lights, `emissivity × diffuse` per channel, the first
-/// product of every term, the same for every hit that shows that material (bit
-/// `3 × light + channel` of `overflow`: the product does not fit, the term saturates);
-/// and the last still plane's hit.
+/// lit plane hits (`kernel::shading`; `KernelStages::Memo`): the material's
+/// [`Weights`], and the last still plane's hit.
 #[derive(Debug, Clone)]
 pub struct PlaneMemo<S> {
-    /// The material (`None`: none yet).
-    pub(super) material: Option<u8>,
-    pub(super) overflow: u8,
-    pub(super) weights: [[S; 3]; MEMO_LIGHTS],
+    pub(super) weights: Weights<S>,
     /// The last still plane's hit (`fast::HitMemo`).
     pub(super) hits: fast::HitMemo<S>,
     /// The quiet planes (`Primary::quiet_planes`) of the scanline it last looked at.
@@ -67,9 +84,7 @@ pub struct PlaneMemo<S> {
 impl<S: Scalar> Default for PlaneMemo<S> {
     fn default() -> Self {
         Self {
-            material: None,
-            overflow: 0,
-            weights: [[S::ZERO; 3]; MEMO_LIGHTS],
+            weights: Weights::default(),
             hits: fast::HitMemo::default(),
             quiet: None,
             facing: None,
@@ -98,11 +113,13 @@ impl<S: Scalar> PlaneMemo<S> {
             }
         }
     }
+}
 
-    /// The memo with the weights of material `index` (`material`), formed where it
-    /// held another's: one per light of the first [`MEMO_LIGHTS`] ([`PlaneMemo::weight`]).
+impl<S: Scalar> Weights<S> {
+    /// The weights of material `index` (`material`), formed where they were another's:
+    /// one per light of the first [`MEMO_LIGHTS`] ([`Weights::weight`]).
     #[inline(always)]
-    pub(super) fn weights(
+    pub(super) fn of(
         &mut self,
         scene: &SceneView<'_, S>,
         index: u8,
@@ -128,7 +145,7 @@ impl<S: Scalar> PlaneMemo<S> {
         self
     }
 
-    /// Light `j`'s weights for the material kept ([`PlaneMemo::weights`]), and their
+    /// Light `j`'s weights for the material kept ([`Weights::of`]), and their
     /// three overflow bits; `None` beyond the first [`MEMO_LIGHTS`].
     #[inline(always)]
     pub(super) fn weight(&self, scene: &SceneView<'_, S>, j: usize) -> Option<([S; 3], u8)> {

@@ -6,7 +6,7 @@
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::fast::{self, Primary, Row};
-use super::memo::{KernelStages, MemoSlot};
+use super::memo::{KernelStages, MemoSlot, Weights};
 use super::shading::{lit_plane_color, lit_planes, lit_sphere_color};
 use crate::shade::color::to_pixel;
 use crate::shade::stages::Stages;
@@ -91,7 +91,9 @@ pub(crate) fn scanline_over<'a, S: Scalar, T: KernelStages, C: From<Rgb888>, con
                                 // forms what it needs itself.)
                                 let _ = p.catch_up(scene, r, &mut m.stepping);
                             }
-                            fast_color::<S, T>(scene, primary, r, &h, &mut at_hit, counters)
+                            let weights = memo.memo().map(|m| &mut m.weights);
+                            let at = (&mut at_hit, weights);
+                            fast_color::<S, T>(scene, primary, r, &h, at, counters)
                         }
                     }
                 }
@@ -112,10 +114,13 @@ pub(crate) fn fast_color<S: Scalar, T: Stages>(
     primary: Option<&Primary<S>>,
     r: &Row<S>,
     h: &fast::FastHit<S>,
-    at_hit: &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+    (at_hit, weights): (
+        &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+        Option<&mut Weights<S>>,
+    ),
     counters: &mut Counters,
 ) -> Color<S> {
-    shaded::<S, T>(scene, primary, r, h, at_hit, counters, true)
+    shaded::<S, T>(scene, primary, r, h, (at_hit, weights), counters, true)
 }
 
 /// [`fast_color`], with [`lit_sphere_color`] tried first where `spheres` (without it: the
@@ -130,7 +135,10 @@ pub(super) fn shaded<S: Scalar, T: Stages>(
     primary: Option<&Primary<S>>,
     r: &Row<S>,
     h: &fast::FastHit<S>,
-    at_hit: &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+    (at_hit, weights): (
+        &mut heapless::Vec<S, { fast::FAST_OBJECTS }>,
+        Option<&mut Weights<S>>,
+    ),
     counters: &mut Counters,
     spheres: bool,
 ) -> Color<S> {
@@ -145,7 +153,7 @@ pub(super) fn shaded<S: Scalar, T: Stages>(
         }
         _ => None,
     };
-    if spheres && let Some(color) = lit_sphere_color::<S, T>(scene, h, sides, counters) {
+    if spheres && let Some(color) = lit_sphere_color::<S, T>(scene, h, sides, weights, counters) {
         return color;
     }
     let incoming = Incoming {

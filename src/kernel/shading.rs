@@ -164,7 +164,7 @@ fn lit_plane_with<S: Scalar>(
     };
     // The first lights' `emissivity × diffuse`, the first product of each term, kept
     // for the material (`PlaneMemo`).
-    let weights = memo.map(|m| m.weights(scene, index, material));
+    let weights = memo.map(|m| m.weights.of(scene, index, material));
     // (The own plane's side is not formed where the shadow tests leave it out, below.)
     let own = if S::EXACT_QUOTIENTS {
         h.index

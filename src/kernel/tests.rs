@@ -5,7 +5,7 @@ extern crate std;
 use std::format;
 use std::string::String;
 
-use super::memo::PlaneMemo;
+use super::memo::{PlaneMemo, Weights};
 use super::scanline::{fast_color, shaded};
 use super::shading::{LightTerms, lit_plane_color, lit_sphere_color, own_sphere_clear, quiet_hit};
 use super::*;
@@ -125,7 +125,8 @@ fn lit_planes_agree<S: Scalar, T: Stages>(scenes: usize) -> (usize, usize) {
                 let at = (&mut at_hit, Some(&mut memo));
                 let mut lit_row = r.clone();
                 let lit = lit_plane_color::<S, T>(&view, &p, &mut lit_row, &h, at, &mut c1);
-                let general = fast_color::<S, T>(&view, Some(&p), r, &h, &mut at_hit, &mut c2);
+                let general =
+                    fast_color::<S, T>(&view, Some(&p), r, &h, (&mut at_hit, None), &mut c2);
                 if let Some(lit) = lit {
                     drawn += 1;
                     if T::SHADOWS && quiet_hit(&view, &p, r, &h, &mut memo) {
@@ -240,6 +241,8 @@ fn lit_spheres_agree<S: Scalar, T: Stages>(scenes: usize) -> usize {
             continue;
         };
         let mut at_hit = heapless::Vec::new();
+        // The weights a scanline keeps, for every other pixel (the others form theirs).
+        let mut weights = Weights::default();
         for row in 0..view.camera.height {
             fast::each_pixel(&view, &p, row, |r| {
                 let column = Primary::column(r);
@@ -247,7 +250,9 @@ fn lit_spheres_agree<S: Scalar, T: Stages>(scenes: usize) -> usize {
                     return;
                 };
                 let (mut c1, mut c2) = (Counters::default(), Counters::default());
-                let general = shaded::<S, T>(&view, Some(&p), r, &h, &mut at_hit, &mut c2, false);
+                let kept = column.is_multiple_of(2).then_some(&mut weights);
+                let general =
+                    shaded::<S, T>(&view, Some(&p), r, &h, (&mut at_hit, None), &mut c2, false);
                 let sides = p.sides_at(r, h.param, &mut at_hit);
                 let sides = sides.filter(|_| T::SHADOWS && !p.at_lights().is_empty());
                 let sides = sides.map(|bits| crate::shade::PlaneSides {
@@ -256,7 +261,7 @@ fn lit_spheres_agree<S: Scalar, T: Stages>(scenes: usize) -> usize {
                     cones: p.cones(),
                     bits,
                 });
-                if let Some(lit) = lit_sphere_color::<S, T>(&view, &h, sides, &mut c1) {
+                if let Some(lit) = lit_sphere_color::<S, T>(&view, &h, sides, kept, &mut c1) {
                     drawn += 1;
                     let at = || format!("{} case {case} ({column}, {row}):\n{text}", S::NAME);
                     assert_eq!(lit, general, "{}", at());

@@ -43,6 +43,7 @@ pub(crate) use changes::{changed_columns, moved_spheres};
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::fast::{self, FAST_OBJECTS, FastHit, Primary, Row};
+use super::memo::Weights;
 use super::scanline::{fast_color, reference_color};
 use crate::shade::color::to_pixel;
 use crate::shade::stages::Stages;
@@ -123,6 +124,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         fresh: true,
         valid,
         at_hit: heapless::Vec::new(),
+        weights: Weights::default(),
         memo: Memo::default(),
         spheres: p.sphere_columns_on_row(row),
         y: scene.camera.screen_y(row),
@@ -160,6 +162,8 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     lazy: bool,
     stale: bool,
     at_hit: heapless::Vec<S, FAST_OBJECTS>,
+    /// The spheres' materials' weights (a sphere hit's shading, [`Pixels::other`]).
+    weights: Weights<S>,
     memo: Memo<S>,
     /// The columns where a sphere can be met on this row.
     spheres: (u16, u16),
@@ -497,7 +501,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             Some(self.p),
             &self.state,
             h,
-            &mut self.at_hit,
+            (&mut self.at_hit, Some(&mut self.weights)),
             self.counters,
         )
     }

@@ -4,6 +4,7 @@
 
 use super::{LightTerms, light_plane_hit, segment_tolerance, shadowed_but_own};
 use crate::kernel::fast;
+use crate::kernel::memo::Weights;
 use crate::shade::stages::Stages;
 use crate::shade::{PlaneSides, channel_max, diffuse_falloff_outlined, occludes_segment};
 use crate::stats::Counters;
@@ -19,7 +20,8 @@ use crate::{Beam, Color, Light, Scalar, SceneView, Shape};
 /// (tested against the general shading, `kernel/fast/invariants.rs`): the sphere's own
 /// material, its normal at the hit (`Sphere::normal_at`) turned to face the ray, then
 /// each light's `L`, `|L|²`, `N·L`, shadow segment (`occludes_segment`, with the planes'
-/// sides the caller formed) and term. `None` where the pixel needs the general shading:
+/// sides the caller formed) and term (its `emissivity × diffuse` from `weights`, the
+/// scanline's, where the caller keeps them). `None` where the pixel needs the general shading:
 /// a light on a surface, a projector, a light whose `|L|²` does not fit or is not
 /// positive (the general path's ray terms; the statistics then count the earlier lights
 /// twice, as for plane hits), or a segments' tolerance that does not fit.
@@ -28,13 +30,15 @@ pub(in crate::kernel) fn lit_sphere_color<S: Scalar, T: Stages>(
     scene: &SceneView<'_, S>,
     h: &fast::FastHit<S>,
     sides: Option<PlaneSides<'_, S>>,
+    weights: Option<&mut Weights<S>>,
     counters: &mut Counters,
 ) -> Option<Color<S>> {
     let diffuse_set = T::LIGHTING && !T::SPECULAR && !T::CONES && !T::REFLECTION;
     if !(crate::kernel::KERNELS && S::EXACT_PRODUCTS && diffuse_set && !T::TRANSPARENCY) {
         return None;
     }
-    lit_sphere_with(scene, h, sides, T::SHADOWS && scene.shadows, counters)
+    let shadows = T::SHADOWS && scene.shadows;
+    lit_sphere_with(scene, h, sides, weights, shadows, counters)
 }
 
 /// [`lit_sphere_color`] with the stage set's shadows as a value (`shadows`: the set's
@@ -44,6 +48,7 @@ fn lit_sphere_with<S: Scalar>(
     scene: &SceneView<'_, S>,
     h: &fast::FastHit<S>,
     sides: Option<PlaneSides<'_, S>>,
+    weights: Option<&mut Weights<S>>,
     shadows: bool,
     counters: &mut Counters,
 ) -> Option<Color<S>> {
@@ -90,6 +95,7 @@ fn lit_sphere_with<S: Scalar>(
     if material.diffuse == [S::ZERO; 3] {
         return Some(color);
     }
+    let kept = weights.map(|w| w.of(scene, object.material, material));
     let k = channel_max::<S>();
     let terms = |_: usize, light: &Light<S>| {
         let Some(to_light) = light.location.diff(h.point) else {
@@ -134,7 +140,10 @@ fn lit_sphere_with<S: Scalar>(
         (
             terms,
             shadowed,
-            |_| None,
+            |j| {
+                let (w, overflow) = kept.and_then(|w| w.weight(scene, j))?;
+                Some((w, u16::from(overflow)))
+            },
             |t: &LightTerms<S>| diffuse_falloff_outlined(t.nl, t.nl.checked_mul(k), t.ll),
         ),
         counters,
