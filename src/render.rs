@@ -134,8 +134,8 @@ impl<'a, S: Scalar, C> Frame<'a, S, C> {
     }
 
     /// The frame drawn with `sampling` (cargo feature `sampling`; [`Sampling::Exact`],
-    /// every pixel traced, is the default): in [`Sampling::Blocks`], blocks traced at their corners on the reference
-    /// path and filled between them where a certificate holds (the same surface and tile,
+    /// every pixel traced, is the default): in [`Sampling::Blocks`], blocks traced at their corners (by
+    /// the frame's kernel) and filled between them where a certificate holds (the same surface and tile,
     /// the same shadow state, no sphere's box, the colour's spread at most the bound),
     /// every other block drawn as the exact frame draws it. Every entry point draws the
     /// same pixels; [`Frame::render_rows`] traces each band of blocks' corners once, the
