@@ -134,9 +134,9 @@ impl<'a, S: Scalar, C> Frame<'a, S, C> {
     }
 
     /// The frame drawn with `sampling` (cargo feature `sampling`; [`Sampling::Exact`],
-    /// every pixel traced, is the default): in [`Sampling::Blocks`], blocks traced at their corners (by
-    /// the frame's kernel) and filled between them where a certificate holds (the same surface and tile,
-    /// the same shadow state, no sphere's box, the colour's spread at most the bound),
+    /// every pixel traced, is the default): in [`Sampling::Blocks`], blocks traced at
+    /// their corners (by the frame's kernel) and filled between them where a certificate
+    /// holds (same surface, tile, shadow state; no sphere's box; spread within the bound),
     /// every other block drawn as the exact frame draws it. Every entry point draws the
     /// same pixels; [`Frame::render_rows`] traces each band of blocks' corners once, the
     /// others once per scanline. Frames of a kind the certificates do not cover are drawn

@@ -154,12 +154,12 @@ pub(super) fn tiles_fill<S: Scalar>(
     }))
 }
 
-/// Fills the pixels `rows × columns` of a block over columns `x` and rows `y` (its
-/// corners', first and last inclusive; `rows × columns` lie between them) as `how` says: each pixel the bilinear interpolation of four corner colours
-/// (rounded to nearest), in a tiled block those of the pixel's tile's material. Along a
-/// row the interpolation is affine: each channel steps by one addition a pixel, and so
-/// does each tile edge's side ([`EdgeSteps`]), in integers where the format's sums and
-/// products are exact.
+/// Fills pixels `rows × columns` of a block over columns `x`, rows `y` (its corners',
+/// inclusive; `rows × columns` lie within) as `how` says: each pixel the bilinear
+/// interpolation of four corner colours (rounded to nearest), in a tiled block those of
+/// the pixel's tile's material. Along a row the interpolation is affine: each channel
+/// steps by one addition a pixel, and so does each tile edge's side ([`EdgeSteps`]), in
+/// integers where the format's sums and products are exact.
 pub(super) fn fill<S: Scalar, C: From<Rgb888>>(
     (how, x, y): (&Fill<S>, (u16, u16), (u16, u16)),
     (rows, columns): (Range<u16>, Range<u16>),
