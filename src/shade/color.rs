@@ -123,10 +123,29 @@ impl Depth {
             if max == u8::MAX {
                 return u32::from(v);
             }
-            // `embedded-graphics`' conversion: `v·(max·2²⁴/255)`, rounded off its 24 bits.
-            let scale = (u32::from(max) << 24) / 255;
+            // `embedded-graphics`' conversion: `v·⌊max·2²⁴/255⌋`, rounded off its 24 bits.
+            // `2²⁴ = 255·65_793 + 1`, so `⌊max·2²⁴/255⌋ = max·65_793 + ⌊max/255⌋`, which
+            // is `max·65_793` for `max < 255`: a product, not a division a pixel.
+            let scale = u32::from(max) * SCALE_PER_MAX;
             (u32::from(v) * scale + (1 << 23)) >> 24
         };
         (c(pixel.r(), r) << 16) | (c(pixel.g(), g) << 8) | c(pixel.b(), b)
+    }
+}
+
+/// `⌊2²⁴/255⌋`: a depth channel's scale per unit of its largest value ([`Depth::key`]).
+const SCALE_PER_MAX: u32 = (1 << 24) / 255;
+
+#[cfg(test)]
+mod tests {
+    use super::SCALE_PER_MAX;
+
+    /// The scale as a product is the quotient `embedded-graphics` forms, for every
+    /// channel's largest value below 255 (255 is the identity, not scaled).
+    #[test]
+    fn the_scale_is_the_quotient() {
+        for max in 0..255u32 {
+            assert_eq!(max * SCALE_PER_MAX, (max << 24) / 255, "{max}");
+        }
     }
 }
