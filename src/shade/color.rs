@@ -72,6 +72,9 @@ pub(crate) fn term<S: Scalar>(factors: [S; 3]) -> S {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Depth {
     max: [u8; 3],
+    /// Each channel's scale ([`Depth::key`]): `⌊max·2²⁴/255⌋`, and `2²⁴` where `max`
+    /// is 255 (the channel itself).
+    scale: [u32; 3],
 }
 
 impl Default for Depth {
@@ -97,8 +100,18 @@ impl Depth {
         const fn one(v: u8) -> u8 {
             if v == 0 { 1 } else { v }
         }
+        const fn scale(max: u8) -> u32 {
+            if max == u8::MAX {
+                1 << 24
+            } else {
+                // `2²⁴ = 255·65_793 + 1`, so `⌊max·2²⁴/255⌋ = max·65_793` for `max < 255`.
+                max as u32 * SCALE_PER_MAX
+            }
+        }
+        let max = [one(red), one(green), one(blue)];
         Self {
-            max: [one(red), one(green), one(blue)],
+            max,
+            scale: [scale(max[0]), scale(max[1]), scale(max[2])],
         }
     }
 
@@ -118,17 +131,10 @@ impl Depth {
     /// each channel `round(v·max/255)`): two pixels have one key exactly where they
     /// convert to one colour. Each channel's part does not decrease as the channel grows.
     pub fn key(self, pixel: Rgb888) -> u32 {
-        let [r, g, b] = self.max;
-        let c = |v: u8, max: u8| -> u32 {
-            if max == u8::MAX {
-                return u32::from(v);
-            }
-            // `embedded-graphics`' conversion: `v·⌊max·2²⁴/255⌋`, rounded off its 24 bits.
-            // `2²⁴ = 255·65_793 + 1`, so `⌊max·2²⁴/255⌋ = max·65_793 + ⌊max/255⌋`, which
-            // is `max·65_793` for `max < 255`: a product, not a division a pixel.
-            let scale = u32::from(max) * SCALE_PER_MAX;
-            (u32::from(v) * scale + (1 << 23)) >> 24
-        };
+        // `embedded-graphics`' conversion: `v·⌊max·2²⁴/255⌋`, rounded off its 24 bits;
+        // with a scale of `2²⁴` (`max` 255) that is `v` itself (`255·2²⁴ + 2²³ < 2³²`).
+        let [r, g, b] = self.scale;
+        let c = |v: u8, scale: u32| -> u32 { (u32::from(v) * scale + (1 << 23)) >> 24 };
         (c(pixel.r(), r) << 16) | (c(pixel.g(), g) << 8) | c(pixel.b(), b)
     }
 }
@@ -146,6 +152,17 @@ mod tests {
     fn the_scale_is_the_quotient() {
         for max in 0..255u32 {
             assert_eq!(max * SCALE_PER_MAX, (max << 24) / 255, "{max}");
+        }
+    }
+
+    /// A channel of largest value 255 keys as itself.
+    #[test]
+    fn the_exact_depths_key_is_the_pixel() {
+        let depth = super::Depth::RGB888;
+        for v in 0..=255u8 {
+            let pixel = super::Rgb888::new(v, 255 - v, v / 2);
+            let key = u32::from(v) << 16 | u32::from(255 - v) << 8 | u32::from(v / 2);
+            assert_eq!(depth.key(pixel), key);
         }
     }
 }
