@@ -204,6 +204,22 @@ impl<S: Scalar> ShadowCone<S> {
         // s = −l·u ≤ 0: the nearest point of the segment to the centre is the light.
         lu >= S::ZERO || S::cmp_products(lu, lu, ll, self.k) == Some(core::cmp::Ordering::Less)
     }
+
+    /// Whether the cone among `cones` of light `light` and object `object`, if there is
+    /// one, clears the segment `(l, ll)` ([`ShadowCone::clears`]): where it does, that
+    /// sphere's exact segment test finds the segment clear, and need not be taken.
+    #[inline(always)]
+    pub(crate) fn any_clears(
+        cones: &[Self],
+        light: usize,
+        object: usize,
+        l: Vec3<S>,
+        ll: S,
+    ) -> bool {
+        cones.iter().any(|c| {
+            usize::from(c.light) == light && usize::from(c.object) == object && c.clears(l, ll)
+        })
+    }
 }
 
 /// A [`ShadowCone`] on one scanline whose hits share `l.y` and `l.z`

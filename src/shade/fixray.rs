@@ -16,7 +16,7 @@ use super::light::{Lit, Passage, light_with, spared};
 use super::rules::{Fixray, RuleSet, Tracer};
 use super::stages::{LightStages, Stages};
 use super::{Incoming, MAX_REFLECTION_DEPTH, PlaneSides, Traced, surface};
-use crate::geometry::{sides_differ, surface_tolerance};
+use crate::geometry::{ShadowCone, sides_differ, surface_tolerance};
 use crate::scene::PixelRay;
 use crate::stats::{Counters, count};
 use crate::{
@@ -254,9 +254,7 @@ pub(crate) fn occluded_among<S: Scalar>(
             at_light.get(i)?,
         );
         let maybe = match o.shape {
-            Shape::Sphere(_) => !sides.cones.iter().any(|c| {
-                usize::from(c.light) == j && usize::from(c.object) == i && c.clears(l, ll)
-            }),
+            Shape::Sphere(_) => !ShadowCone::any_clears(sides.cones, j, i, l, ll),
             // Both ends on one side of the plane (or one on it): no crossing, as
             // `crossing_of_sides` decides first (here without the calls).
             Shape::Plane(_)

@@ -5,8 +5,9 @@
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::{FACES_AWAY, LIGHTS};
-use crate::geometry::{Tiling, surface_tolerance};
+use crate::geometry::{ShadowCone, Tiling, surface_tolerance};
 use crate::kernel::fast::Primary;
+use crate::kernel::shading::segment_tolerance;
 use crate::shade::color::to_pixel;
 use crate::shade::nearest;
 use crate::shade::rules::Fixray;
@@ -71,8 +72,7 @@ pub(super) fn corner<S: Scalar>(
             return background;
         };
         let eye = scene.camera.viewpoint;
-        let m = eye.max_abs().max(h.point.max_abs());
-        return surface_tolerance(h.t_bound, m)
+        return segment_tolerance(eye, h.point, h.t_bound, None)
             .and_then(|tol| plane_seen(scene, primary, h.index, h.point, tol))
             .unwrap_or(other);
     }
@@ -134,12 +134,10 @@ fn plane_seen<S: Scalar>(
         }
         let ll = l.dot(l)?;
         for (k, o) in scene.objects.iter().enumerate() {
-            let cleared = || {
-                cones.iter().any(|c| {
-                    usize::from(c.light) == j && usize::from(c.object) == k && c.clears(l, ll)
-                })
-            };
-            if k != index && !cleared() && o.shape.meets_segment(point, l, ll, tol, scene.epsilon) {
+            if k != index
+                && !ShadowCone::any_clears(cones, j, k, l, ll)
+                && o.shape.meets_segment(point, l, ll, tol, scene.epsilon)
+            {
                 *state |= 1 << k;
             }
         }

@@ -268,6 +268,9 @@ impl Rounding {
             Some(s) => v >> s,
             None => v / self.area,
         };
+        // The precondition above, checked where debug assertions are on (the tests'
+        // builds): the cast keeps the quotient itself.
+        debug_assert!((0..=255).contains(&q), "a fill's channel {q} out of 0..=255");
         q as u8
     }
 
