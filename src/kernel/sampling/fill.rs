@@ -165,17 +165,37 @@ pub(super) fn fill<S: Scalar, C: From<Rgb888>>(
     (rows, columns): (Range<u16>, Range<u16>),
     (out, stride, origin): (&mut [C], usize, (u16, u16)),
 ) {
-    use embedded_graphics_core::pixelcolor::RgbColor;
     let w = i32::from(x.1 - x.0).max(1);
     let h = i32::from(y.1 - y.0).max(1);
-    let round = Rounding::new(w * h);
+    let area = w * h;
+    // One loop per way of rounding, chosen once a block: a whole block's area is a
+    // power of two.
+    let at = (how, (w, h), (x.0, y.0));
+    let pixels = (rows, columns);
+    let out = (out, stride, origin);
+    if area.count_ones() == 1 {
+        fill_rounded(at, pixels, out, Shift(area.trailing_zeros(), area / 2));
+    } else {
+        fill_rounded(at, pixels, out, Divide(area));
+    }
+}
+
+/// [`fill`] with the block's rounding `round`.
+#[inline(always)]
+fn fill_rounded<S: Scalar, C: From<Rgb888>, R: Round>(
+    (how, (w, h), (x0, y0)): (&Fill<S>, (i32, i32), (u16, u16)),
+    (rows, columns): (Range<u16>, Range<u16>),
+    (out, stride, origin): (&mut [C], usize, (u16, u16)),
+    round: R,
+) {
+    use embedded_graphics_core::pixelcolor::RgbColor;
     let channels = |c: Rgb888| [i32::from(c.r()), i32::from(c.g()), i32::from(c.b())];
-    let u0 = i32::from(columns.start - x.0);
+    let u0 = i32::from(columns.start - x0);
     // A tiled block's edges on the row before (its `v`), stepped a row by an addition
     // where the format's sums are exact (the same values as `row_edges`).
     let mut before: Option<(i32, RowEdges<S>)> = None;
     for r in rows {
-        let v = i32::from(r - y.0).min(h);
+        let v = i32::from(r - y0).min(h);
         let row = usize::from(r - origin.0) * stride;
         // The row's pixels that `out` holds.
         let Some(line) = out.get_mut(row + usize::from(columns.start - origin.1)..) else {
@@ -188,7 +208,7 @@ pub(super) fn fill<S: Scalar, C: From<Rgb888>>(
                 let (mut value, step) = row_start(&colors.map(channels), (v, h), (u0, w));
                 value = value.map(|c| c + round.half());
                 for p in line.iter_mut() {
-                    *p = round.pixel(value);
+                    *p = pixel(round, value);
                     for (a, b) in value.iter_mut().zip(step) {
                         *a += b;
                     }
@@ -209,21 +229,57 @@ pub(super) fn fill<S: Scalar, C: From<Rgb888>>(
                 if S::EXACT_SUMS {
                     before = Some((v, edges));
                 }
-                let mut stepped = EdgeSteps::new(t, &edges, (u0, w));
-                for (k, p) in (0i32..).zip(line.iter_mut()) {
-                    let odd = match stepped.as_mut() {
-                        Some(s) => s.next_odd(),
-                        None => t.odd(&edges, u0 + k, w),
-                    };
-                    let (start, step) = &starts[usize::from(odd)];
-                    *p = round.pixel([
-                        start[0] + k * step[0],
-                        start[1] + k * step[1],
-                        start[2] + k * step[2],
-                    ]);
+                // One loop for the stepped sides and one for `odd`'s products, chosen
+                // once a row (both in one loop would not stay in registers either).
+                match EdgeSteps::new(t, &edges, (u0, w)) {
+                    Some(mut stepped) => tiles_row(line, &starts, round, |_| stepped.next_odd()),
+                    None => tiles_row(line, &starts, round, |k| t.odd(&edges, u0 + k, w)),
                 }
             }
         }
+    }
+}
+
+/// A tiled block's row: pixel `k` of `line` is `start + k·step` of the colour set
+/// (`starts`: the plane's material's, the alternate's) `odd(k)` picks, rounded. The
+/// sets are drawn one after the other, each over its own columns (a block's row, of at
+/// most 32: each column's set a bit of one word), so that one set's values are read at
+/// a time; a longer row is drawn in pieces of 32.
+#[inline(always)]
+fn tiles_row<C: From<Rgb888>, R: Round>(
+    line: &mut [C],
+    starts: &[([i32; 3], [i32; 3]); 2],
+    round: R,
+    mut odd: impl FnMut(i32) -> bool,
+) {
+    let mut first = 0i32;
+    for piece in line.chunks_mut(32) {
+        let mut odds = 0u32;
+        for bit in 0..piece.len() {
+            odds |= u32::from(odd(first + bit as i32)) << bit;
+        }
+        // The columns of the piece: its low `len` bits (`len` in 1..=32).
+        let all = u32::MAX >> (32 - piece.len());
+        for (mine, (start, step)) in [all & !odds, odds].into_iter().zip(starts) {
+            let mut mine = mine;
+            while mine != 0 {
+                let bit = mine.trailing_zeros();
+                mine &= mine - 1;
+                let Some(p) = piece.get_mut(bit as usize) else {
+                    break;
+                };
+                let k = first + bit as i32;
+                *p = pixel(
+                    round,
+                    [
+                        start[0] + k * step[0],
+                        start[1] + k * step[1],
+                        start[2] + k * step[2],
+                    ],
+                );
+            }
+        }
+        first += 32;
     }
 }
 
@@ -242,52 +298,68 @@ fn row_start(set: &[[i32; 3]; 4], (v, h): (i32, i32), (u0, w): (i32, i32)) -> ([
     (value, step)
 }
 
-/// Rounding an interpolated channel (times the block's area) to a pixel value: to
-/// nearest, by a shift where the area is a power of two (a whole block).
-#[derive(Clone, Copy)]
-struct Rounding {
-    area: i32,
-    shift: Option<u32>,
+/// Rounding an interpolated channel (times the block's area) to a pixel value, to
+/// nearest: by a shift where the area is a power of two (a whole block), else by a
+/// division. A channel's value `v` (times the area, plus half the area:
+/// [`Round::half`]) lies in `0..=255·area + area/2` (the interpolation of values in
+/// `0..=255` at a point of the block, a weighted mean), so the quotient is in `0..=255`.
+trait Round: Copy {
+    /// `v` rounded: its quotient by the area.
+    fn quotient(self, v: i32) -> i32;
+    /// Half the area, added once to a row's start values so that the quotient rounds
+    /// to nearest.
+    fn half(self) -> i32;
 }
 
-impl Rounding {
-    fn new(area: i32) -> Self {
-        Self {
-            area,
-            shift: (area.count_ones() == 1).then(|| area.trailing_zeros()),
-        }
-    }
+/// The rounding of an area `2^shift` (and its half).
+#[derive(Clone, Copy)]
+struct Shift(u32, i32);
 
-    /// A channel's value `v` (times the area, plus half the area: [`Rounding::half`])
-    /// rounded. `v` lies in `0..=255·area + area/2` (the interpolation of values in
-    /// `0..=255` at a point of the block, a weighted mean), so the quotient is in
-    /// `0..=255`.
+/// The rounding of any other area.
+#[derive(Clone, Copy)]
+struct Divide(i32);
+
+impl Round for Shift {
     #[inline(always)]
-    fn channel(self, v: i32) -> u8 {
-        let q = match self.shift {
-            Some(s) => v >> s,
-            None => v / self.area,
-        };
-        // The precondition above, checked where debug assertions are on (the tests'
-        // builds): the cast keeps the quotient itself.
-        debug_assert!((0..=255).contains(&q), "a fill's channel {q} out of 0..=255");
-        q as u8
+    fn quotient(self, v: i32) -> i32 {
+        v >> self.0
     }
-
-    /// Half the area, added once to a row's start values so that [`Rounding::channel`]
-    /// rounds to nearest.
     fn half(self) -> i32 {
-        self.area / 2
+        self.1
     }
+}
 
+impl Round for Divide {
     #[inline(always)]
-    fn pixel<C: From<Rgb888>>(self, value: [i32; 3]) -> C {
-        C::from(Rgb888::new(
-            self.channel(value[0]),
-            self.channel(value[1]),
-            self.channel(value[2]),
-        ))
+    fn quotient(self, v: i32) -> i32 {
+        v / self.0
     }
+    fn half(self) -> i32 {
+        self.0 / 2
+    }
+}
+
+/// A channel rounded ([`Round`]).
+#[inline(always)]
+fn channel(round: impl Round, v: i32) -> u8 {
+    let q = round.quotient(v);
+    // The precondition, checked where debug assertions are on (the tests' builds): the
+    // cast keeps the quotient itself.
+    debug_assert!(
+        (0..=255).contains(&q),
+        "a fill's channel {q} out of 0..=255"
+    );
+    q as u8
+}
+
+/// A pixel of three interpolated channels, rounded ([`Round`]).
+#[inline(always)]
+fn pixel<C: From<Rgb888>>(round: impl Round, value: [i32; 3]) -> C {
+    C::from(Rgb888::new(
+        channel(round, value[0]),
+        channel(round, value[1]),
+        channel(round, value[2]),
+    ))
 }
 
 /// A tiled block's row, its tile edges' sides stepped column by column: what
@@ -304,6 +376,7 @@ struct EdgeSteps<S> {
 }
 
 impl<S: Scalar> EdgeSteps<S> {
+    #[inline(always)]
     fn new(t: &Tiles<S>, edges: &RowEdges<S>, (u0, w): (i32, i32)) -> Option<Self> {
         if !(S::EXACT_SUMS && S::EXACT_PRODUCTS) {
             return None;
@@ -436,135 +509,4 @@ impl<S: Scalar> Tiles<S> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::num::Rng;
-    use fixed::types::{I16F16, I20F12};
-
-    /// A whole number in `0..n` from the tests' seeded sequence.
-    fn below(rng: &mut Rng, n: u32) -> i32 {
-        i32::try_from(rng.below(n)).unwrap_or(0)
-    }
-
-    /// The fill as it is defined, pixel by pixel: each pixel's bilinear value from the
-    /// four corners, its tile from [`Tiles::odd`] (two products a column).
-    fn fill_by_pixel<S: Scalar>(
-        how: &Fill<S>,
-        (x, y): ((u16, u16), (u16, u16)),
-        (rows, columns): (Range<u16>, Range<u16>),
-    ) -> Vec<Rgb888> {
-        use embedded_graphics_core::pixelcolor::RgbColor;
-        let w = i32::from(x.1 - x.0).max(1);
-        let h = i32::from(y.1 - y.0).max(1);
-        let area = w * h;
-        let channels = |c: Rgb888| [i32::from(c.r()), i32::from(c.g()), i32::from(c.b())];
-        let sets = match how {
-            Fill::Smooth(colors) => [colors.map(channels); 2],
-            Fill::Tiles(t) => t.colors.map(|set| set.map(channels)),
-        };
-        let mut out = Vec::new();
-        for r in rows {
-            let v = i32::from(r - y.0).min(h);
-            let edges = match how {
-                Fill::Tiles(t) => Some((t, t.row_edges(v, h))),
-                Fill::Smooth(_) => None,
-            };
-            for col in columns.clone() {
-                let u = i32::from(col - x.0);
-                let set = match &edges {
-                    Some((t, e)) if t.odd(e, u, w) => &sets[1],
-                    _ => &sets[0],
-                };
-                let c = [0, 1, 2].map(|i| {
-                    let value = set[0][i] * (h - v) * (w - u)
-                        + set[1][i] * (h - v) * u
-                        + set[2][i] * v * (w - u)
-                        + set[3][i] * v * u;
-                    let q = (value + area / 2).div_euclid(area);
-                    u8::try_from(q.clamp(0, 255)).unwrap_or(u8::MAX)
-                });
-                out.push(Rgb888::new(c[0], c[1], c[2]));
-            }
-        }
-        out
-    }
-
-    fn corners(rng: &mut Rng) -> [Rgb888; 4] {
-        [0; 4].map(|_: i32| {
-            let mut c = || u8::try_from(rng.next() % 256).unwrap_or(0);
-            Rgb888::new(c(), c(), c())
-        })
-    }
-
-    /// Four corner sides within `±limit`, some of either sign.
-    fn sides<S: Scalar>(rng: &mut Rng, limit: f64) -> [S; 4] {
-        [0; 4].map(|_: i32| {
-            let f = (rng.next() % 2001) as f64 / 1000.0 - 1.0;
-            S::from_f64(f * limit * 0.999).unwrap_or(S::ZERO)
-        })
-    }
-
-    /// Seeded blocks, smooth and tiled (crossing one tile edge or two, either sign of
-    /// `β`, sides within the bound `tiles_fill` certifies), whole and in part: [`fill`]
-    /// (stepped colours, stepped tile sides) draws what [`fill_by_pixel`] draws, bit for
-    /// bit, in each fixed format.
-    fn fills_are_the_pixels_definition<S: Scalar>(seed: u64) {
-        let mut rng = Rng(seed);
-        let mut tiled = 0;
-        for _ in 0..4000 {
-            let (w, h) = (1 + below(&mut rng, 8), 1 + below(&mut rng, 8));
-            let (x0, y0) = (u16::try_from(below(&mut rng, 50)).unwrap_or(0), 3u16);
-            let x = (x0, x0 + u16::try_from(w).unwrap_or(1));
-            let y = (y0, y0 + u16::try_from(h).unwrap_or(1));
-            let how = if rng.next().is_multiple_of(4) {
-                Fill::Smooth(corners(&mut rng))
-            } else {
-                tiled += 1;
-                // Corner sides up to the largest whose `4·w·h` multiple fits the format.
-                let limit = S::MAX.to_f64().min(1e30) / f64::from(4 * w * h);
-                let edges = match rng.next() % 3 {
-                    0 => [Some(sides::<S>(&mut rng, limit)), None],
-                    1 => [None, Some(sides::<S>(&mut rng, limit))],
-                    _ => [
-                        Some(sides::<S>(&mut rng, limit)),
-                        Some(sides::<S>(&mut rng, limit)),
-                    ],
-                };
-                Fill::Tiles(Tiles {
-                    colors: [corners(&mut rng), corners(&mut rng)],
-                    edges,
-                    first: (below(&mut rng, 9) - 4, below(&mut rng, 9) - 4),
-                    negative: rng.next().is_multiple_of(2),
-                })
-            };
-            // Whole, or some of its rows and columns.
-            let c0 = x.0 + u16::try_from(below(&mut rng, w.unsigned_abs())).unwrap_or(0);
-            let c1 = (c0 + 1 + u16::try_from(below(&mut rng, 9)).unwrap_or(0)).min(x.1 + 1);
-            let r0 = y.0 + u16::try_from(below(&mut rng, h.unsigned_abs())).unwrap_or(0);
-            let r1 = (r0 + 1 + u16::try_from(below(&mut rng, 9)).unwrap_or(0)).min(y.1 + 1);
-            let (rows, columns) = (r0..r1, c0..c1);
-            let want = fill_by_pixel(&how, (x, y), (rows.clone(), columns.clone()));
-            let stride = columns.len();
-            let mut got = vec![Rgb888::new(1, 2, 3); want.len()];
-            fill(
-                (&how, x, y),
-                (rows.clone(), columns.clone()),
-                (&mut got, stride, (rows.start, columns.start)),
-            );
-            assert_eq!(
-                got,
-                want,
-                "{} {how:?} {x:?} {y:?} {rows:?} {columns:?}",
-                S::NAME
-            );
-        }
-        assert!(tiled > 2000);
-    }
-
-    #[test]
-    fn a_fill_is_its_pixels_by_definition() {
-        fills_are_the_pixels_definition::<I16F16>(0x5EED_F111_0001);
-        fills_are_the_pixels_definition::<I20F12>(0x5EED_F111_0002);
-        fills_are_the_pixels_definition::<f32>(0x5EED_F111_0003);
-    }
-}
+mod tests;
