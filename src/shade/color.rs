@@ -155,6 +155,24 @@ mod tests {
         }
     }
 
+    /// Every depth's key is `embedded-graphics`' formula, its quotient included, for
+    /// every channel value and every largest value of a channel.
+    #[test]
+    fn a_key_is_the_formula_with_its_quotient() {
+        for max in 1..=255u8 {
+            let depth = super::Depth::new(max, max, max);
+            for v in 0..=255u8 {
+                let c = if max == u8::MAX {
+                    u32::from(v)
+                } else {
+                    (u32::from(v) * ((u32::from(max) << 24) / 255) + (1 << 23)) >> 24
+                };
+                let pixel = super::Rgb888::new(v, v, v);
+                assert_eq!(depth.key(pixel), c << 16 | c << 8 | c, "{max} {v}");
+            }
+        }
+    }
+
     /// A channel of largest value 255 keys as itself.
     #[test]
     fn the_exact_depths_key_is_the_pixel() {

@@ -70,14 +70,13 @@ fn sides<S: Scalar>(rng: &mut Rng, limit: f64) -> [S; 4] {
 
 /// Seeded blocks, smooth and tiled (crossing one tile edge or two, either sign of
 /// `β`, sides within the bound `tiles_fill` certifies; some wider than 32 columns),
-/// whole and in part: [`fill`]
-/// (stepped colours, stepped tile sides) draws what [`fill_by_pixel`] draws, bit for
-/// bit, in each fixed format.
+/// whole and in part: [`fill`] (stepped colours, stepped tile sides) draws what
+/// [`fill_by_pixel`] draws, bit for bit, in each fixed format.
 fn fills_are_the_pixels_definition<S: Scalar>(seed: u64) {
     let mut rng = Rng(seed);
     let mut tiled = 0;
     for _ in 0..4000 {
-        // Now and then a block wider than a word's bits (a tiled row's pieces).
+        // One block in 16 is wider than a word's bits (a tiled row's pieces).
         let wide = rng.next().is_multiple_of(16);
         let w = if wide {
             33 + below(&mut rng, 40)
