@@ -452,7 +452,7 @@ const fn frame_start(k: u16, whole: bool) -> u32 {
 fn core1() -> ! {
     // SAFETY: core 1 uses only its own side of the SIO (the FIFO); core 0 set up the rest.
     let pac = unsafe { pac::Peripherals::steal() };
-    let mut fifo = Sio::new(pac.SIO).fifo;
+    let fifo = Sio::new(pac.SIO).fifo;
     let (mut scene, mut shown) = (Scene::<I16F16>::empty(), Scene::<I16F16>::empty());
     // Core 0 loaded the same text without error before it started this core.
     let (Ok(bounce), Ok(_)) = (load(&mut scene), load(&mut shown)) else {
@@ -460,43 +460,98 @@ fn core1() -> ! {
             cortex_m::asm::wfi();
         }
     };
-    let mut free = 2;
-    loop {
-        let message = loop {
-            match fifo.read_blocking() {
-                FREED => free += 1,
-                message => break message,
-            }
-        };
-        let (k, whole) = ((message & 0xffff) as u16, message >> 16 != 0);
-        // Every slot sent in the last frame was freed before this frame's number (the
-        // FIFO keeps order): each frame starts with both slots free, from slot 2.
-        let mut slot = 2;
-        // `load` placed every frame of the loop.
-        let _ = bounce.apply(&mut scene, k);
-        let _ = bounce.apply(&mut shown, k.checked_sub(1).unwrap_or(bounce.frames() - 1));
-        let frame = panel_frame(&scene);
-        let before = (CHANGES_ONLY && !whole).then(|| Frame::new(&shown));
-        let (width, height) = (scene.camera.width, scene.camera.height);
-        let send = columns_to_send(&frame, before.as_ref(), width);
-        for row in rows::rows_of(1, 2, height) {
-            let Some(columns) = send(row) else {
-                continue;
-            };
-            while free == 0 {
-                if fifo.read_blocking() == FREED {
-                    free += 1;
+    let (width, height) = (scene.camera.width, scene.camera.height);
+    // Core 1's side of the FIFO, and how many of its two slots are free.
+    let mut state = (fifo, 2u32);
+    let mut last = None;
+    in_turn(
+        &bounce,
+        (&mut scene, &mut shown),
+        &mut state,
+        |(fifo, free)| {
+            let message = loop {
+                match fifo.read_blocking() {
+                    FREED => *free += 1,
+                    message => break message,
                 }
+            };
+            let (k, whole) = ((message & 0xffff) as u16, message >> 16 != 0);
+            // Core 0 starts its frames in order: another would be a broken protocol,
+            // which stops the board rather than draw it.
+            assert!(
+                whole || last.map(|j| next_frame(&bounce, j)) == Some(k),
+                "core 0's frames arrive in order"
+            );
+            last = Some(k);
+            (k, whole, ())
+        },
+        |(fifo, free), (), frame, before| {
+            // Every slot sent in the last frame was freed before this frame's number (the
+            // FIFO keeps order): each frame starts with both slots free, from slot 2.
+            let mut slot = 2;
+            let send = columns_to_send(frame, before, width);
+            for row in rows::rows_of(1, 2, height) {
+                let Some(columns) = send(row) else {
+                    continue;
+                };
+                while *free == 0 {
+                    if fifo.read_blocking() == FREED {
+                        *free += 1;
+                    }
+                }
+                *free -= 1;
+                // SAFETY: slots 2 and 3 are core 1's, used in turn; core 0 sends them in
+                // the order they are drawn, so the one `free` counted is this one.
+                draw_row(frame, row, columns, unsafe { &mut *line(slot) });
+                compiler_fence(Ordering::Release);
+                cortex_m::asm::dmb();
+                fifo.write_blocking(row_drawn(row, slot));
+                slot ^= 1;
             }
-            free -= 1;
-            // SAFETY: slots 2 and 3 are core 1's, used in turn; core 0 sends them in the
-            // order they are drawn, so the one `free` counted is this one.
-            draw_row(&frame, row, columns, unsafe { &mut *line(slot) });
-            compiler_fence(Ordering::Release);
-            cortex_m::asm::dmb();
-            fifo.write_blocking(row_drawn(row, slot));
-            slot ^= 1;
-        }
+        },
+    )
+}
+
+/// The bounce's frame after frame `k` (the loop closes).
+fn next_frame(bounce: &Bounce<I16F16>, k: u16) -> u16 {
+    if k + 1 >= bounce.frames() { 0 } else { k + 1 }
+}
+
+/// Draws the bounce's frames in the order `start` gives them, forever, on the two scenes
+/// `a` and `b` in turn. `start(ctx)` gives the next frame's number, whether it is drawn
+/// whole (with no frame shown before it) and what `draw` needs of its start; `draw(ctx,
+/// started, frame, before)` draws it, with the frame shown before it. That frame is the
+/// one drawn last, kept with its per-frame part, not formed again from a scene moved one
+/// frame behind; it is given where the frame is not whole and comes right after it (a
+/// `start` out of order draws the frame whole).
+fn in_turn<C, T>(
+    bounce: &Bounce<I16F16>,
+    (a, b): (&mut Scene<I16F16>, &mut Scene<I16F16>),
+    ctx: &mut C,
+    mut start: impl FnMut(&mut C) -> (u16, bool, T),
+    mut draw: impl FnMut(&mut C, T, &Frame<'_, I16F16, Rgb565>, Option<&Frame<'_, I16F16, Rgb565>>),
+) -> ! {
+    let follows = |last: &Option<(u16, Frame<'_, I16F16, Rgb565>)>, k: u16, whole: bool| {
+        !whole
+            && last
+                .as_ref()
+                .is_some_and(|(j, _)| next_frame(bounce, *j) == k)
+    };
+    // The frame drawn last (of `b`), with its number.
+    let mut kept = None;
+    loop {
+        let (k, whole, started) = start(ctx);
+        // `load` placed every frame of the loop.
+        let _ = bounce.apply(a, k);
+        let frame = panel_frame(a);
+        let before = kept.as_ref().filter(|_| follows(&kept, k, whole));
+        draw(ctx, started, &frame, before.map(|(_, f)| f));
+        let (j, whole, started) = start(ctx);
+        let _ = bounce.apply(b, j);
+        let next = panel_frame(b);
+        let before = (!whole && next_frame(bounce, k) == j).then_some(&frame);
+        draw(ctx, started, &next, before);
+        kept = Some((j, next));
     }
 }
 
@@ -670,32 +725,27 @@ fn main() -> ! {
     // The frame shown before: its scene, moved with `scene` one frame behind.
     let mut shown = Scene::<I16F16>::empty();
     let _ = load(&mut shown);
+    let mut k = 0;
     let mut first = true;
-    loop {
-        for k in 0..bounce.frames() {
-            let start = timer.get_counter();
-            // The sphere moves in the parsed scene (no re-parsing); `load` placed every
-            // frame of the loop.
-            let _ = bounce.apply(&mut scene, k);
-            let _ = bounce.apply(&mut shown, k.checked_sub(1).unwrap_or(bounce.frames() - 1));
+    let mut ctx = (panel, sio.fifo, serial);
+    in_turn(
+        &bounce,
+        (&mut scene, &mut shown),
+        &mut ctx,
+        |(_, fifo, _)| {
+            let started = (k, timer.get_counter());
             if cores == 2 {
-                sio.fifo.write_blocking(frame_start(k, first));
+                fifo.write_blocking(frame_start(k, first));
             }
-            // What is constant for the frame is computed once, then line by line.
-            let frame = panel_frame(&scene);
-            let before = (CHANGES_ONLY && !first).then(|| Frame::new(&shown));
-            let pixels = draw_frame(
-                &frame,
-                before.as_ref(),
-                (width, height),
-                (x, y),
-                cores,
-                &mut panel,
-                &mut sio.fifo,
-            );
+            let whole = first;
             first = false;
+            k = next_frame(&bounce, k);
+            (started.0, whole, started)
+        },
+        |(panel, fifo, serial), (k, start), frame, before| {
+            let pixels = draw_frame(frame, before, (width, height), (x, y), cores, panel, fifo);
             let us = (timer.get_counter() - start).to_micros();
             let _ = write!(serial, "frame={k} us={us} pixels={pixels}\r\n");
-        }
-    }
+        },
+    )
 }
