@@ -144,17 +144,6 @@ const SCALE_PER_MAX: u32 = (1 << 24) / 255;
 
 #[cfg(test)]
 mod tests {
-    use super::SCALE_PER_MAX;
-
-    /// The scale as a product is the quotient `embedded-graphics` forms, for every
-    /// channel's largest value below 255 (255 is the identity, not scaled).
-    #[test]
-    fn the_scale_is_the_quotient() {
-        for max in 0..255u32 {
-            assert_eq!(max * SCALE_PER_MAX, (max << 24) / 255, "{max}");
-        }
-    }
-
     /// Every depth's key is `embedded-graphics`' formula, its quotient included, for
     /// every channel value and every largest value of a channel.
     #[test]

@@ -260,8 +260,7 @@ fn tiles_row<C: From<Rgb888>, R: Round>(
         }
         // The columns of the piece: its low `len` bits (`len` in 1..=32).
         let all = u32::MAX >> (32 - piece.len());
-        for (mine, (start, step)) in [all & !odds, odds].into_iter().zip(starts) {
-            let mut mine = mine;
+        for (mut mine, (start, step)) in [all & !odds, odds].into_iter().zip(starts) {
             while mine != 0 {
                 let bit = mine.trailing_zeros();
                 mine &= mine - 1;
