@@ -139,21 +139,26 @@ impl<S: Scalar> ShadowCone<S> {
     /// sphere: an interval of `s` holding every such point. `Some(None)`: no point of the
     /// line; `None`: the interval is unbounded or a quantity leaves the format.
     ///
-    /// The interval holds the points whose line to the light passes within `r·√(3/2)` of
-    /// the centre (wider than the `r·√(9/8)` outside which [`ShadowCone::clears`]
-    /// certifies a point clear) and those nearer the light than half the centre's
-    /// distance, which take the exact test. With `B = wy·u.y + wz·u.z`, `m = wy² + wz²`
-    /// and `K = |u|² − (3/2)r²`, the first are `(s·u.x + B)² ≥ K(s² + m)`: with
-    /// `A = u.x² − K < 0`, between the roots `s = (−u.x·B ± √K·√(B² + A·m))/A`; the
+    /// The interval holds the points whose line to the light passes within `r·√(5/4)` of
+    /// the centre and those nearer the light than half the centre's distance, which take
+    /// the exact test. The cone of `r·√(5/4)` holds the one of `r·√(9/8)` outside which
+    /// [`ShadowCone::clears`] certifies a point clear with a margin of `r²/8 ≥ 512 DELTA`
+    /// in squared distance from the centre: the margin `clears` keeps over the sphere
+    /// itself, far more than its comparison's rounding. With `B = wy·u.y + wz·u.z`,
+    /// `m = wy² + wz²` and `K = |u|² − (5/4)r²`, the first are `(s·u.x + B)² ≥ K(s² + m)`:
+    /// with `A = u.x² − K < 0`, between the roots `s = (−u.x·B ± √K·√(B² + A·m))/A`; the
     /// second are `s² < |u|²/4 − m`. Their hull is widened by `(|s| + 1)/64` at each end,
     /// far more than this computation's roundings (a few `DELTA` on quantities of the
-    /// scene's size); `A` must be below `−r²/4`, so that the cone of `r·√(9/8)`, whose `A`
-    /// is `3r²/8` lower, is bounded on the line by a clear margin.
+    /// scene's size). Where the cone of `r·√(9/8)` meets the line, the discriminant
+    /// `B² + A·m` is at least `r²·m/8` (the two cones' `A` differ by `r²/8`), so its root
+    /// is not taken near zero, where a rounding would move it most; `A` must be below
+    /// `−r²/4`, so that the cone of `r·√(9/8)`, whose `A` is `r²/8` lower, is bounded on
+    /// the line by a clear margin.
     pub(crate) fn shadow_span(&self, wy: S, wz: S) -> Option<Option<(S, S)>> {
         let u = self.u;
         let uu = u.dot(u)?;
         let rr = self.rr;
-        let k = uu.checked_sub(rr.mul_ratio(3, 2)?)?;
+        let k = uu.checked_sub(rr.mul_ratio(5, 4)?)?;
         let a = u.x.checked_mul(u.x)?.checked_sub(k)?;
         if k <= S::ZERO || a >= rr.mul_ratio(-1, 4)? {
             return None;

@@ -14,7 +14,7 @@
 //! meet a sphere, in one frame or the other. A hit outside the sphere's shadow cone
 //! widened to `r·√(9/8)` is one the exact test finds clear (`ShadowCone::clears`), and
 //! the row's hits lie on one line: `ShadowCone::shadow_span` bounds the part of the line
-//! within an even wider cone, `r·√(3/2)`, and its columns are found from the row's `t'`,
+//! within a wider cone, `r·√(5/4)`, and its columns are found from the row's `t'`,
 //! two more on each side for the hits' roundings. Any other row may change anywhere.
 
 use core::ops::Range;
