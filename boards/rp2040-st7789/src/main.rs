@@ -125,7 +125,7 @@ use core::fmt::{self, Write};
 use core::ops::Range;
 use core::sync::atomic::{Ordering, compiler_fence};
 
-use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics_core::prelude::IntoStorage;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::MODE_3;
@@ -315,12 +315,12 @@ fn load(scene: &mut Scene<I16F16>) -> Result<Bounce<I16F16>, Failure> {
 /// ([`Frame::bands`], a band at a time), each band sent by DMA while the next is
 /// drawn. Returns the pixels sent.
 fn draw_bands(
-    frame: &Frame<'_, I16F16, Rgb565>,
+    frame: &Frame<'_, I16F16, Rgb888>,
     (width, height): (u16, u16),
     (x, y): (u16, u16),
     panel: &mut Panel,
 ) -> u32 {
-    let mut pixels = [Rgb565::BLACK; BAND as usize * PANEL_WIDTH as usize];
+    let mut pixels = [Rgb888::BLACK; BAND as usize * PANEL_WIDTH as usize];
     let mut slot = 0;
     let mut sent = 0;
     // Each band's bottom corners are the next band's top ones: traced once.
@@ -330,10 +330,7 @@ fn draw_bands(
         let n = usize::from(rows) * usize::from(width);
         bands.render_rows(top..top + rows, &mut pixels[..n]);
         // SAFETY: the band in flight is the previous one, from the other slot.
-        let bytes = unsafe { &mut *band(slot) };
-        for (pair, pixel) in bytes.chunks_exact_mut(2).zip(&pixels[..n]) {
-            pair.copy_from_slice(&pixel.into_storage().to_be_bytes());
-        }
+        to_panel(&pixels[..n], unsafe { &mut *band(slot) });
         // SAFETY: the slot is drawn and is read by this one transfer until the next band's
         // `send_rows` has waited for it.
         let band: &'static [u8] = unsafe { &(&*band(slot))[..2 * n] };
@@ -348,25 +345,41 @@ fn draw_bands(
 /// Draws `columns` of row `row` of `frame` into `line` as big-endian RGB565 (the panel's
 /// byte order); returns the bytes written.
 fn draw_row(
-    frame: &Frame<'_, I16F16, Rgb565>,
+    frame: &Frame<'_, I16F16, Rgb888>,
     row: u16,
     columns: Range<u16>,
     line: &mut Line,
 ) -> usize {
-    let mut pixels = [Rgb565::BLACK; PANEL_WIDTH as usize];
+    let mut pixels = [Rgb888::BLACK; PANEL_WIDTH as usize];
     let n = usize::from(columns.end - columns.start);
     frame.render_columns(row, columns, &mut pixels[..n]);
-    for (pair, pixel) in line.chunks_exact_mut(2).zip(&pixels[..n]) {
-        pair.copy_from_slice(&pixel.into_storage().to_be_bytes());
-    }
+    to_panel(&pixels[..n], line);
     2 * n
+}
+
+/// Writes `pixels` into `bytes` as big-endian RGB565 (the panel's byte order), each
+/// converted as `Rgb565::from` converts it, once for a run of one colour: the frame is
+/// exact in RGB565 (`panel_frame`), so runs of one colour are most of its pixels.
+fn to_panel(pixels: &[Rgb888], bytes: &mut [u8]) {
+    let mut last: Option<(Rgb888, [u8; 2])> = None;
+    for (pair, &pixel) in bytes.chunks_exact_mut(2).zip(pixels) {
+        let converted = match last {
+            Some((colour, converted)) if colour == pixel => converted,
+            _ => {
+                let converted = Rgb565::from(pixel).into_storage().to_be_bytes();
+                last = Some((pixel, converted));
+                converted
+            }
+        };
+        pair.copy_from_slice(&converted);
+    }
 }
 
 /// The columns of `row` a frame sends: every one, or with the frame shown before it
 /// (`before`) and [`CHANGES_ONLY`], those that may differ ([`fixray::Changes`]).
 fn columns_to_send<'f>(
-    frame: &'f Frame<'_, I16F16, Rgb565>,
-    before: Option<&'f Frame<'_, I16F16, Rgb565>>,
+    frame: &'f Frame<'_, I16F16, Rgb888>,
+    before: Option<&'f Frame<'_, I16F16, Rgb888>>,
     width: u16,
 ) -> impl Fn(u16) -> Option<Range<u16>> + 'f {
     let changes = before
@@ -383,8 +396,8 @@ fn columns_to_send<'f>(
 /// sends each row as [`row_drawn`] when the row is in one of its line buffers, and gets
 /// [`FREED`] back when that buffer has been sent). Returns the pixels sent.
 fn draw_frame(
-    frame: &Frame<'_, I16F16, Rgb565>,
-    before: Option<&Frame<'_, I16F16, Rgb565>>,
+    frame: &Frame<'_, I16F16, Rgb888>,
+    before: Option<&Frame<'_, I16F16, Rgb888>>,
     (width, height): (u16, u16),
     (x, y): (u16, u16),
     cores: u16,
@@ -529,9 +542,9 @@ fn in_turn<C, T>(
     (a, b): (&mut Scene<I16F16>, &mut Scene<I16F16>),
     ctx: &mut C,
     mut start: impl FnMut(&mut C) -> (u16, bool, T),
-    mut draw: impl FnMut(&mut C, T, &Frame<'_, I16F16, Rgb565>, Option<&Frame<'_, I16F16, Rgb565>>),
+    mut draw: impl FnMut(&mut C, T, &Frame<'_, I16F16, Rgb888>, Option<&Frame<'_, I16F16, Rgb888>>),
 ) -> ! {
-    let follows = |last: &Option<(u16, Frame<'_, I16F16, Rgb565>)>, k: u16, whole: bool| {
+    let follows = |last: &Option<(u16, Frame<'_, I16F16, Rgb888>)>, k: u16, whole: bool| {
         !whole
             && last
                 .as_ref()
@@ -558,7 +571,7 @@ fn in_turn<C, T>(
 /// A frame of `scene` for the panel: exact in its Rgb565 colours (`Frame::with_depth`),
 /// the colours the exact frame's pixels convert to, so that runs of the floor and the wall
 /// whose ends convert to one colour are drawn from their ends.
-fn panel_frame(scene: &Scene<I16F16>) -> Frame<'_, I16F16, Rgb565> {
+fn panel_frame(scene: &Scene<I16F16>) -> Frame<'_, I16F16, Rgb888> {
     Frame::new(scene).with_depth(Depth::of::<Rgb565>())
 }
 
