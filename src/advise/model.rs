@@ -152,7 +152,7 @@ pub const MODELS: &[Model] = &[
 ];
 
 /// Cycles per instruction of the RP2040's Cortex-M0+ on this code: the emulated board's
-/// whole exact frame of the boing ball at 240×240 (1000.2 cycles per pixel at 200 MHz)
+/// whole exact frame of the boing ball at 240×240 (989.4 cycles per pixel at 200 MHz)
 /// over the Cortex-M0's count of `scenes/boing-240x240.scene` in I16F16 (805.3
 /// instructions per pixel).
-pub const RP2040_CYCLES_PER_INSTRUCTION: f64 = 1.2421;
+pub const RP2040_CYCLES_PER_INSTRUCTION: f64 = 1.2287;

@@ -36,7 +36,8 @@ pub(crate) struct ShadowCone<S> {
     k: S,
     /// `|u|²/4`, rounded down: the nearest `ll` the shortcut takes.
     near: S,
-    /// `r²`, for [`ShadowCone::clears_line`] and the umbra ([`ShadowCone::in_row`]).
+    /// `r²`, for [`ShadowCone::clears_line`], [`ShadowCone::shadow_span`] and the umbra
+    /// ([`ShadowCone::in_row`]).
     rr: S,
 }
 

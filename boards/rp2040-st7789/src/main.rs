@@ -460,8 +460,8 @@ const fn frame_start(k: u16, whole: bool) -> u32 {
     (whole as u32) << 16 | k as u32
 }
 
-/// Core 1: its own copies of the scene (the frame and the frame shown before it), moved
-/// with core 0's; it draws its rows of each frame whose number it is sent.
+/// Core 1: its own two copies of the scene, drawn on in turn as core 0's are
+/// ([`in_turn`]); it draws its rows of each frame whose number it is sent.
 fn core1() -> ! {
     // SAFETY: core 1 uses only its own side of the SIO (the FIFO); core 0 set up the rest.
     let pac = unsafe { pac::Peripherals::steal() };
@@ -735,7 +735,8 @@ fn main() -> ! {
         orbit(&mut scene, bounce, (x, y), &mut panel, &mut serial, &timer);
     }
 
-    // The frame shown before: its scene, moved with `scene` one frame behind.
+    // The second scene: frames are drawn on it and on `scene` in turn ([`in_turn`]), the
+    // one drawn last being the next one's frame shown before.
     let mut shown = Scene::<I16F16>::empty();
     let _ = load(&mut shown);
     let mut k = 0;
