@@ -544,26 +544,21 @@ fn in_turn<C, T>(
     mut start: impl FnMut(&mut C) -> (u16, bool, T),
     mut draw: impl FnMut(&mut C, T, &Frame<'_, I16F16, Rgb888>, Option<&Frame<'_, I16F16, Rgb888>>),
 ) -> ! {
-    let follows = |last: &Option<(u16, Frame<'_, I16F16, Rgb888>)>, k: u16, whole: bool| {
-        !whole
-            && last
-                .as_ref()
-                .is_some_and(|(j, _)| next_frame(bounce, *j) == k)
-    };
+    // Whether frame `k`, drawn whole or not, comes right after frame `last`.
+    let follows = |last: u16, k: u16, whole: bool| !whole && next_frame(bounce, last) == k;
     // The frame drawn last (of `b`), with its number.
-    let mut kept = None;
+    let mut kept: Option<(u16, Frame<'_, I16F16, Rgb888>)> = None;
     loop {
         let (k, whole, started) = start(ctx);
         // `load` placed every frame of the loop.
         let _ = bounce.apply(a, k);
         let frame = panel_frame(a);
-        let before = kept.as_ref().filter(|_| follows(&kept, k, whole));
+        let before = kept.as_ref().filter(|(j, _)| follows(*j, k, whole));
         draw(ctx, started, &frame, before.map(|(_, f)| f));
         let (j, whole, started) = start(ctx);
         let _ = bounce.apply(b, j);
         let next = panel_frame(b);
-        let before = (!whole && next_frame(bounce, k) == j).then_some(&frame);
-        draw(ctx, started, &next, before);
+        draw(ctx, started, &next, follows(k, j, whole).then_some(&frame));
         kept = Some((j, next));
     }
 }
