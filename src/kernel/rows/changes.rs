@@ -21,7 +21,7 @@ use core::ops::Range;
 
 use super::super::fast::Primary;
 use super::Rows;
-use super::level::{RowShadows, row_shadows};
+use super::level::{RowShadows, cone_clears_row, row_shadows};
 use crate::shade::stages::DiffuseShadows;
 use crate::{Scalar, SceneView, Shape};
 
@@ -36,19 +36,23 @@ pub(crate) fn changed_columns<S: Scalar>(
     row: u16,
 ) -> Option<Range<u16>> {
     let width = after.0.camera.width;
+    // A row this kernel does not decide once (`None` from `row_shadows`: the fast kernel
+    // draws it), or one whose shadows it cannot bound, may change anywhere. The row's
+    // plane and its occluders other than the moved spheres are the two frames' alike (the
+    // scenes differ in the spheres' centres alone, which neither reads): they are formed
+    // once, from the frame after; each frame's own cones decide the moved spheres.
+    let first = |(scene, rows): (&SceneView<'_, S>, &Rows<S>)| rows.primary.row(scene, row, 0);
+    let (Some(_), Some(first)) = (first(before), first(after)) else {
+        return Some(0..width);
+    };
+    let Some(plane) = row_shadows::<S, DiffuseShadows>(after.0, &after.1.primary, &first) else {
+        return Some(0..width);
+    };
     let mut columns: Option<(u16, u16)> = None;
     for (scene, rows) in [before, after] {
         let p = &rows.primary;
-        // A row this kernel does not decide once (`None` from `row_shadows`: the fast
-        // kernel draws it), or one whose shadows it cannot bound, may change anywhere.
-        let Some(plane) = p
-            .row(scene, row, 0)
-            .and_then(|first| row_shadows::<S, DiffuseShadows>(scene, p, &first))
-        else {
-            return Some(0..width);
-        };
-        if let Some(plane) = plane {
-            match shadows(scene, p, &plane, moved) {
+        if let Some(plane) = &plane {
+            match shadows(scene, p, plane, moved) {
                 Some(Some(span)) => hull(&mut columns, span),
                 Some(None) => {}
                 None => return Some(0..width),
@@ -81,18 +85,20 @@ fn shadows<S: Scalar>(
         return None;
     }
     let mut columns: Option<(u16, u16)> = None;
-    for (j, &bits) in plane.occluders.iter().enumerate() {
+    for j in 0..plane.occluders.len() {
+        let light = scene.lights.get(j)?.location;
+        let (wy, wz) = (plane.y.checked_sub(light.y), plane.z.checked_sub(light.z));
         for i in 0..8u8 {
-            if bits & moved & (1 << i) == 0 {
+            // A moved sphere among this frame's occluders of the row (its bit of
+            // `Level::occluders`, from this frame's cones).
+            if moved & (1 << i) == 0 || cone_clears_row(p, (j, usize::from(i)), (wy, wz)) {
                 continue;
             }
             let cone = p
                 .cones()
                 .iter()
                 .find(|c| usize::from(c.light) == j && c.object == i)?;
-            let light = scene.lights.get(j)?.location;
-            let wy = plane.y.checked_sub(light.y)?;
-            let wz = plane.z.checked_sub(light.z)?;
+            let (wy, wz) = (wy?, wz?);
             let Some((lo, hi)) = cone.shadow_span(wy, wz)? else {
                 continue;
             };

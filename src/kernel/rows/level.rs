@@ -267,13 +267,7 @@ fn row_occluders<S: Scalar>(
         let (wy, wz) = (y.checked_sub(light.y), z.checked_sub(light.z));
         for (i, ((o, &a0), &a1)) in scene.objects.iter().zip(sides).zip(at_light).enumerate() {
             let may = match o.shape {
-                // A sphere whose shadow cone from this light misses the whole row
-                // (`crate::geometry::ShadowCone::clears_line`) is left out.
-                Shape::Sphere(_) => !p.cones().iter().any(|c| {
-                    usize::from(c.light) == j
-                        && usize::from(c.object) == i
-                        && matches!((wy, wz), (Some(wy), Some(wz)) if c.clears_line(wy, wz))
-                }),
+                Shape::Sphere(_) => !cone_clears_row(p, (j, i), (wy, wz)),
                 _ => (a0 > S::ZERO) != (a1 > S::ZERO),
             };
             if may {
@@ -283,6 +277,23 @@ fn row_occluders<S: Scalar>(
         let _ = occluders.push(bits);
     }
     Some(occluders)
+}
+
+/// Whether a shadow cone of object `i` (a sphere) from light `j` misses the whole row
+/// (`crate::geometry::ShadowCone::clears_line`): the row's hits on the line `(x, y, z)`,
+/// every `x`, offset `(wy, wz)` from the light in `y` and `z` (`None`: out of the
+/// format). Such a sphere is left out of the row's occluders of the light.
+#[inline(always)]
+pub(super) fn cone_clears_row<S: Scalar>(
+    p: &Primary<S>,
+    (j, i): (usize, usize),
+    (wy, wz): (Option<S>, Option<S>),
+) -> bool {
+    p.cones().iter().any(|c| {
+        usize::from(c.light) == j
+            && usize::from(c.object) == i
+            && matches!((wy, wz), (Some(wy), Some(wz)) if c.clears_line(wy, wz))
+    })
 }
 
 /// Per material of the row's plane (`materials`: its own, a tiled plane's alternate)
