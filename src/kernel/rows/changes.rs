@@ -49,10 +49,10 @@ pub(crate) fn changed_columns<S: Scalar>(
         return Some(0..width);
     };
     let mut columns: Option<(u16, u16)> = None;
-    for (scene, rows) in [before, after] {
+    for (kept, (scene, rows)) in [(false, before), (true, after)] {
         let p = &rows.primary;
         if let Some(plane) = &plane {
-            match shadows(scene, p, plane, moved) {
+            match shadows(scene, p, (plane, kept), moved) {
                 Some(Some(span)) => hull(&mut columns, span),
                 Some(None) => {}
                 None => return Some(0..width),
@@ -66,11 +66,13 @@ pub(crate) fn changed_columns<S: Scalar>(
 
 /// The columns of a row on `plane` where the spheres `moved` may shadow a hit, for
 /// any light: `Some(None)`, nowhere; `None`, anywhere (no per-row occluders, no shadow
-/// cone, or a bound out of the format).
+/// cone, or a bound out of the format). `kept`: whether `plane`'s occluders are this
+/// frame's own (formed with `p`); otherwise each moved sphere's bit is formed from `p`'s
+/// cones, as `Level::occluders` forms it.
 fn shadows<S: Scalar>(
     scene: &SceneView<'_, S>,
     p: &Primary<S>,
-    plane: &RowShadows<S>,
+    (plane, kept): (&RowShadows<S>, bool),
     moved: u8,
 ) -> Option<Option<(u16, u16)>> {
     // Without per-row occluders every light takes the general test: every object, at
@@ -85,13 +87,21 @@ fn shadows<S: Scalar>(
         return None;
     }
     let mut columns: Option<(u16, u16)> = None;
-    for j in 0..plane.occluders.len() {
+    for (j, &bits) in plane.occluders.iter().enumerate() {
         let light = scene.lights.get(j)?.location;
         let (wy, wz) = (plane.y.checked_sub(light.y), plane.z.checked_sub(light.z));
         for i in 0..8u8 {
+            if moved & (1 << i) == 0 {
+                continue;
+            }
             // A moved sphere among this frame's occluders of the row (its bit of
             // `Level::occluders`, from this frame's cones).
-            if moved & (1 << i) == 0 || cone_clears_row(p, (j, usize::from(i)), (wy, wz)) {
+            let clear = if kept {
+                bits & (1 << i) == 0
+            } else {
+                cone_clears_row(p, (j, usize::from(i)), (wy, wz))
+            };
+            if clear {
                 continue;
             }
             let cone = p
