@@ -46,6 +46,7 @@ mod step;
 mod tests;
 
 pub(crate) use blocks::{Blocks, blocks_for};
+pub(crate) use boxes::hull;
 pub use search::FastHit;
 pub(crate) use search::{HitMemo, accepts};
 pub(crate) use shadows::Quiet;
@@ -76,6 +77,9 @@ struct Term<S> {
     /// The columns likewise ([`sphere_columns`]): a sphere is tested only inside its
     /// box on the screen.
     columns: (u16, u16),
+    /// Whether the sphere is large enough for its box's margin (`boxes::bounded`), and
+    /// so for its chords of a row (`Primary::sphere_chords_on_row`).
+    bounded: bool,
 }
 
 /// What a term dots `D` with: the unit normal of a plane-like object, `eye − centre` of
@@ -169,7 +173,7 @@ fn term_of<S: Scalar>(
     let eye = scene.camera.viewpoint;
     let all_rows = (0, scene.camera.height.saturating_sub(1));
     let all_columns = (0, scene.camera.width.saturating_sub(1));
-    let (num, axis, sphere, rows, columns) = match &object.shape {
+    let (num, axis, sphere, rows, columns, bounded) = match &object.shape {
         Shape::Sphere(s) => {
             // Only with the eye outside every sphere (the near root is then the one, and
             // c/q has no cancellation), and with the sphere code built in.
@@ -184,7 +188,8 @@ fn term_of<S: Scalar>(
             let dz = S::ZERO.checked_sub(eye.z)?;
             let rr = s.radius_sq();
             let rows = sphere_rows(scene, oc, rr, dz);
-            (c, oc, true, rows, sphere_columns(scene, oc, rr, dz))
+            let columns = sphere_columns(scene, oc, rr, dz);
+            (c, oc, true, rows, columns, boxes::bounded(oc, rr, dz))
         }
         // The kernel has no term for a surface of revolution: the reference path.
         Shape::Revsurf(_) => return None,
@@ -195,7 +200,7 @@ fn term_of<S: Scalar>(
         | Shape::Triangle(_)) => {
             let plane = shape.plane()?;
             let num = S::sub_dot3(plane.offset(), plane.normal().to_array(), eye.to_array())?;
-            (num, plane.normal(), false, all_rows, all_columns)
+            (num, plane.normal(), false, all_rows, all_columns, false)
         }
     };
     let term = Term {
@@ -204,6 +209,7 @@ fn term_of<S: Scalar>(
         sphere,
         rows,
         columns,
+        bounded,
     };
     Some((term, axis))
 }

@@ -1,25 +1,25 @@
 //! What a frame of this kernel must redraw of the frame before it, when the two scenes
 //! differ only in where some spheres are ([`changed_columns`]).
 //!
-//! A pixel of a level row depends on a sphere in two ways only. It sees the sphere: then
-//! it lies in the sphere's box on the screen (the fast kernel's `sphere_rows` and
+//! A pixel of a level row depends on a sphere in two ways only. It sees the sphere: then it
+//! lies in the sphere's box on the screen (the fast kernel's `sphere_rows` and
 //! `sphere_columns`, outside which the sphere is not even tested; the invariant
-//! `no_pixel_outside_a_spheres_box_sees_it` holds it). Or the sphere shadows its hit:
-//! then the sphere is among the row's occluders of some light (`Level::occluders`, the
+//! `no_pixel_outside_a_spheres_box_or_chord_sees_it` holds it). Or the sphere shadows its
+//! hit: then the sphere is among the row's occluders of some light (`Level::occluders`, the
 //! objects the row's shadow tests consider; a sphere whose shadow cone clears the row's
-//! whole line is not among them, and its position is then read by no pixel of the row).
-//! So a row whose plane keeps the moved spheres out of its occluders in both frames
-//! changes only inside their boxes, old and new. In a row that keeps them, a pixel can
-//! change only where their shadow can fall: where the exact segment test of its hit can
-//! meet a sphere, in one frame or the other. A hit outside the sphere's shadow cone
-//! widened to `r·√(9/8)` is one the exact test finds clear (`ShadowCone::clears`), and
-//! the row's hits lie on one line: `ShadowCone::shadow_span` bounds the part of the line
-//! within a wider cone, `r·√(5/4)`, and its columns are found from the row's `t'`,
-//! two more on each side for the hits' roundings. Any other row may change anywhere.
+//! whole line is not among them, and its position is then read by no pixel of the row). So
+//! a row whose plane keeps the moved spheres out of its occluders in both frames changes
+//! only inside their boxes, old and new. In a row that keeps them, a pixel can change only
+//! where their shadow can fall: where the exact segment test of its hit can meet a sphere,
+//! in one frame or the other. A hit outside the sphere's shadow cone widened to `r·√(9/8)`
+//! is one the exact test finds clear (`ShadowCone::clears`), and the row's hits lie on one
+//! line: `ShadowCone::shadow_span` bounds the part of the line within a wider cone,
+//! `r·√(5/4)`, and its columns are found from the row's `t'`, two more on each side for the
+//! hits' roundings. Any other row may change anywhere.
 
 use core::ops::Range;
 
-use super::super::fast::Primary;
+use super::super::fast::{Primary, hull};
 use super::Rows;
 use super::level::{RowShadows, cone_clears_row, row_shadows};
 use crate::shade::stages::DiffuseShadows;
@@ -126,13 +126,6 @@ fn shadows<S: Scalar>(
         }
     }
     Some(columns)
-}
-
-/// `hull` widened to hold the columns `a..=b` (none when `a > b`).
-fn hull(hull: &mut Option<(u16, u16)>, (a, b): (u16, u16)) {
-    if a <= b {
-        *hull = Some(hull.map_or((a, b), |(c, d)| (c.min(a), d.max(b))));
-    }
 }
 
 /// The columns whose screen `x` lies in `lo..=hi`, and two more on each side (the hits'

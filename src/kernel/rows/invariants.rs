@@ -504,7 +504,7 @@ fn nearest_over_level_holds<S: Scalar>(scenes: &[(String, String, Option<u16>)])
                 continue;
             };
             let level = l.as_ref().map(|l| (l.index, l.pq, l.t));
-            let (from, to) = p.sphere_columns_on_row(row);
+            let (from, to) = p.sphere_columns_on_row_of(row, u8::MAX);
             for column in from..=to.min(view.camera.width.saturating_sub(1)) {
                 if p.restart(&view, row, column, &mut state).is_none() {
                     continue;

@@ -126,7 +126,8 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         at_hit: heapless::Vec::new(),
         weights: Weights::default(),
         memo: Memo::default(),
-        spheres: p.sphere_columns_on_row(row),
+        spheres: p.sphere_columns_on_row_of(row, u8::MAX),
+        chords: false,
         y: scene.camera.screen_y(row),
         row,
         columns,
@@ -165,8 +166,11 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     /// The spheres' materials' weights (a sphere hit's shading, [`Pixels::other`]).
     weights: Weights<S>,
     memo: Memo<S>,
-    /// The columns where a sphere can be met on this row.
+    /// The columns where a sphere can be met on this row: the spheres' boxes, narrowed to
+    /// their chords of the row ([`Primary::sphere_chords_on_row`], `chords`) at the first
+    /// pixel inside them (a row whose pixels stay outside forms none).
     spheres: (u16, u16),
+    chords: bool,
     y: Option<S>,
     row: u16,
     columns: core::ops::Range<u16>,
@@ -231,7 +235,12 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
     fn pixel(&mut self, column: u16) -> Rgb888 {
         let (scene, p) = (self.scene, self.p);
         count(&mut self.counters.primary_rays);
-        let in_spheres = column >= self.spheres.0 && column <= self.spheres.1;
+        let mut in_spheres = column >= self.spheres.0 && column <= self.spheres.1;
+        if in_spheres && !self.chords {
+            self.chords = true;
+            self.spheres = p.sphere_chords_on_row(scene, self.row);
+            in_spheres = column >= self.spheres.0 && column <= self.spheres.1;
+        }
         // The commonest pixels first ([`Pixels::quick_run`]): a lazy row's columns
         // outside the spheres' columns, on a lean row already built.
         if S::QUICK_PIXEL
