@@ -253,7 +253,7 @@ impl<'a, S: Scalar> RowRays<'a, S> {
     }
 }
 
-//// `hull` widened to hold the columns `a..=b` (none when `a > b`).
+/// `hull` widened to hold the columns `a..=b` (none when `a > b`).
 pub(crate) fn hull(hull: &mut Option<(u16, u16)>, (a, b): (u16, u16)) {
     if a <= b {
         *hull = Some(hull.map_or((a, b), |(c, d)| (c.min(a), d.max(b))));
