@@ -15,7 +15,8 @@
 //! is one the exact test finds clear (`ShadowCone::clears`), and the row's hits lie on one
 //! line: `ShadowCone::shadow_span` bounds the part of the line within a wider cone,
 //! `r·√(5/4)`, and its columns are found from the row's `t'`, two more on each side for the
-//! hits' roundings. Any other row may change anywhere.
+//! hits' roundings ([`shadow_columns`]; the same columns bound where a quick run's spans
+//! may go on a row that keeps shadow cones). Any other row may change anywhere.
 
 use core::ops::Range;
 
@@ -80,12 +81,7 @@ fn shadows<S: Scalar>(
     if plane.occluders.is_empty() && !scene.lights.is_empty() {
         return None;
     }
-    // A pixel's hit is `eye + t'·D`, `D.x` its screen `x` less the eye's: the hit
-    // `x = light.x + s` is seen at screen `x` `eye.x + (x − eye.x)/t'`.
-    let (eye, t) = (scene.camera.viewpoint.x, plane.t);
-    if t <= S::ZERO {
-        return None;
-    }
+    let t = plane.t;
     let mut columns: Option<(u16, u16)> = None;
     for (j, &bits) in plane.occluders.iter().enumerate() {
         let light = scene.lights.get(j)?.location;
@@ -104,28 +100,50 @@ fn shadows<S: Scalar>(
             if clear {
                 continue;
             }
-            let cone = p
-                .cones()
-                .iter()
-                .find(|c| usize::from(c.light) == j && c.object == i)?;
-            let (wy, wz) = (wy?, wz?);
-            let Some((lo, hi)) = cone.shadow_span(wy, wz)? else {
-                continue;
-            };
-            let screen = |s: S| {
-                light
-                    .x
-                    .checked_add(s)?
-                    .checked_sub(eye)?
-                    .checked_div(t)?
-                    .checked_add(eye)
-            };
-            if let Some(span) = screen_columns(scene, screen(lo)?, screen(hi)?)? {
+            let span = shadow_columns(scene, p, (j, i), (t, plane.y, plane.z))?;
+            if let Some(span) = span {
                 hull(&mut columns, span);
             }
         }
     }
     Some(columns)
+}
+
+/// The columns of a row whose hits lie on the line `(x, y, z)` (every `x`; `t` the row's
+/// `t'`) where the exact segment test of a hit towards light `j` may meet sphere `i`
+/// (its shadow cone, `ShadowCone::shadow_span`, two more columns on each side for the
+/// hits' roundings): `Some(None)`, nowhere; `None`, anywhere (no cone, or a bound out of
+/// the format).
+pub(super) fn shadow_columns<S: Scalar>(
+    scene: &SceneView<'_, S>,
+    p: &Primary<S>,
+    (j, i): (usize, u8),
+    (t, y, z): (S, S, S),
+) -> Option<Option<(u16, u16)>> {
+    // A pixel's hit is `eye + t'·D`, `D.x` its screen `x` less the eye's: the hit
+    // `x = light.x + s` is seen at screen `x` `eye.x + (x − eye.x)/t'`.
+    let eye = scene.camera.viewpoint.x;
+    if t <= S::ZERO {
+        return None;
+    }
+    let light = scene.lights.get(j)?.location;
+    let cone = p
+        .cones()
+        .iter()
+        .find(|c| usize::from(c.light) == j && c.object == i)?;
+    let (wy, wz) = (y.checked_sub(light.y)?, z.checked_sub(light.z)?);
+    let Some((lo, hi)) = cone.shadow_span(wy, wz)? else {
+        return Some(None);
+    };
+    let screen = |s: S| {
+        light
+            .x
+            .checked_add(s)?
+            .checked_sub(eye)?
+            .checked_div(t)?
+            .checked_add(eye)
+    };
+    screen_columns(scene, screen(lo)?, screen(hi)?)
 }
 
 /// The columns whose screen `x` lies in `lo..=hi`, and two more on each side (the hits'
@@ -197,4 +215,113 @@ pub(crate) fn moved_spheres<S: Scalar>(
         }
     }
     Some(moved)
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use std::string::String;
+
+    use fixed::types::{I16F16, I20F12};
+
+    use super::super::super::fast::{Primary, Row, resync_pixels};
+    use super::super::invariants::scenes;
+    use super::super::level::level;
+    use super::shadow_columns;
+    use crate::shade::stages::DiffuseShadows;
+    use crate::{Scalar, Scene};
+
+    /// At every hit of a level row's plane in `scenes` and format `S`, stepped as a scanline
+    /// steps, outside the columns where a sphere among the row's occluders may shadow it from
+    /// a light ([`shadow_columns`]), the sphere's exact segment test towards that light
+    /// (with the segments' tolerance at the hit) says no. Returns the rows with such columns
+    /// and the hits tested.
+    fn shadow_columns_hold<S: Scalar>(scenes: &[(String, String, Option<u16>)]) -> (usize, usize) {
+        let (mut rows, mut hits) = (0, 0);
+        for (name, text, _) in scenes {
+            let Ok(scene) = Scene::<S>::parse(text) else {
+                continue;
+            };
+            let view = scene.view();
+            let Some(p) = Primary::new(&view) else {
+                continue;
+            };
+            let eye = view.camera.viewpoint;
+            for row in 0..view.camera.height {
+                let Some(first) = p.row(&view, row, 0) else {
+                    continue;
+                };
+                let Some(Some(l)) = level::<S, DiffuseShadows>(&view, &p, &first) else {
+                    continue;
+                };
+                for (j, &bits) in l.occluders.iter().enumerate() {
+                    for i in (0..8u8).filter(|i| bits & (1 << i) != 0) {
+                        let span = shadow_columns(&view, &p, (j, i), (l.t, l.y, l.z));
+                        let (Some(Some((a, b))), Some(light), Some(object)) =
+                            (span, view.lights.get(j), view.objects.get(usize::from(i)))
+                        else {
+                            continue;
+                        };
+                        let crate::Shape::Sphere(sphere) = &object.shape else {
+                            continue;
+                        };
+                        rows += 1;
+                        let mut state: Option<Row<S>> = None;
+                        for column in 0..view.camera.width {
+                            let stepped = match state.as_mut() {
+                                Some(r) if column % resync_pixels::<S>() != 0 => p.advance(r),
+                                _ => {
+                                    state = p.row(&view, row, column);
+                                    state.as_ref().map(|_| ())
+                                }
+                            };
+                            let (Some(()), Some(r)) = (stepped, state.as_ref()) else {
+                                state = None;
+                                continue;
+                            };
+                            if (a..=b).contains(&column) {
+                                continue;
+                            }
+                            let Ok(Some(h)) = p.nearest(&view, r) else {
+                                continue;
+                            };
+                            let Some(to_light) = light.location.diff(h.point) else {
+                                continue;
+                            };
+                            let ll = to_light.dot(to_light).filter(|ll| *ll > S::ZERO);
+                            let tol = crate::kernel::shading::segment_tolerance(
+                                eye, h.point, h.t_bound, None,
+                            );
+                            let (true, Some(ll), Some(tol)) = (h.index == l.index, ll, tol) else {
+                                continue;
+                            };
+                            hits += 1;
+                            assert!(
+                                sphere.meets_segment(h.point, to_light, ll, tol) != Some(true),
+                                "{} {name}: sphere {i} shadows ({column}, {row}) outside {a}..={b}\n{text}",
+                                S::NAME
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        (rows, hits)
+    }
+
+    /// A row's shadow columns ([`shadow_columns`], what a frame's changes redraw of a
+    /// moved sphere's shadow and where a quick run's spans may go on a row with shadow
+    /// cones): outside them no hit of the row's plane is shadowed by the sphere. Checked on
+    /// every row of eight boing frames and 60 random level scenes in I16F16 and I20F12 (over
+    /// 400 rows with such columns and 20,000 hits outside them in each).
+    #[test]
+    fn no_hit_outside_a_rows_shadow_columns_is_shadowed() {
+        let all = scenes(2, 60, 0x5EED_0005_0007);
+        for (rows, hits) in [
+            shadow_columns_hold::<I16F16>(&all),
+            shadow_columns_hold::<I20F12>(&all),
+        ] {
+            assert!(rows > 400 && hits > 20_000, "{rows} {hits}");
+        }
+    }
 }

@@ -106,7 +106,7 @@ fn level_scene(rng: &mut Rng) -> String {
 
 /// The scenes: the boing ball's frames (every `step`-th of its loop) and `random` seeded
 /// level-plane scenes, as `(name, text, frame)` (`frame`: the bounce's, for boing).
-fn scenes(step: u16, random: usize, seed: u64) -> Vec<(String, String, Option<u16>)> {
+pub(super) fn scenes(step: u16, random: usize, seed: u64) -> Vec<(String, String, Option<u16>)> {
     let boing = String::from(include_str!("../../../scenes/boing.scene"));
     let mut all: Vec<_> = (0..16)
         .step_by(usize::from(step))

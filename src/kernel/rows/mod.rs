@@ -29,7 +29,8 @@
 //! plane and its per-row terms (`level`) and the colour of a pixel on it
 //! ([`plane_color`]); `lean.rs`, lean rows ([`lean_row`]): the commonest pixels'
 //! colours and quick runs; `changes.rs`, what a frame must redraw of the frame before it
-//! when spheres move ([`changed_columns`]).
+//! when spheres move ([`changed_columns`]), and where a sphere's shadow can fall on a row
+//! (`shadow_columns`).
 
 mod changes;
 #[cfg(test)]
@@ -38,11 +39,12 @@ mod lean;
 mod level;
 mod spans;
 
+use changes::shadow_columns;
 pub(crate) use changes::{changed_columns, moved_spheres};
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 
-use super::fast::{self, FAST_OBJECTS, FastHit, Primary, Row};
+use super::fast::{self, FAST_OBJECTS, FastHit, Primary, Row, hull};
 use super::memo::Weights;
 use super::scanline::{fast_color, reference_color};
 use crate::shade::color::to_pixel;
@@ -128,6 +130,7 @@ pub(crate) fn scanline<'a, S: Scalar, T: Stages>(
         memo: Memo::default(),
         spheres: p.sphere_columns_on_row_of(row, u8::MAX),
         chords: false,
+        shadow: core::cell::Cell::new(None),
         y: scene.camera.screen_y(row),
         row,
         columns,
@@ -171,6 +174,9 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     /// pixel inside them (a row whose pixels stay outside forms none).
     spheres: (u16, u16),
     chords: bool,
+    /// The columns where a sphere may shadow the row's hits from its one light
+    /// ([`Pixels::unshadowed_to`]; `None` until a quick run asks).
+    shadow: core::cell::Cell<Option<(u16, u16)>>,
     y: Option<S>,
     row: u16,
     columns: core::ops::Range<u16>,
@@ -343,9 +349,11 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         // than Rgb888, with the cargo feature `depth` (`spans.rs`). (In the exact depth a
         // span would draw hardly fewer pixels than the run: neighbours seldom have one
         // Rgb888 colour, and halving costs more than it saves.)
-        if cfg!(feature = "depth") && self.depth != Depth::RGB888 && light.cones.0 == light.cones.1
+        if cfg!(feature = "depth")
+            && self.depth != Depth::RGB888
+            && let Some(limit) = self.unshadowed_to(column)
         {
-            return self.spans(column, (first, side));
+            return self.spans(column, (first, side), limit);
         }
         #[cfg(feature = "stats")]
         {
@@ -380,10 +388,16 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
     /// [`Pixels::quick_run`]'s run after its first pixel (at `column`, with its side), in
     /// spans ([`Span::draw`]) up to the column before each restart of the stepping (a
     /// restart's column is a quick step's); a span that meets a pixel the quick path does
-    /// not draw ends the run before it. Every pixel is lit (no sphere can shadow the row
-    /// from its light).
+    /// not draw ends the run before it, and the run ends at column `limit` at the latest
+    /// (up to it no sphere can shadow the row from its light: [`Pixels::unshadowed_to`]).
+    /// Every pixel is lit.
     #[inline(never)]
-    fn spans(&mut self, column: u16, (first, side): (Rgb888, lean::Side)) -> Option<Rgb888> {
+    fn spans(
+        &mut self,
+        column: u16,
+        (first, side): (Rgb888, lean::Side),
+        limit: u16,
+    ) -> Option<Rgb888> {
         let (scene, p) = (self.scene, self.p);
         let row = (self.row, Primary::dir(&self.state).y);
         let (l, f) = (self.level.as_ref()?, &self.lean);
@@ -399,6 +413,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         if column < spheres.0 {
             last = last.min(spheres.0 - 1);
         }
+        last = last.min(limit);
         let resync = fast::resync_pixels::<S>();
         // One for the run's spans: each clears it by its `known` bits alone.
         let mut drawn = Drawn::new();
@@ -451,6 +466,58 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         (self.run_at, self.run_len) = (0, span.n);
         (self.fresh, self.stale, self.valid) = (false, true, true);
         Some(first)
+    }
+
+    /// The last column up to which, from `column`, no sphere can shadow the row's hits
+    /// from its one light; `None` where one may at `column`. Outside the columns of each
+    /// sphere the row keeps a shadow cone of ([`shadow_columns`]; formed at the row's
+    /// first ask) the exact segment test finds every hit clear: its quick pixels are lit.
+    fn unshadowed_to(&self, column: u16) -> Option<u16> {
+        if self.shadow.get().is_none() {
+            // A row's shadows' columns pay where most of the row is left to draw (a
+            // frame's changes are mostly its spheres' boxes and their shadows' columns):
+            // a row with cones and less left keeps its quick steps.
+            let cones = matches!(self.lean.lights.as_slice(), [l] if l.cones.0 != l.cones.1);
+            let left = self.columns.end.saturating_sub(column);
+            if cones && left <= self.scene.camera.width / 2 {
+                return None;
+            }
+            self.shadow.set(Some(self.shadow_of_row()));
+        }
+        let (a, b) = self.shadow.get()?;
+        if column < a {
+            Some(a - 1)
+        } else if column > b {
+            Some(u16::MAX)
+        } else {
+            None
+        }
+    }
+
+    /// [`Pixels::unshadowed_to`]'s columns: `(u16::MAX, 0)` where no sphere can shadow
+    /// the row, `(0, u16::MAX)` where one may anywhere.
+    #[inline(never)]
+    fn shadow_of_row(&self) -> (u16, u16) {
+        const ANYWHERE: (u16, u16) = (0, u16::MAX);
+        let (Some(l), [light]) = (self.level.as_ref(), self.lean.lights.as_slice()) else {
+            return ANYWHERE;
+        };
+        if light.cones.0 == light.cones.1 {
+            return (u16::MAX, 0);
+        }
+        // The spheres the row keeps cones of are its occluders of the light (`lean_row`).
+        let Some(&bits) = l.occluders.first() else {
+            return ANYWHERE;
+        };
+        let mut columns = None;
+        for i in (0..8u8).filter(|i| bits & (1 << i) != 0) {
+            match shadow_columns(self.scene, self.p, (0, i), (l.t, l.y, l.z)) {
+                Some(Some(span)) => hull(&mut columns, span),
+                Some(None) => {}
+                None => return ANYWHERE,
+            }
+        }
+        columns.unwrap_or((u16::MAX, 0))
     }
 
     /// The row's plane at the current pixel ([`plane_color`]). Out of line, as is

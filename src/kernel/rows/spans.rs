@@ -4,7 +4,8 @@
 //!
 //! Along a lean row with one light, between two restarts of the stepping, a quick pixel's
 //! colour is a function of its tile and `|L|²` alone where no sphere can shadow the row
-//! from the light (the row keeps no cone for it): `D.x` grows by one step a pixel, the
+//! from the light (the row keeps no cone for it, or the pixels lie outside the columns
+//! where one may, `changes::shadow_columns`): `D.x` grows by one step a pixel, the
 //! hit's `x = eye.x + t'·D.x` (`t'` the row's) is monotone in it, and so are its tile
 //! column (a difference and a floored quotient), `L.x = light.x − x` and, on one side of
 //! `L.x = 0`, `|L|² = L.x² + (L.y² + L.z²)` (one rounding of a sum that grows with
