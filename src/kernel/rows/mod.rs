@@ -171,7 +171,10 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     memo: Memo<S>,
     /// The columns where a sphere can be met on this row: the spheres' boxes, narrowed to
     /// their chords of the row ([`Primary::sphere_chords_on_row`], `chords`) at the first
-    /// pixel inside them (a row whose pixels stay outside forms none).
+    /// pixel inside them (a row whose pixels stay outside forms none), in the formats with
+    /// a quick pixel (`KernelArith::QUICK_PIXEL`: a pixel outside the spheres' columns
+    /// then takes a quick run; in the others the boxes alone, and no chord's code in a
+    /// small chip's flash).
     spheres: (u16, u16),
     chords: bool,
     /// The columns where a sphere may shadow the row's hits from its one light
@@ -242,7 +245,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         let (scene, p) = (self.scene, self.p);
         count(&mut self.counters.primary_rays);
         let mut in_spheres = column >= self.spheres.0 && column <= self.spheres.1;
-        if in_spheres && !self.chords {
+        if S::QUICK_PIXEL && in_spheres && !self.chords {
             self.chords = true;
             self.spheres = p.sphere_chords_on_row(scene, self.row);
             in_spheres = column >= self.spheres.0 && column <= self.spheres.1;
