@@ -23,12 +23,15 @@ fn every_core_and_main_format_has_a_model() {
             .all(|m| m.coefficients.iter().all(|c| *c >= 0.0))
     );
     // The RP2040 is priced in cycles: more than the M0's instructions for the same work.
+    // (Its cycles per instruction are the board's frame, drawn for its RGB565 panel, over
+    // the M0's count of the exact frame: below the core's own, as the board's frame skips
+    // work the count does.)
     let scene = Scene::<I16F16>::parse(DEFAULT).unwrap();
     let (_, w) = work(&scene, Sampling::Exact);
     let m0 = model_price(Core::CortexM0, "i16f16", false, &w).unwrap().0;
     let rp = model_price(Core::Rp2040, "i16f16", false, &w).unwrap().0;
     assert!(
-        rp > 1.2 * m0 && rp < 2.0 * m0,
+        rp > 1.1 * m0 && rp < 2.0 * m0,
         "{rp} cycles against {m0} instructions"
     );
 }

@@ -331,8 +331,8 @@ impl<S: Scalar> Primary<S> {
     /// row cannot be decided once (a plane with `N.x ≠ 0`, or one within the margin of the
     /// epsilon at some pixel of the row, `N·D = 0` included: [`nearest`](Self::nearest)
     /// then decides each pixel). `first` is the row started at column 0, `width` its
-    /// pixels. Spheres are left out: the caller tests them inside their chords of the row
-    /// ([`Self::sphere_chords_on_row`]). The same tests and the same tie rule as
+    /// pixels. Spheres are left out: the caller tests them inside their screen boxes, or
+    /// their chords of the row ([`Self::sphere_chords_on_row`]). The same tests and the same tie rule as
     /// `nearest`, so that a pixel's plane is `nearest`'s (`kernel/rows/`).
     pub(crate) fn level_row(
         &self,
