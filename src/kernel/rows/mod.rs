@@ -195,11 +195,11 @@ pub(crate) struct Pixels<'a, S: Scalar, T> {
     /// Which of `run` were lit (bit `i`: `run[i]`): their counts are added as they are
     /// handed out, so that a caller that stops early counts only the pixels it took.
     #[cfg(feature = "stats")]
-    run_lit: u32,
+    run_lit: u64,
 }
 
 /// How many pixels a quick run draws ahead of the one asked for ([`Pixels::quick_run`]).
-const RUN: usize = 32;
+const RUN: usize = 64;
 
 impl<S: Scalar, T: Stages> Iterator for Pixels<'_, S, T> {
     type Item = Rgb888;
@@ -375,7 +375,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             };
             #[cfg(feature = "stats")]
             {
-                self.run_lit |= u32::from(lit) << n;
+                self.run_lit |= u64::from(lit) << n;
             }
             #[cfg(not(feature = "stats"))]
             let _ = lit;
@@ -461,9 +461,9 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         }
         #[cfg(feature = "stats")]
         {
-            self.run_lit = 1u32
+            self.run_lit = 1u64
                 .checked_shl(u32::from(span.n))
-                .map_or(u32::MAX, |m| m - 1);
+                .map_or(u64::MAX, |m| m - 1);
         }
         self.columns.start = span.at.0 + 1;
         (self.run_at, self.run_len) = (0, span.n);
