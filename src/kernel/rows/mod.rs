@@ -53,7 +53,7 @@ use crate::stats::{Counters, count};
 use crate::{Color, Depth, Scalar, SceneView};
 use lean::{LeanRow, count_quick, lean_color, lean_row, quick_step};
 use level::{Level, Memo, level, plane_color, row_plane};
-use spans::{Drawn, Drew, Span, class};
+use spans::{Drew, Span, class};
 
 /// The per-frame part: the fast kernel's (its terms, the lights' sides of every plane,
 /// the spheres' rows and shadow cones).
@@ -418,8 +418,6 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         }
         last = last.min(limit);
         let resync = fast::resync_pixels::<S>();
-        // One for the run's spans: each clears it by its `known` bits alone.
-        let mut drawn = Drawn::new();
         let mut span = Span {
             depth: self.depth,
             from: column,
@@ -432,15 +430,7 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
                 let b = last.min((c / resync + 1).saturating_mul(resync) - 1);
                 if b > c {
                     let lean = (l, f, light);
-                    match span.draw(
-                        scene,
-                        p,
-                        lean,
-                        &mut self.state,
-                        row.1,
-                        b,
-                        (&mut self.run, &mut drawn),
-                    ) {
+                    match span.draw(scene, p, lean, &mut self.state, row.1, b, &mut self.run) {
                         Drew::All => continue,
                         // The run ends before a column the quick path does not draw.
                         Drew::Before(bad) => {

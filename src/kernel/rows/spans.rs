@@ -46,11 +46,6 @@ pub(super) struct Span {
 /// The most pixels a span covers: those after a restart of the stepping, up to the next.
 const SPAN: usize = super::super::fast::RESYNC_PIXELS as usize - 1;
 
-/// The drawn columns a span keeps: its start and [`SPAN`] more (a power of two, so
-/// that an offset masked to it needs no bounds check).
-const KEPT: usize = SPAN + 1;
-const _: () = assert!(KEPT.is_power_of_two());
-
 /// A drawn pixel's [`Side`] as one number (`2·tile + left`), `None` where its tile is
 /// not known or so far out that the number would not tell two tiles apart.
 #[inline(always)]
@@ -70,51 +65,40 @@ pub(super) enum Drew {
     Not,
 }
 
-/// A span's drawn columns by their offset from its start: each one's key in the depth
-/// and [`class`] (`known`, bit `k`: the class of the column at offset `k` is known; only
-/// a known column's key and class are read, so a run's spans share one, cleared by
-/// `known` alone).
-pub(super) struct Drawn {
-    keys: [u32; KEPT],
-    classes: [i32; KEPT],
-    known: u32,
+/// A drawn column of a span: its offset from the span's start, its key in the depth, its
+/// [`class`] (`UNKNOWN` where it has none) and its pixel.
+#[derive(Clone, Copy)]
+struct End {
+    k: u8,
+    key: u32,
+    class: i32,
+    pixel: Rgb888,
 }
 
-impl Drawn {
-    /// No column drawn.
-    pub(super) fn new() -> Self {
+/// The class of a column whose [`class`] is `None`: never [`End::alike`] any other (a
+/// known class lies within `±2³⁰`).
+const UNKNOWN: i32 = i32::MIN;
+
+impl End {
+    fn new(k: usize, depth: Depth, pixel: Rgb888, class: Option<i32>) -> Self {
         Self {
-            keys: [0; KEPT],
-            classes: [0; KEPT],
-            known: 0,
+            // (`k` is at most a span, below 256.)
+            k: k as u8,
+            key: depth.key(pixel),
+            class: class.unwrap_or(UNKNOWN),
+            pixel,
         }
     }
 
-    /// Records the column at offset `k`.
+    /// Whether the two columns have one key and one known class: every column between
+    /// them is then drawn as the left one (the module's certificate).
     #[inline(always)]
-    fn mark(&mut self, k: usize, key: u32, class: Option<i32>) {
-        self.keys[k & (KEPT - 1)] = key;
-        if let Some(c) = class {
-            self.classes[k & (KEPT - 1)] = c;
-            self.known |= 1 << (k & (KEPT - 1));
-        }
+    fn alike(&self, other: &Self) -> bool {
+        self.class != UNKNOWN && self.class == other.class && self.key == other.key
     }
 
-    /// The class of the column at offset `k`.
-    #[inline(always)]
-    fn class(&self, k: usize) -> Option<i32> {
-        (self.known & (1 << (k & (KEPT - 1))) != 0).then(|| self.classes[k & (KEPT - 1)])
-    }
-
-    /// Whether the columns at offsets `lo` and `hi` have one key and one known class:
-    /// every column between them is then drawn as `lo` (the module's certificate).
-    #[inline(always)]
-    fn alike(&self, lo: usize, hi: usize) -> bool {
-        let (lo, hi) = (lo & (KEPT - 1), hi & (KEPT - 1));
-        let both = (1 << lo) | (1 << hi);
-        self.known & both == both
-            && self.classes[lo] == self.classes[hi]
-            && self.keys[lo] == self.keys[hi]
+    fn class(&self) -> Option<i32> {
+        (self.class != UNKNOWN).then_some(self.class)
     }
 }
 
@@ -135,7 +119,7 @@ impl Span {
         state: &mut Row<S>,
         dy: S,
         b: u16,
-        (run, drawn): (&mut [Rgb888; RUN], &mut Drawn),
+        run: &mut [Rgb888; RUN],
     ) -> Drew {
         let a = self.at.0;
         let len = usize::from(b.saturating_sub(a));
@@ -169,60 +153,50 @@ impl Span {
             Some(d)
         };
         let eval = |k: usize| quick_at(scene, p, lean, (dx(k)?, dy));
-        // Every drawn column's key and class by its offset from `a` (`known`, bit `k`:
-        // column `a + k`'s class is known).
-        drawn.known = 0;
         let colors = self.depth;
-        drawn.mark(0, colors.key(self.at.1), self.at.2);
         let Some((pixel, _, side)) = eval(len) else {
             return Drew::Before(b);
         };
         run[slot(len)] = pixel;
-        drawn.mark(len, colors.key(pixel), class(side));
-        let pixel_at =
-            |run: &[Rgb888; RUN], k: usize| if k == 0 { self.at.1 } else { run[slot(k)] };
-        // The halves still to draw (offsets from `a`, both ends drawn), the leftmost last.
-        let mut stack = [(0u8, 0u8); 8];
-        let mut depth = 1;
-        stack[0] = (0, len as u8);
+        // The last column drawn with every one left of it drawn (`left`), and the drawn
+        // columns right of it still to reach (`right[..depth]`, the nearest last; masked
+        // to the array's size, a power of two, within which `depth` stays): each gap
+        // between two is halved where its ends are not alike, its left half first.
+        let mut left = End::new(0, colors, self.at.1, self.at.2);
+        let mut right = [left; 8];
+        right[0] = End::new(len, colors, pixel, class(side));
+        let mut depth = 1usize;
         while depth > 0 {
-            depth -= 1;
-            let (lo, hi) = stack[depth & 7];
-            let (lo, hi) = (usize::from(lo), usize::from(hi));
-            if hi - lo < 2 {
-                continue;
-            }
-            if drawn.alike(lo, hi) {
-                let left = pixel_at(run, lo);
+            let r = right[(depth - 1) & 7];
+            let (lo, hi) = (usize::from(left.k), usize::from(r.k));
+            if hi - lo < 2 || left.alike(&r) {
                 for k in lo + 1..hi {
-                    run[slot(k)] = left;
+                    run[slot(k)] = left.pixel;
                 }
+                left = r;
+                depth -= 1;
                 continue;
             }
             let m = lo + (hi - lo) / 2;
             let Some((pixel, _, side)) = eval(m) else {
                 // Every column up to `lo` is drawn (the left halves go first).
-                let left = pixel_at(run, lo);
                 let Some(dx) = dx(lo) else {
                     return Drew::Not;
                 };
-                self.keep(state, p, (lo, dx), left, drawn.class(lo));
+                self.keep(state, p, (lo, dx), left.pixel, left.class());
                 return Drew::Before(a + m as u16);
             };
             run[slot(m)] = pixel;
-            drawn.mark(m, colors.key(pixel), class(side));
-            // The right half below the left one: the left is drawn first.
-            if depth + 2 > stack.len() {
+            if depth == right.len() {
                 return Drew::Not;
             }
-            stack[depth & 7] = (m as u8, hi as u8);
-            stack[(depth + 1) & 7] = (lo as u8, m as u8);
-            depth += 2;
+            right[depth & 7] = End::new(m, colors, pixel, class(side));
+            depth += 1;
         }
         let Some(dx) = dx(len) else {
             return Drew::Not;
         };
-        self.keep(state, p, (len, dx), pixel, class(side));
+        self.keep(state, p, (len, dx), left.pixel, left.class());
         Drew::All
     }
 
