@@ -307,7 +307,8 @@ fn quick_steps_hold<S: Scalar>(scenes: &[(String, String, Option<u16>)]) -> (usi
             let Some(mut s) = before.cloned() else {
                 return;
             };
-            let Some((pixel, lit, _)) = quick_step(view, p, l, f, light, &mut s, (row, dy), column)
+            let Some((pixel, lit, _)) =
+                quick_step(view, p, l, f, light, &mut s, (row, dy), (column, true))
             else {
                 return;
             };

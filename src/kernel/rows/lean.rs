@@ -389,7 +389,7 @@ impl<S: Scalar> LeanRow<S> {
 /// to `column`; with the pixel, whether the light lit it and its [`Side`]. `None`
 /// wherever the case is another, with `state` unchanged but at a resync column, which is
 /// restarted (the general path then restarts it again, to the same state). The caller
-/// counts.
+/// counts. `cones`: whether the pixel may lie in a sphere's shadow ([`quick_at`]).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn quick_step<S: Scalar>(
@@ -400,7 +400,7 @@ pub(super) fn quick_step<S: Scalar>(
     light: &LeanLight<S>,
     state: &mut Row<S>,
     (row, dy): (u16, S),
-    column: u16,
+    (column, cones): (u16, bool),
 ) -> Option<(Rgb888, bool, Side)> {
     let resync = column.is_multiple_of(fast::resync_pixels::<S>());
     let dx = if resync {
@@ -411,7 +411,7 @@ pub(super) fn quick_step<S: Scalar>(
         (Primary::column(state).checked_add(1) == Some(column)).then_some(())?;
         p.next_dx(state)?
     };
-    let at = quick_at(scene, p, (l, f, light), (dx, dy))?;
+    let at = quick_at(scene, p, (l, f, light), (dx, dy), cones)?;
     if !resync {
         // `next_dx` fitted and the column follows the state's: this step cannot fail.
         p.advance_dir(state)?;
@@ -432,12 +432,19 @@ pub(super) struct Side {
 /// its step): the hit's `x`, its tile, `L.x`, `|L|²`, the cones and
 /// `KernelArith::quick_pixel`; with whether the light lit it and its [`Side`]. Reads
 /// nothing but `dx` of the pixel, so a span may ask it at any column whose `D.x` it knows.
+///
+/// `cones`: whether the pixel may lie in a sphere's shadow. A caller that knows it does
+/// not (the pixel lies outside the row's shadow columns, `changes::shadow_columns`, where
+/// the exact segment test finds every hit clear) passes `false`, and no cone is tested:
+/// a cone's test there would say what the exact test says, lit (or pass the pixel to the
+/// general path, which draws it lit).
 #[inline(always)]
 pub(super) fn quick_at<S: Scalar>(
     scene: &SceneView<'_, S>,
     p: &Primary<S>,
     (l, f, light): (&Level<S>, &LeanRow<S>, &LeanLight<S>),
     (dx, dy): (S, S),
+    cones: bool,
 ) -> Option<(Rgb888, bool, Side)> {
     let x = row_x(scene, l, dx)?;
     let (parity, tile) = f.tile(x);
@@ -450,7 +457,7 @@ pub(super) fn quick_at<S: Scalar>(
     if ll < S::ONE {
         return None;
     }
-    let cones = f.cones_at(light, lx)?;
+    let cones = if cones { f.cones_at(light, lx)? } else { &[] };
     // A sphere whose cone does not clear the pixel takes its exact segment test, as
     // `plane_color` takes it (`occluded_among`, with the tolerance `lit` gives it), unless
     // its umbra says what the test would (`RowCone::blocks`): where it meets the segment

@@ -344,7 +344,11 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             return None;
         };
         let tiled = u32::from(f.tiles.is_some());
-        let (first, lit, side) = quick_step(scene, p, l, f, light, &mut self.state, row, column)?;
+        // A pixel outside the row's shadow columns tests no cone (`quick_at`).
+        let (a, b) = self.shadow(column);
+        let cones = |c: u16| c >= a && c <= b;
+        let at = (column, cones(column));
+        let (first, lit, side) = quick_step(scene, p, l, f, light, &mut self.state, row, at)?;
         // (The first pixel's primary ray was counted by `pixel`, the caller; the others'
         // counts are added as `next` hands them out.)
         count_quick(self.counters, tiled, lit, false);
@@ -369,7 +373,8 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
             if c >= end || (c >= spheres.0 && c <= spheres.1) {
                 break;
             }
-            let Some((pixel, lit, _)) = quick_step(scene, p, l, f, light, &mut self.state, row, c)
+            let at = (c, cones(c));
+            let Some((pixel, lit, _)) = quick_step(scene, p, l, f, light, &mut self.state, row, at)
             else {
                 break;
             };
@@ -441,7 +446,10 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
                     }
                 }
             }
-            let Some((pixel, _, side)) = quick_step(scene, p, l, f, light, &mut self.state, row, c)
+            // (Up to `limit` no pixel lies in a sphere's shadow.)
+            let at = (c, false);
+            let Some((pixel, _, side)) =
+                quick_step(scene, p, l, f, light, &mut self.state, row, at)
             else {
                 break;
             };
@@ -462,22 +470,12 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
     }
 
     /// The last column up to which, from `column`, no sphere can shadow the row's hits
-    /// from its one light; `None` where one may at `column`. Outside the columns of each
-    /// sphere the row keeps a shadow cone of ([`shadow_columns`]; formed at the row's
-    /// first ask) the exact segment test finds every hit clear: its quick pixels are lit.
+    /// from its one light; `None` where one may at `column`, or the row's shadow columns
+    /// are not formed ([`Pixels::shadow`]). Outside the columns of each sphere the row
+    /// keeps a shadow cone of ([`shadow_columns`]) the exact segment test finds every hit
+    /// clear: its quick pixels are lit.
     fn unshadowed_to(&self, column: u16) -> Option<u16> {
-        if self.shadow.get().is_none() {
-            // A row's shadows' columns pay where most of the row is left to draw (a
-            // frame's changes are mostly its spheres' boxes and their shadows' columns):
-            // a row with cones and less left keeps its quick steps.
-            let cones = matches!(self.lean.lights.as_slice(), [l] if l.cones.0 != l.cones.1);
-            let left = self.columns.end.saturating_sub(column);
-            if cones && left <= self.scene.camera.width / 2 {
-                return None;
-            }
-            self.shadow.set(Some(self.shadow_of_row()));
-        }
-        let (a, b) = self.shadow.get()?;
+        let (a, b) = self.shadow(column);
         if column < a {
             Some(a - 1)
         } else if column > b {
@@ -487,7 +485,26 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
         }
     }
 
-    /// [`Pixels::unshadowed_to`]'s columns: `(u16::MAX, 0)` where no sphere can shadow
+    /// The columns where a sphere may shadow the row's hits from its one light
+    /// ([`Pixels::shadow_of_row`]), formed at the row's first ask from `column` that
+    /// leaves more than half the row's width to draw (a frame's changes are mostly its
+    /// spheres' boxes and their shadows' columns, where forming them costs more than
+    /// the cones' tests it saves); until then, on a row with cones, every column.
+    fn shadow(&self, column: u16) -> (u16, u16) {
+        if let Some(columns) = self.shadow.get() {
+            return columns;
+        }
+        let cones = matches!(self.lean.lights.as_slice(), [l] if l.cones.0 != l.cones.1);
+        let left = self.columns.end.saturating_sub(column);
+        if cones && left <= self.scene.camera.width / 2 {
+            return (0, u16::MAX);
+        }
+        let columns = self.shadow_of_row();
+        self.shadow.set(Some(columns));
+        columns
+    }
+
+    /// [`Pixels::shadow`]'s columns: `(u16::MAX, 0)` where no sphere can shadow
     /// the row, `(0, u16::MAX)` where one may anywhere.
     #[inline(never)]
     fn shadow_of_row(&self) -> (u16, u16) {

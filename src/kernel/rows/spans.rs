@@ -152,7 +152,8 @@ impl Span {
             }
             Some(d)
         };
-        let eval = |k: usize| quick_at(scene, p, lean, (dx(k)?, dy));
+        // (No pixel of a span lies in a sphere's shadow: its cones are not tested.)
+        let eval = |k: usize| quick_at(scene, p, lean, (dx(k)?, dy), false);
         let colors = self.depth;
         let Some((pixel, _, side)) = eval(len) else {
             return Drew::Before(b);
