@@ -489,8 +489,13 @@ impl<S: Scalar, T: Stages> Pixels<'_, S, T> {
     /// ([`Pixels::shadow_of_row`]), formed at the row's first ask from `column` that
     /// leaves more than half the row's width to draw (a frame's changes are mostly its
     /// spheres' boxes and their shadows' columns, where forming them costs more than
-    /// the cones' tests it saves); until then, on a row with cones, every column.
+    /// the cones' tests it saves); until then, on a row with cones, every column. Only
+    /// with the cargo feature `depth`, whose spans need them: without it, as in a small
+    /// chip's firmware, their code would not fit its flash with a copy per format.
     fn shadow(&self, column: u16) -> (u16, u16) {
+        if !cfg!(feature = "depth") {
+            return (0, u16::MAX);
+        }
         if let Some(columns) = self.shadow.get() {
             return columns;
         }
