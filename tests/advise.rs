@@ -2,7 +2,9 @@
 //! its accuracy figures are the frames', and its costs follow the calibrated counts (the
 //! render example's `--advise` is tested in `tests/cli.rs`).
 
-use fixray::advise::{Budget, Core, MODELS, Model, advise, model_price, work};
+use fixray::advise::{
+    Budget, Core, MODELS, Model, RP2040_CYCLES_PER_INSTRUCTION, advise, model_price, work,
+};
 use fixray::{I16F16, Sampling, Scene};
 
 const SPHERES: &str = include_str!("../scenes/spheres.scene");
@@ -22,17 +24,22 @@ fn every_core_and_main_format_has_a_model() {
             .iter()
             .all(|m| m.coefficients.iter().all(|c| *c >= 0.0))
     );
-    // The RP2040 is priced in cycles: more than the M0's instructions for the same work.
-    // (Its cycles per instruction are the board's frame, drawn for its RGB565 panel, over
-    // the M0's count of the exact frame: below the core's own, as the board's frame skips
-    // work the count does.)
+    // The RP2040 is priced in cycles: the M0's instructions for the same work times the
+    // calibrated ratio of the board's cycles to the M0's count. That ratio is the board's
+    // frame, drawn for its RGB565 panel, over the M0's count of the exact frame: below
+    // the core's own cycles per instruction (about 1.5), as the board's frame skips work
+    // the count does; outside 0.8 to 2 the calibration has gone wrong.
     let scene = Scene::<I16F16>::parse(DEFAULT).unwrap();
     let (_, w) = work(&scene, Sampling::Exact);
     let m0 = model_price(Core::CortexM0, "i16f16", false, &w).unwrap().0;
     let rp = model_price(Core::Rp2040, "i16f16", false, &w).unwrap().0;
     assert!(
-        rp > 1.1 * m0 && rp < 2.0 * m0,
+        (rp / m0 - RP2040_CYCLES_PER_INSTRUCTION).abs() < 1e-9,
         "{rp} cycles against {m0} instructions"
+    );
+    assert!(
+        (0.8..2.0).contains(&RP2040_CYCLES_PER_INSTRUCTION),
+        "{RP2040_CYCLES_PER_INSTRUCTION} cycles per instruction"
     );
 }
 
